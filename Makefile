@@ -1,0 +1,132 @@
+# qusgm: quasi-static granular mechanics toolkit.
+# Targets: all check run bench validate install uninstall clean deps help (see `make help`).
+
+VERSION   = 0.1.0
+PREFIX   ?= /usr/local
+BINDIR   ?= $(PREFIX)/bin
+MANPREFIX ?= $(PREFIX)/share/man
+DATADIR  ?= $(PREFIX)/share/qusgm
+DESTDIR  ?=
+
+CC       ?= cc
+OPT      ?= -O2 -g
+WARN      = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+STD       = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+PKGS      = gsl ccd zlib
+DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config
+
+# Build directories: build/ is the normal build, build-san/ the sanitizer build.
+B        ?= build
+SANFLAGS  = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+ifeq ($(strip $(PKG_LIBS)),)
+PKG_LIBS := -lgsl -lgslcblas -lccd -lz
+endif
+
+ALL_CFLAGS = $(STD) $(WARN) $(OPT) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAGS)
+ALL_LIBS   = $(PKG_LIBS) -lm
+
+LIB_SRC   = $(wildcard lib/*.c)
+LIB_OBJ   = $(LIB_SRC:lib/%.c=$(B)/lib/%.o)
+TOOL_SRC  = $(wildcard tools/*.c)
+TOOLS     = $(TOOL_SRC:tools/%.c=%)
+TOOL_BIN  = $(TOOLS:%=$(B)/bin/%)
+UNIT_SRC  = $(wildcard tests/unit/*.c)
+UNIT_BIN  = $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
+MAN1      = $(wildcard share/man/man1/*.1)
+MAN5      = $(wildcard share/man/man5/*.5)
+
+.PHONY: all deps check check-fast run bench validate interop install uninstall clean help tools unit
+.DELETE_ON_ERROR:
+
+all: deps
+	@$(MAKE) --no-print-directory tools unit
+
+tools: $(TOOL_BIN)
+unit: $(UNIT_BIN)
+
+# The dependencies come from Debian packages.  As root, install what is missing; otherwise
+# stop with the exact command to type.
+deps:
+	@missing=""; \
+	command -v pkg-config >/dev/null 2>&1 || missing="pkg-config"; \
+	for m in $(PKGS); do \
+	  pkg-config --exists $$m 2>/dev/null || missing="$$missing $$m"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "qusgm: installing missing build dependencies ($$missing)"; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PKGS); } >/dev/null || \
+	      { echo "qusgm: apt-get install failed; run: apt-get install $(DEB_PKGS)" >&2; exit 1; }; \
+	  else \
+	    echo "qusgm: missing build dependencies ($$missing); run: sudo apt-get install $(DEB_PKGS)" >&2; exit 1; \
+	  fi; \
+	fi
+
+$(B)/lib/%.o: lib/%.c lib/*.h
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+$(B)/libqusgm.a: $(LIB_OBJ)
+	rm -f $@
+	ar rcs $@ $^
+
+$(B)/bin/%: tools/%.c $(B)/libqusgm.a lib/*.h
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+
+$(B)/tests/%: tests/unit/%.c tests/unit/unit.h $(B)/libqusgm.a lib/*.h
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -Itests/unit -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+
+# make check: the normal build and the sanitizer build, unit tests and tool tests under both,
+# then one closing line "N passed, N failed".
+check: deps
+	@$(MAKE) --no-print-directory B=build tools unit
+	@$(MAKE) --no-print-directory B=build-san OPT="-O1 -g" EXTRA_CFLAGS="$(SANFLAGS)" tools unit
+	@sh tests/run.sh build build-san
+
+# Quicker loop while developing: normal build only.
+check-fast: all
+	@sh tests/run.sh build
+
+run: all
+	@sh share/run-default.sh build/bin
+
+bench: all
+	@sh tests/bench.sh build/bin
+
+validate: all
+	@sh tests/validate.sh build/bin
+
+interop: all
+	@sh tests/interop.sh build/bin
+
+install: all
+	mkdir -p $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANPREFIX)/man1 $(DESTDIR)$(MANPREFIX)/man5 $(DESTDIR)$(DATADIR)
+	cp $(TOOL_BIN) $(DESTDIR)$(BINDIR)/
+	cp $(MAN1) $(DESTDIR)$(MANPREFIX)/man1/
+	cp $(MAN5) $(DESTDIR)$(MANPREFIX)/man5/
+	cp -R share/presets share/doc $(DESTDIR)$(DATADIR)/
+
+uninstall:
+	for t in $(TOOLS); do rm -f $(DESTDIR)$(BINDIR)/$$t; done
+	for m in $(notdir $(MAN1)); do rm -f $(DESTDIR)$(MANPREFIX)/man1/$$m; done
+	for m in $(notdir $(MAN5)); do rm -f $(DESTDIR)$(MANPREFIX)/man5/$$m; done
+	rm -rf $(DESTDIR)$(DATADIR)
+
+clean:
+	rm -rf build build-san tests/out
+
+help:
+	@echo "make            build the library and the tools ($(TOOLS))"
+	@echo "make check      build normally and with ASan+UBSan, run every test; ends 'N passed, N failed'"
+	@echo "make check-fast the tests on the normal build only"
+	@echo "make run        the default job: a G2740 glass pack, its packinfo, a VTK export (out/)"
+	@echo "make bench      benchmarks; results in bench/results.md"
+	@echo "make validate   long validation cases; results in validate/results.md"
+	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
+	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, presets"
+	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR"

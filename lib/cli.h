@@ -1,0 +1,76 @@
+/* cli: the command-line conventions every tool keeps.
+ *
+ * A tool declares its options once, in a table (name, argument, destination, help, unit);
+ * the table drives getopt_long, --help (with defaults in brackets), the resolved-options
+ * string recorded in a pack's history line, and the man-page test.  The common options
+ * -o/--output, -v/--verbose, -q/--quiet, -h/--help and -V/--version are added here.
+ * Output files are written atomically: to a temporary file in the same directory, renamed
+ * over the target only after a checked close, removed on failure or on a signal. */
+#ifndef QUSGM_CLI_H
+#define QUSGM_CLI_H
+
+#include <stdio.h>
+
+#define QUSGM_VERSION "0.1.0"
+
+enum cli_type { CLI_END = 0, CLI_FLAG, CLI_LONG, CLI_DOUBLE, CLI_STRING };
+
+struct cli_opt {
+	const char *name;	/* long name, without "--" */
+	int shortname;		/* 0 for none */
+	enum cli_type type;
+	void *dest;		/* int *, long *, double *, const char ** */
+	const char *arg;	/* argument name in --help, e.g. "PA" */
+	const char *help;	/* one line */
+	const char *unit;	/* "Pa", "m", NULL for none */
+};
+
+struct cli_tool {
+	const char *name;
+	const char *usage;	/* after the tool name, e.g. "[options] [FILE]" */
+	const char *purpose;	/* one line */
+	struct cli_opt *opts;	/* terminated by CLI_END */
+	int max_operands;	/* input files allowed (usually 1) */
+};
+
+struct cli_state {
+	const char *output;	/* -o FILE, or NULL for stdout */
+	const char *input;	/* the operand, or NULL/"-" for stdin */
+	char **operands;
+	int noperands;
+	char *argv_text;	/* the command line as typed, shell-quoted */
+};
+
+/* Parse argv against the tool's table; exits 0 for --help/--version, 2 for usage errors
+ * (after reporting every bad option).  Fills st. */
+void cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st);
+
+/* Report one usage error; the tool calls cli_usage_done() after checking everything. */
+void cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void cli_usage_done(void);
+
+/* "--name=value ..." for every option in the table, as resolved: goes into history. */
+char *cli_resolved(const struct cli_tool *t);
+
+/* A history line: "tool VERSION: argv ; resolved options". Caller frees. */
+char *cli_history_line(const struct cli_tool *t, const struct cli_state *st);
+
+/* Atomic output.  cli_out_open returns stdout for NULL or "-". */
+struct cli_out {
+	FILE *fp;
+	char *path;	/* final path, NULL for stdout */
+	char *tmp;	/* temporary path */
+};
+int cli_out_open(struct cli_out *o, const char *path);
+int cli_out_commit(struct cli_out *o);	/* checked close + rename; 0 on success */
+void cli_out_abort(struct cli_out *o);	/* remove the temporary file */
+
+/* Open an input stream; NULL or "-" is stdin.  Sets *display to the name used in messages. */
+FILE *cli_in_open(const char *path, const char **display);
+
+/* Progress on stderr: shown when stderr is a terminal or with -v, never with -q. */
+int cli_progress_enabled(void);
+void cli_progress(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void cli_progress_end(void);
+
+#endif

@@ -1,0 +1,33 @@
+/* msg: one-line diagnostics on stderr, the exit-status table, verbosity.
+ *
+ * Every message is "tool: where: what" on one line.  Exit statuses are the same in every
+ * tool: 0 success, 1 bad data or runtime failure, 2 usage error.  The library reports
+ * failures through return values and msg_seterr(); only tools decide to exit. */
+#ifndef QUSGM_MSG_H
+#define QUSGM_MSG_H
+
+#include <stdarg.h>
+#include <stdnoreturn.h>
+
+enum { EXIT_DATA = 1, EXIT_USAGE = 2 };
+
+extern const char *msg_progname;
+extern int msg_verbosity;	/* -1 quiet, 0 default, 1 -v, 2 -vv */
+
+void msg_init(const char *argv0);
+
+/* Print "prog: fmt" and exit with status.  A format ending in ':' gets ": strerror(errno)". */
+noreturn void msg_die(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void msg_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void msg_info(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Library-side error slot: a function that fails fills it and returns nonzero; the tool
+ * prints it with msg_die_err().  Keeps the library from printing. */
+void msg_seterr(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+const char *msg_geterr(void);
+noreturn void msg_die_err(int status);
+
+/* Replace GSL's abort() handler with one that records the error in the slot. */
+void msg_gsl_handler_install(void);
+
+#endif

@@ -1,0 +1,156 @@
+/* packinfo: describe packs as "key value" lines (or one TSV row per pack with --tsv). */
+#include "cli.h"
+#include "measure.h"
+#include "msg.h"
+#include "numfmt.h"
+#include "packio.h"
+#include "table.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int tsv;
+
+static struct cli_opt opts[] = {
+	{"tsv", 't', CLI_FLAG, &tsv, NULL, "one header line and one row per pack, for scripts", NULL},
+	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
+};
+
+static const struct cli_tool tool = {
+	"packinfo", "[options] [FILE]",
+	"Report porosity, coordination, rattlers, radii, overlaps, stresses, residual, sliding ratio and fabric of packs.",
+	opts, 1,
+};
+
+#define NKEYS 40
+
+struct row {
+	struct table_col col[NKEYS];
+	double v[NKEYS];
+	int n;
+};
+
+static void
+add(struct row *r, const char *name, const char *unit, double v)
+{
+	r->col[r->n].name = name;
+	r->col[r->n].unit = unit;
+	r->v[r->n++] = v;
+}
+
+static void
+fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
+{
+	r->n = 0;
+	add(r, "grains", NULL, (double)m->grains);
+	add(r, "lx", "m", pack_box_length(p->box, 0));
+	add(r, "ly", "m", pack_box_length(p->box, 1));
+	add(r, "lz", "m", pack_box_length(p->box, 2));
+	add(r, "porosity", NULL, m->porosity);
+	add(r, "coordination", NULL, m->coordination);
+	add(r, "coordination_nr", NULL, m->coordination_nr);
+	add(r, "contacts_gg", NULL, (double)m->contacts_gg);
+	add(r, "contacts_gw", NULL, (double)m->contacts_gw);
+	add(r, "under4", NULL, (double)m->under4);
+	add(r, "rattlers", NULL, (double)m->rattlers);
+	add(r, "r_mean", "m", m->r_mean);
+	add(r, "r_std", "m", m->r_std);
+	add(r, "r_min", "m", m->r_min);
+	add(r, "r_max", "m", m->r_max);
+	add(r, "overlap_max", NULL, m->overlap_max);
+	add(r, "mu", NULL, p->mu);
+	add(r, "history_contacts", NULL, (double)m->history);
+	add(r, "stale_history", NULL, (double)m->stale_history);
+	add(r, "sig_xx", "Pa", m->has_forces ? m->sig_wall[0] : NAN);
+	add(r, "sig_yy", "Pa", m->has_forces ? m->sig_wall[1] : NAN);
+	add(r, "sig_zz", "Pa", m->has_forces ? m->sig_wall[2] : NAN);
+	add(r, "sigma_c", "Pa", m->has_forces ? m->sigma_c : NAN);
+	add(r, "sig_lw_xx", "Pa", m->has_forces ? m->sig_lw[0] : NAN);
+	add(r, "sig_lw_yy", "Pa", m->has_forces ? m->sig_lw[1] : NAN);
+	add(r, "sig_lw_zz", "Pa", m->has_forces ? m->sig_lw[2] : NAN);
+	add(r, "force_mean", "N", m->has_forces ? m->P_mean : NAN);
+	add(r, "force_max", "N", m->has_forces ? m->P_max : NAN);
+	add(r, "residual", NULL, m->has_forces ? m->residual_max : NAN);
+	add(r, "residual_mean", NULL, m->has_forces ? m->residual_mean : NAN);
+	add(r, "sliding_ratio", NULL, m->sliding_ratio);
+	add(r, "fabric_xx", NULL, m->fabric[0]);
+	add(r, "fabric_yy", NULL, m->fabric[1]);
+	add(r, "fabric_zz", NULL, m->fabric[2]);
+	add(r, "fabric_xy", NULL, m->fabric[3]);
+	add(r, "fabric_xz", NULL, m->fabric[4]);
+	add(r, "fabric_yz", NULL, m->fabric[5]);
+	add(r, "fabric_anisotropy", NULL, m->fabric_anisotropy);
+}
+
+static void
+print_keys(FILE *fp, const struct row *r)
+{
+	char buf[40];
+	int k;
+
+	for (k = 0; k < r->n; k++) {
+		if (isnan(r->v[k]))
+			continue;	/* absent: nothing to report, no number made up */
+		num_format(buf, r->v[k]);
+		fprintf(fp, "%s %s\n", r->col[k].name, buf);
+	}
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_state st;
+	struct cli_out out;
+	struct pack_reader *rd;
+	struct geo_contacts gc;
+	struct pack p;
+	struct pack_measures m;
+	struct row row;
+	const char *name;
+	char *text = NULL;
+	size_t textlen = 0;
+	FILE *in, *mem;
+	int r, count = 0;
+
+	msg_init(argv[0]);
+	cli_parse(&tool, argc, argv, &st);
+	cli_usage_done();
+	if (!(in = cli_in_open(st.input, &name)) || !(rd = pack_reader_open(in, name)))
+		msg_die_err(EXIT_DATA);
+	/* Everything is formatted in memory first: a bad pack later in the stream must not
+	 * leave the rows of the earlier ones behind. */
+	if (!(mem = open_memstream(&text, &textlen)))
+		msg_die(EXIT_DATA, "out of memory");
+	contacts_init(&gc);
+	while ((r = pack_read_next(rd, &p)) == 1) {
+		if (measure_pack(&p, &gc, &m))
+			msg_die_err(EXIT_DATA);
+		fill_row(&p, &m, &row);
+		if (tsv) {
+			if (count == 0)
+				table_header(mem, row.col, row.n);
+			table_row(mem, row.v, row.n);
+		} else {
+			if (count > 0)
+				fputc('\n', mem);
+			print_keys(mem, &row);
+		}
+		pack_free(&p);
+		count++;
+	}
+	if (r < 0)
+		msg_die_err(EXIT_DATA);
+	if (count == 0)
+		msg_die(EXIT_DATA, "%s:1: empty input", name);
+	pack_reader_close(rd);
+	contacts_free(&gc);
+	fclose(mem);
+	if (cli_out_open(&out, st.output))
+		msg_die_err(EXIT_DATA);
+	fwrite(text, 1, textlen, out.fp);
+	free(text);
+	if (cli_out_commit(&out))
+		msg_die_err(EXIT_DATA);
+	return 0;
+}
