@@ -1,0 +1,203 @@
+/* packexport: write a pack for ParaView/OVITO (VTK), LAMMPS or YADE. */
+#include "cli.h"
+#include "export.h"
+#include "msg.h"
+#include "packio.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <zlib.h>
+
+static int vtk, lammps, lammps_data, xyzr, periodic;
+
+static struct cli_opt opts[] = {
+	{"vtk", 0, CLI_FLAG, &vtk, NULL, "VTK XML PolyData; -o NAME.vtm also writes NAME_grains.vtp and NAME_contacts.vtp, stdout gets the grains .vtp only", NULL},
+	{"lammps", 0, CLI_FLAG, &lammps, NULL, "LAMMPS dump, one frame per pack of the input", NULL},
+	{"lammps-data", 0, CLI_FLAG, &lammps_data, NULL, "LAMMPS data file (atom_style sphere)", NULL},
+	{"xyzr", 0, CLI_FLAG, &xyzr, NULL, "'x y z r' lines, as YADE's SpherePack.load reads them", NULL},
+	{"periodic", 0, CLI_FLAG, &periodic, NULL, "with --xyzr: first line '##PERIODIC:: Lx Ly Lz' (box lengths)", NULL},
+	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
+};
+
+static const struct cli_tool tool = {
+	"packexport", "--vtk|--lammps|--lammps-data|--xyzr [--periodic] [-o FILE] [FILE]",
+	"Write a pack in the formats of ParaView and OVITO (VTK), LAMMPS and YADE.",
+	opts, 1,
+};
+
+/* Output is formatted in memory first, so that a failure leaves no partial file or
+ * half-written stdout. */
+struct text {
+	char *s;
+	size_t len;
+	FILE *fp;
+};
+
+static FILE *
+text_open(struct text *t)
+{
+	t->s = NULL;
+	t->len = 0;
+	if (!(t->fp = open_memstream(&t->s, &t->len)))
+		msg_die(EXIT_DATA, "out of memory");
+	return t->fp;
+}
+
+static void
+text_close(struct text *t)
+{
+	if (fclose(t->fp) != 0)
+		msg_die(EXIT_DATA, "out of memory");
+}
+
+/* Write t to path (NULL or "-": stdout) atomically, gzip-compressed for a .gz name. */
+static void
+emit(const char *path, struct text *t)
+{
+	struct cli_out out;
+	int bad = 0;
+
+	if (cli_out_open(&out, path))
+		msg_die_err(EXIT_DATA);
+	if (path_is_gz(path)) {
+		int fd = dup(fileno(out.fp));
+		gzFile z = fd >= 0 ? gzdopen(fd, "wb6") : NULL;
+
+		if (!z || (t->len && gzwrite(z, t->s, (unsigned)t->len) != (int)t->len))
+			bad = 1;
+		if (z)
+			bad |= gzclose(z) != Z_OK;
+		else if (fd >= 0)
+			close(fd);
+	} else if (fwrite(t->s, 1, t->len, out.fp) != t->len) {
+		bad = 1;
+	}
+	free(t->s);
+	t->s = NULL;
+	if (bad) {
+		cli_out_abort(&out);
+		msg_die(EXIT_DATA, "%s: write error", path ? path : "<stdout>");
+	}
+	if (cli_out_commit(&out))
+		msg_die_err(EXIT_DATA);
+}
+
+static int
+has_suffix(const char *s, const char *suf)
+{
+	size_t n = strlen(s), m = strlen(suf);
+
+	return n > m && strcmp(s + n - m, suf) == 0;
+}
+
+static const char *
+base_name(const char *path)
+{
+	const char *s = strrchr(path, '/');
+
+	return s ? s + 1 : path;
+}
+
+/* -o NAME.vtm: the two .vtp files next to it, then the .vtm that names them (last, so that
+ * it never points at files that are not there). */
+static void
+write_vtm(const struct pack *p, const char *vtm)
+{
+	struct text g, c, m;
+	size_t n = strlen(vtm) - 4;
+	char *gname = malloc(n + 16), *cname = malloc(n + 16);
+
+	if (!gname || !cname)
+		msg_die(EXIT_DATA, "out of memory");
+	snprintf(gname, n + 16, "%.*s_grains.vtp", (int)n, vtm);
+	snprintf(cname, n + 16, "%.*s_contacts.vtp", (int)n, vtm);
+	if (export_vtp_grains(p, text_open(&g)) || export_vtp_contacts(p, text_open(&c)) ||
+	    export_vtm(text_open(&m), base_name(gname), base_name(cname)))
+		msg_die_err(EXIT_DATA);
+	text_close(&g);
+	text_close(&c);
+	text_close(&m);
+	emit(gname, &g);
+	emit(cname, &c);
+	emit(vtm, &m);
+	free(gname);
+	free(cname);
+}
+
+/* Every pack of the stream is a frame, numbered from 0. */
+static void
+write_lammps_frames(const char *input, struct text *t)
+{
+	struct pack_reader *rd;
+	struct pack p;
+	const char *name;
+	FILE *in;
+	long frame = 0;
+	int r;
+
+	if (!(in = cli_in_open(input, &name)) || !(rd = pack_reader_open(in, name)))
+		msg_die_err(EXIT_DATA);
+	text_open(t);
+	while ((r = pack_read_next(rd, &p)) == 1) {
+		if (export_lammps_dump(&p, t->fp, frame++))
+			msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
+		pack_free(&p);
+	}
+	if (r < 0)
+		msg_die_err(EXIT_DATA);
+	if (frame == 0)
+		msg_die(EXIT_DATA, "%s:1: empty input", name);
+	pack_reader_close(rd);
+	if (in != stdin)
+		fclose(in);
+	text_close(t);
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_state st;
+	struct pack p;
+	struct text t;
+	const char *out;
+	int r = 0;
+
+	msg_init(argv[0]);
+	cli_parse(&tool, argc, argv, &st);
+	out = st.output && strcmp(st.output, "-") != 0 ? st.output : NULL;
+	if ((vtk > 0) + (lammps > 0) + (lammps_data > 0) + (xyzr > 0) != 1)
+		cli_usage_error("give exactly one of --vtk, --lammps, --lammps-data, --xyzr");
+	if (periodic && !xyzr)
+		cli_usage_error("--periodic goes with --xyzr only");
+	if (vtk && out && !has_suffix(out, ".vtm") && !has_suffix(out, ".vtp"))
+		cli_usage_error("--vtk: the output name must end in .vtm (grains, contacts and the .vtm) or .vtp (grains only)");
+	cli_usage_done();
+
+	if (lammps) {
+		write_lammps_frames(st.input, &t);
+		emit(out, &t);
+		return 0;
+	}
+	if (pack_read_path(st.input, &p))
+		msg_die_err(EXIT_DATA);
+	if (vtk && out && has_suffix(out, ".vtm")) {
+		write_vtm(&p, out);
+		pack_free(&p);
+		return 0;
+	}
+	text_open(&t);
+	if (vtk)
+		r = export_vtp_grains(&p, t.fp);
+	else if (lammps_data)
+		r = export_lammps_data(&p, t.fp);
+	else
+		r = export_xyzr(&p, t.fp, periodic);
+	if (r)
+		msg_die(EXIT_DATA, "%s: %s", st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>",
+		    msg_geterr());
+	text_close(&t);
+	emit(out, &t);
+	pack_free(&p);
+	return 0;
+}

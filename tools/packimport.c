@@ -1,0 +1,149 @@
+/* packimport: make a qusgm pack from "x y z r" lines (YADE, LAMMPS scripts, anything). */
+#include "cli.h"
+#include "export.h"
+#include "material.h"
+#include "msg.h"
+#include "numfmt.h"
+#include "packio.h"
+
+#include <gsl/gsl_rng.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *box_arg;
+static int fit_box;
+static const char *material_name = "glass";
+static long seed = 1;
+static double friction = 0.3;
+static const char *wall_E_arg;
+static double wall_nu = 0.495;
+static const char *wall_friction_arg;
+
+static struct cli_opt opts[] = {
+	{"box", 0, CLI_STRING, &box_arg, "XLO,YLO,ZLO,XHI,YHI,ZHI", "the box; must hold every centre", "m"},
+	{"fit-box", 0, CLI_FLAG, &fit_box, NULL, "the tightest box holding every sphere (the default)", NULL},
+	{"material", 0, CLI_STRING, &material_name, "NAME", "grain material: a preset (glass, quartz, hydrate) or a file", NULL},
+	{"seed", 0, CLI_LONG, &seed, "S", "seed of the mt19937 generator that draws E and nu", NULL},
+	{"friction", 0, CLI_DOUBLE, &friction, "MU", "grain-grain friction coefficient", NULL},
+	{"wall-E", 0, CLI_STRING, &wall_E_arg, "PA", "wall Young's modulus [default: 100 times the material's E]", "Pa"},
+	{"wall-nu", 0, CLI_DOUBLE, &wall_nu, "NU", "wall Poisson ratio", NULL},
+	{"wall-friction", 0, CLI_STRING, &wall_friction_arg, "MU", "grain-wall friction coefficient [default: the --friction value]", NULL},
+	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
+};
+
+static const struct cli_tool tool = {
+	"packimport", "[--box XLO,YLO,ZLO,XHI,YHI,ZHI | --fit-box] [options] [FILE]",
+	"Make a qusgm pack from 'x y z r' lines, drawing grain moduli from a material.",
+	opts, 1,
+};
+
+/* Resolved values of the options whose default depends on another, written back into the
+ * option strings so that the history line records what was used. */
+static char wall_E_text[40], wall_friction_text[40];
+
+static int
+parse_box(const char *s, double box[6])
+{
+	char buf[512], *tok, *save = NULL;
+	int n = 0, a;
+
+	if (strlen(s) >= sizeof buf)
+		return -1;
+	strcpy(buf, s);
+	for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save))
+		if (n == 6 || num_parse(tok, &box[n++]))
+			return -1;
+	if (n != 6)
+		return -1;
+	for (a = 0; a < 3; a++)
+		if (!(box[a + 3] > box[a]))
+			return -1;
+	return 0;
+}
+
+/* Checks every option; usage errors are collected, a bad material file is bad data. */
+static void
+check_options(double box[6], struct material *m, double *wall_E, double *wall_mu)
+{
+	int mat_ok;
+
+	if (box_arg && fit_box)
+		cli_usage_error("--box and --fit-box exclude each other");
+	if (box_arg && parse_box(box_arg, box))
+		cli_usage_error("--box: '%s' is not six numbers xlo,ylo,zlo,xhi,yhi,zhi with each hi above its lo",
+		    box_arg);
+	if (seed < 0)
+		cli_usage_error("--seed: %ld is negative", seed);
+	if (!(friction >= 0))
+		cli_usage_error("--friction: %g is negative", friction);
+	if (!(wall_nu > -1 && wall_nu < 0.5))
+		cli_usage_error("--wall-nu: %g is outside (-1, 0.5)", wall_nu);
+	if (wall_friction_arg && (num_parse(wall_friction_arg, wall_mu) || !(*wall_mu >= 0)))
+		cli_usage_error("--wall-friction: '%s' is not a number >= 0", wall_friction_arg);
+	mat_ok = material_lookup(material_name, m) == 0;
+	if (!mat_ok && !strchr(material_name, '/') && !strstr(material_name, ".mat"))
+		cli_usage_error("--material: %s", msg_geterr());
+	if (wall_E_arg && (num_parse(wall_E_arg, wall_E) || !(*wall_E > 0)))
+		cli_usage_error("--wall-E: '%s' is not a positive number", wall_E_arg);
+	cli_usage_done();
+	if (!mat_ok)
+		msg_die_err(EXIT_DATA);
+	if (!box_arg)
+		fit_box = 1;
+	if (!wall_E_arg) {
+		*wall_E = 100 * m->E;
+		num_format(wall_E_text, *wall_E);
+		wall_E_arg = wall_E_text;
+	}
+	if (!wall_friction_arg) {
+		*wall_mu = friction;
+		num_format(wall_friction_text, *wall_mu);
+		wall_friction_arg = wall_friction_text;
+	}
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_state st;
+	struct material m;
+	struct pack p;
+	gsl_rng *rng;
+	const char *name;
+	double box[6], wall_E, wall_mu;
+	char *hist;
+	size_t i;
+	FILE *in;
+
+	msg_init(argv[0]);
+	cli_parse(&tool, argc, argv, &st);
+	check_options(box, &m, &wall_E, &wall_mu);
+
+	if (!(in = cli_in_open(st.input, &name)) || xyzr_read(in, name, box_arg ? box : NULL, &p))
+		msg_die_err(EXIT_DATA);
+	if (in != stdin)
+		fclose(in);
+	/* Moduli are drawn in file order, so a seed names one pack. */
+	if (!(rng = gsl_rng_alloc(gsl_rng_mt19937)))
+		msg_die(EXIT_DATA, "out of memory");
+	gsl_rng_set(rng, (unsigned long)seed);
+	for (i = 0; i < p.n; i++) {
+		material_sample(&m, rng, &p.E[i], &p.nu[i]);
+		p.rho[i] = m.rho;
+	}
+	gsl_rng_free(rng);
+	p.mu = friction;
+	p.wall_E = wall_E;
+	p.wall_nu = wall_nu;
+	p.wall_mu = wall_mu;
+	hist = cli_history_line(&tool, &st);
+	if (pack_add_history(&p, hist))
+		msg_die(EXIT_DATA, "out of memory");
+	free(hist);
+	if (pack_validate(&p))
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
+	if (pack_write_path(&p, st.output))
+		msg_die_err(EXIT_DATA);
+	pack_free(&p);
+	return 0;
+}
