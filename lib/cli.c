@@ -40,17 +40,16 @@ cli_usage_error(const char *fmt, ...)
 	va_start(ap, fmt);
 	vfprintf(stderr, fmt, ap);
 	va_end(ap);
-	fputc('\n', stderr);
+	/* one line per error (style.md 13): the hint goes on the same line */
+	fprintf(stderr, " (try '%s --help')\n", msg_progname);
 	usage_errors++;
 }
 
 void
 cli_usage_done(void)
 {
-	if (usage_errors) {
-		fprintf(stderr, "%s: try '%s --help'\n", msg_progname, msg_progname);
+	if (usage_errors)
 		exit(EXIT_USAGE);
-	}
 }
 
 static size_t
@@ -254,6 +253,8 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 		if (o)
 			parse_value(o, optarg);
 	}
+	free(lo);	/* before the exits below: LeakSanitizer counts them otherwise */
+	free(map);
 	if (help_flag) {
 		print_help(t);
 		exit(0);
@@ -271,8 +272,6 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 	st->input = st->noperands > 0 ? st->operands[0] : NULL;
 	st->output = output_path;
 	st->argv_text = shell_quote_argv(argc, argv);
-	free(lo);
-	free(map);
 }
 
 char *

@@ -179,7 +179,8 @@ contacts_find(const struct pack *p, struct geo_contacts *gc)
 	}
 	cell_free(&g);
 	ngg = gc->n;
-	qsort(gc->c, ngg, sizeof *gc->c, cmp_gc);
+	if (ngg > 1)	/* qsort(NULL, 0, ...) is undefined; gc->c is NULL before the first contact */
+		qsort(gc->c, ngg, sizeof *gc->c, cmp_gc);
 	for (i = 0; i < p->n; i++)
 		for (w = 0; w < NWALLS; w++) {
 			struct geo_contact c;

@@ -109,7 +109,7 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	rat = malloc(p->n);
 	F = calloc(3 * p->n, sizeof *F);
 	M = calloc(3 * p->n, sizeof *M);
-	fbig = calloc(p->n, sizeof *fmax);
+	fbig = calloc(p->n, sizeof *fbig);
 	if (!cnt || !rat || !F || !M || !fbig) {
 		free(cnt), free(rat), free(F), free(M), free(fbig);
 		msg_seterr("out of memory");

@@ -1,0 +1,191 @@
+# packformat: the pack reader (lib/packio.c) as a user meets it, through packinfo.
+# One check for every error the reader reports (share/doc/pack-format.md, "Validity"), each
+# with exit status 1, an empty stdout and exactly one "packinfo: FILE:LINE: what" line on
+# stderr, and the positive cases: plain, gzip, stdin, '-', several packs in one stream, -o.
+. "$TOP/tests/tools/lib.sh"
+
+# Line numbers of good.pack, used by the error checks below:
+#  1 magic   2 history   3 comment   4 meta   5 units   6 box   7 refbox   8 walls
+#  9 friction   10 grains   11 contacts   12 end   13-15 grains   16-18 contacts
+cat >good.pack <<'EOF'
+qusgm-pack 1
+history packgen 0.1.0: packgen -n 3 ; --n=3
+# a comment is allowed in the header
+meta note three grains in a row
+units SI
+box 0 0 0 3e-4 2e-4 2e-4
+refbox 0 0 0 3e-4 2e-4 2e-4
+walls 7e12 0.495 0.3
+friction 0.3
+grains 3
+contacts 3
+end
+1 1e-4 1e-4 1e-4 1.0001e-4 7e10 0.2 2420
+2 2e-4 1e-4 1e-4 1.0001e-4 7e10 0.2 2420
+3 1.5e-4 1.5e-4 1.5e-4 2e-5 7e10 0.2 2420
+1 2 0.01 0 0 0 0
+1 xlo 0.01 0 1e-4 0 0
+2 xhi 0.01 0 0 0 0
+EOF
+
+# bad NAME LINE REGEX SED-SCRIPT: a copy of good.pack edited by SED-SCRIPT must be refused
+# at line LINE with a message matching REGEX.
+bad() {
+	name=$1 line=$2 re=$3
+	sed "$4" good.pack >"$name.pack"
+	expect_error "$name" 1 "^packinfo: $name\\.pack:$line: .*$re" packinfo "$name.pack"
+}
+
+# --- the first line ---
+bad wrong-magic 1 'not a qusgm pack' '1s/.*/qusgm-pak 1/'
+bad missing-version 1 'version' '1s/.*/qusgm-pack/'
+bad newer-version 1 'newer' '1s/.*/qusgm-pack 2/'
+bad older-version 1 'version' '1s/.*/qusgm-pack 0/'
+bad malformed-version 1 'version' '1s/.*/qusgm-pack 1.0/'
+
+# --- the header: every required keyword exactly once (the error is at the 'end' line) ---
+for k in units box walls friction grains contacts; do
+	bad "missing-$k" 11 "missing '$k'" "/^$k /d"
+done
+bad missing-end 12 "unknown header keyword '1'" '/^end$/d'
+bad duplicate-box 7 "duplicate 'box'" '6p'
+bad duplicate-refbox 8 "duplicate 'refbox'" '7p'
+bad duplicate-friction 10 "duplicate 'friction'" '9p'
+bad duplicate-meta-key 5 "duplicate key" '4p'
+bad unknown-keyword 6 "unknown header keyword 'colour'" '5a\
+colour red'
+bad empty-header-line 6 'empty line' '5a\
+'
+bad units-not-si 5 'units' '5s/.*/units mm/'
+bad box-short 6 'expected 6 numbers' '6s/ 2e-4$//'
+bad box-inverted 6 'not above' '6s/.*/box 0 0 0 -3e-4 2e-4 2e-4/'
+bad refbox-inverted 7 'not above' '7s/.*/refbox 0 0 2e-4 3e-4 2e-4 2e-4/'
+bad walls-E 8 "Young's modulus" '8s/.*/walls 0 0.495 0.3/'
+bad walls-nu 8 'Poisson' '8s/.*/walls 7e12 0.5 0.3/'
+bad walls-mu 8 'negative' '8s/.*/walls 7e12 0.495 -0.1/'
+bad friction-negative 9 'negative' '9s/.*/friction -0.3/'
+bad grains-zero 10 'not a valid count' '10s/.*/grains 0/'
+bad grains-not-integer 10 'not a valid count' '10s/.*/grains 3.5/'
+bad end-extra 12 'after .end.' '12s/.*/end now/'
+bad comment-after-header 13 'expected 8 columns' '12a\
+# comment'
+
+# --- grain lines ---
+bad missing-column 14 'expected 8 columns' '14s/ 2420$//'
+bad extra-column 14 'expected 8 columns' '14s/$/ 7/'
+bad non-number 14 "'abc' is not a finite number" '14s/^2 2e-4/2 abc/'
+bad nan 14 "'nan' is not a finite number" '14s/^2 2e-4/2 nan/'
+bad inf 14 "'inf' is not a finite number" '14s/1.0001e-4/inf/'
+bad overflow 14 'not a finite number' '14s/1.0001e-4/1e999/'
+bad id-not-integer 14 'not an integer' '14s/^2 /2.5 /'
+bad id-negative 14 'negative' '14s/^2 /-2 /;16s/^1 2 /1 -2 /'
+bad radius-zero 14 'radius 0 is not positive' '14s/1.0001e-4/0/'
+bad radius-negative 14 'radius -0.0001 is not positive' '14s/1.0001e-4/-1e-4/'
+bad E-zero 14 "Young's modulus 0 is not positive" '14s/7e10/0/'
+bad E-negative 14 "Young's modulus" '14s/7e10/-7e10/'
+bad nu-half 14 'Poisson ratio 0.5 is outside' '14s/ 0.2 / 0.5 /'
+bad nu-minus-one 14 'Poisson ratio -1 is outside' '14s/ 0.2 / -1 /'
+bad density-zero 14 'density 0 is not positive' '14s/2420$/0/'
+bad density-negative 14 'density' '14s/2420$/-2420/'
+bad centre-outside 14 'centre x = 0.0004 is outside the box' '14s/^2 2e-4/2 4e-4/'
+bad centre-below 15 'centre z' '15s/ 1.5e-4 2e-5/ -1e-6 2e-5/'
+# the later line of the two is named
+bad duplicate-id 15 'duplicate grain id 1' '15s/^3 /1 /;16,18d;11s/3/0/'
+
+# --- contact lines ---
+bad contact-missing-grain 16 'grain 7, which is not in the pack' '16s/^1 2 /1 7 /'
+bad contact-missing-first 17 'grain 9, which is not in the pack' '17s/^1 xlo /9 xlo /'
+bad contact-wall-name 17 "'xmid' is neither a grain id nor a wall" '17s/xlo/xmid/'
+bad contact-wall-first 17 "'xlo' is neither a grain id nor a wall" '17s/^1 xlo /xlo 1 /'
+bad contact-self 16 'with itself' '16s/^1 2 /1 1 /'
+bad contact-twice 18 'listed twice' '18s/.*/2 1 0.01 0 0 0 0/'
+bad contact-wall-twice 18 'listed twice' '18s/.*/1 xlo 0.02 0 0 0 0/'
+bad contact-missing-column 16 'expected 7 columns' '16s/ 0$//'
+bad contact-extra-column 16 'expected 7 columns' '16s/$/ 0/'
+bad contact-nan 16 "'nan' is not a finite number" '16s/0.01 0 0 0 0/0.01 nan 0 0 0/'
+bad contact-negative-P0 16 'P0 = -0.01 is negative' '16s/0.01/-0.01/'
+
+# --- counts and the end of the stream ---
+bad fewer-grains 16 '4 grains declared, 3 found' '10s/3/4/;11s/3/0/;16,$d'
+bad fewer-contacts 19 '4 contacts declared, 3 found' '11s/3/4/'
+bad trailing-garbage 19 'unexpected line after the last contact' '$a\
+garbage'
+bad trailing-empty-line 19 'unexpected line after the last contact' '$a\
+'
+bad second-pack-bad 19 'newer' '$a\
+qusgm-pack 2'
+bad nul-byte 14 'NUL' '14s/2420/24\x0020/'
+
+# --- truncated gzip, empty input ---
+gzip -c good.pack >good.pack.gz
+size=$(wc -c <good.pack.gz)
+for cut in 20 $((size / 2)) $((size - 4)); do
+	head -c "$cut" good.pack.gz >trunc.pack.gz
+	expect_error "truncated-gz-$cut-of-$size" 1 '^packinfo: trunc\.pack\.gz:[0-9]+: corrupt or truncated' \
+	    packinfo trunc.pack.gz
+done
+: >empty.pack
+expect_error empty-file 1 '^packinfo: empty\.pack:1: empty input' packinfo empty.pack
+expect_error empty-stdin 1 '^packinfo: <stdin>:1: empty input' packinfo </dev/null
+expect_error missing-file 1 '^packinfo: no-such\.pack: ' packinfo no-such.pack
+
+# --- usage ---
+expect_error unknown-option 2 "^packinfo: unknown option '--no-such-option'" packinfo --no-such-option good.pack
+expect_error unknown-short-option 2 "^packinfo: unknown option '-x'" packinfo -x good.pack
+expect_error two-operands 2 '^packinfo: too many operands' packinfo good.pack good.pack
+
+# --- what reads ---
+expect_ok good packinfo good.pack
+packinfo good.pack >good.info 2>/dev/null
+if [ "$(info_value good.info grains)" = 3 ] && [ "$(info_value good.info contacts_gg)" = 3 ] &&
+    [ "$(info_value good.info history_contacts)" = 3 ] && [ "$(info_value good.info mu)" = 0.3 ]; then
+	pass good-values
+else
+	fail good-values "grains/contacts_gg/history_contacts/mu: $(tr '\n' ' ' <good.info | head -c 300)"
+fi
+packinfo good.pack.gz >gz.info 2>/dev/null
+expect_same gzip-same-output good.info gz.info
+packinfo <good.pack >stdin.info 2>/dev/null
+expect_same stdin-same-output good.info stdin.info
+packinfo - <good.pack >dash.info 2>/dev/null
+expect_same dash-same-output good.info dash.info
+packinfo - <good.pack.gz >gzstdin.info 2>/dev/null
+expect_same gzip-stdin-same-output good.info gzstdin.info
+
+sed 's/$/\r/' good.pack >crlf.pack
+packinfo crlf.pack >crlf.info 2>/dev/null
+expect_same crlf-same-output good.info crlf.info
+
+# packs back to back: one TSV header line and one row per pack
+cat good.pack good.pack >two.pack
+packinfo --tsv two.pack >two.tsv 2>two.err
+if [ $? -eq 0 ] && [ "$(wc -l <two.tsv)" -eq 3 ] && [ "$(grep -c '^#' two.tsv)" -eq 1 ] &&
+    [ "$(sed -n 2p two.tsv)" = "$(sed -n 3p two.tsv)" ] && [ "$(sed -n 2p two.tsv | cut -f1)" = 3 ]; then
+	pass two-packs-tsv
+else
+	fail two-packs-tsv "$(head -c 300 two.err) $(head -c 200 two.tsv)"
+fi
+packinfo two.pack >two.info 2>/dev/null
+{ cat good.info; echo; cat good.info; } >two.want
+expect_same two-packs-keys two.info two.want
+cat good.pack.gz good.pack.gz >two.pack.gz
+packinfo --tsv two.pack.gz >twogz.tsv 2>/dev/null
+expect_same two-gzip-members twogz.tsv two.tsv
+
+# -o FILE: written atomically; nothing at all when the input is bad
+expect_ok output-file packinfo -o out.info good.pack
+expect_same output-file-content out.info good.info
+sed '14s/7e10/0/' good.pack >bad.pack
+expect_error output-bad-input 1 '^packinfo: bad\.pack:14: ' packinfo -o bad.info bad.pack
+if [ -e bad.info ] || ls -a | grep -q '^\.bad\.info\.'; then
+	fail output-bad-leaves-nothing "$(ls -a | tr '\n' ' ')"
+else
+	pass output-bad-leaves-nothing
+fi
+cat good.pack bad.pack >goodbad.pack
+expect_error output-second-pack-bad 1 '^packinfo: goodbad\.pack:32: ' packinfo -o goodbad.info goodbad.pack
+if [ -e goodbad.info ] || ls -a | grep -q '^\.goodbad\.info\.'; then
+	fail output-second-bad-leaves-nothing "$(ls -a | tr '\n' ' ')"
+else
+	pass output-second-bad-leaves-nothing
+fi

@@ -1,0 +1,260 @@
+/* test_measure: lib/measure.c and lib/contacts.c on configurations whose answers are known in
+ * closed form, and the Hertz closed forms of lib/hertz.h against their own derivatives.
+ *
+ * The main configuration is a simple-cubic lattice of n^3 identical spheres of radius R at
+ * spacing 2R - delta, between six walls that overlap the outer grains by the same delta.  The
+ * wall modulus is chosen so that a grain-wall contact carries the same Hertz force as a
+ * grain-grain one (E*_gw sqrt(R) = E*_gg sqrt(R/2)), so every grain is in exact equilibrium.
+ * R and delta are powers of two, so every centre, distance and overlap is exact in binary and
+ * the only rounding is in the force laws themselves (a few ulps). */
+#include "contacts.h"
+#include "hertz.h"
+#include "measure.h"
+#include "pack.h"
+#include "unit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define NL 4			/* grains per lattice edge */
+#define R_ ldexp(1.0, -13)	/* 122 um */
+#define DELTA ldexp(1.0, -20)	/* overlap 0.95 um, delta / R = 2^-7 */
+#define E_ 7e10
+#define NU 0.2
+
+static size_t
+lat(int i, int j, int k)
+{
+	return (size_t)i + NL * ((size_t)j + NL * (size_t)k);
+}
+
+static void
+lattice(struct pack *p)
+{
+	double s = 2 * R_ - DELTA, first = R_ - DELTA;
+	int i, j, k, a;
+
+	pack_init(p);
+	for (k = 0; k < NL; k++)
+		for (j = 0; j < NL; j++)
+			for (i = 0; i < NL; i++) {
+				double x[3] = {first + i * s, first + j * s, first + k * s};
+				pack_add_grain(p, (long)lat(i, j, k), x, R_, E_, NU, 2420);
+			}
+	for (a = 0; a < 3; a++) {
+		p->box[a] = 0;
+		p->box[a + 3] = (NL - 1) * s + 2 * first;
+	}
+	/* (1-nu_w^2)/E_w = (2 sqrt 2 - 1)(1-nu^2)/E makes E*_gw = E*_gg / sqrt 2 */
+	p->wall_nu = NU;
+	p->wall_E = E_ / (2 * sqrt(2.0) - 1);
+	p->mu = 0.3;
+	p->wall_mu = 0.5;
+}
+
+static void
+test_lattice(void)
+{
+	struct pack p;
+	struct geo_contacts gc;
+	struct pack_measures m;
+	unsigned *cnt;
+	size_t k, n3 = (size_t)NL * NL * NL, ngg = 3 * (size_t)NL * NL * (NL - 1), ngw = 6 * (size_t)NL * NL;
+	double L, Pgg, Pgw, sig, phi, Egg, Egw;
+	int all6 = 1, a;
+
+	lattice(&p);
+	contacts_init(&gc);
+	CHECK(measure_pack(&p, &gc, &m) == 0, "lattice: measure_pack");
+	L = pack_box_length(p.box, 0);
+	Egg = hertz_Estar(E_, NU, E_, NU);
+	Egw = hertz_Estar(E_, NU, p.wall_E, p.wall_nu);
+	Pgg = hertz_force(Egg, hertz_Rstar(R_, R_), DELTA);
+	Pgw = hertz_force(Egw, R_, DELTA);
+	/* the wall modulus was chosen to make these equal; only rounding (a few ulps) separates them */
+	CHECK_CLOSE(Pgw, Pgg, 1e-14, "lattice: grain-wall and grain-grain Hertz forces agree");
+
+	CHECK(m.contacts_gg == ngg, "lattice: %zu grain-grain contacts (want %zu)", m.contacts_gg, ngg);
+	CHECK(m.contacts_gw == ngw, "lattice: %zu grain-wall contacts (want %zu)", m.contacts_gw, ngw);
+	cnt = malloc(p.n * sizeof *cnt);
+	measure_coordination(&p, &gc, cnt);
+	CHECK(cnt[lat(1, 1, 1)] == 6 && cnt[lat(2, 1, 2)] == 6, "lattice: an interior grain has 6 contacts (%u)",
+	    cnt[lat(1, 1, 1)]);
+	for (k = 0; k < p.n; k++)
+		all6 &= cnt[k] == 6;
+	CHECK(all6 && cnt[lat(0, 0, 0)] == 6, "lattice: every grain, corners included (3 grains + 3 walls), has 6");
+	free(cnt);
+	/* (2 ngg + ngw) / N = (2 * 144 + 96) / 64 = 6 exactly */
+	CHECK(m.coordination == (double)(2 * ngg + ngw) / (double)n3 && m.coordination == 6,
+	    "lattice: mean coordination %.17g = (2 Ngg + Ngw) / N = 6", m.coordination);
+	CHECK(m.coordination_nr == 6, "lattice: coordination without rattlers %.17g = 6", m.coordination_nr);
+	CHECK(m.rattlers == 0 && m.under4 == 0, "lattice: no rattlers (%zu), none under 4 (%zu)", m.rattlers, m.under4);
+	CHECK(m.grains == n3, "lattice: %zu grains", m.grains);
+
+	/* porosity: the same expression evaluated once here; both sides round a handful of
+	 * operations on numbers of order 1, so they agree to a few 1e-16 */
+	phi = 1 - (double)n3 * (4.0 / 3.0 * M_PI * R_ * R_ * R_) / (L * L * L);
+	CHECK_CLOSE(m.porosity, phi, 1e-14, "lattice: porosity = 1 - N (4/3 pi R^3) / V");
+	CHECK(fabs(m.volume - L * L * L) <= 1e-15 * L * L * L, "lattice: volume = L^3");
+	CHECK(m.overlap_max == DELTA / R_, "lattice: largest overlap / radius = delta / R = 2^-7 (%.17g)",
+	    m.overlap_max);
+
+	/* wall stress: NL^2 contacts per wall, each Pgw, over the wall area L^2 */
+	CHECK(m.has_forces, "lattice: has forces");
+	sig = (double)(NL * NL) * Pgw / (L * L);
+	for (a = 0; a < 3; a++) {
+		char name[64];
+		/* sums of NL^2 equal terms and one division: a few ulps; 1e-13 leaves room */
+		snprintf(name, sizeof name, "lattice: wall stress sig_%c%c = NL^2 P_hertz / L^2", 'x' + a, 'x' + a);
+		CHECK_CLOSE(m.sig_wall[a], sig, 1e-13, name);
+	}
+	CHECK_CLOSE(m.sigma_c, sig, 1e-13, "lattice: sigma_c = tr(sig_wall) / 3");
+	/* Love-Weber: sum of branch x force over V; in equilibrium the branch vectors of one
+	 * row add up to L, so it equals the wall stress; 240 terms of similar size, so the
+	 * rounding stays far below the 1e-12 asked for */
+	for (a = 0; a < 3; a++) {
+		char name[64];
+		snprintf(name, sizeof name, "lattice: Love-Weber sig_lw_%c%c = wall stress", 'x' + a, 'x' + a);
+		CHECK_CLOSE(m.sig_lw[a], m.sig_wall[a], 1e-12, name);
+	}
+	CHECK(m.sig_lw[3] == 0 && m.sig_lw[4] == 0 && m.sig_lw[5] == 0, "lattice: Love-Weber shear stresses are 0");
+	/* a sum of 240 forces divided by 240: worst case 240 ulps, so 1e-13 */
+	CHECK_CLOSE(m.P_mean, Pgg, 1e-13, "lattice: mean normal force = Hertz force");
+	/* the largest of forces that differ from Pgg by a few ulps */
+	CHECK_CLOSE(m.P_max, Pgg, 1e-14, "lattice: largest normal force = Hertz force");
+	/* exact equilibrium: opposite forces cancel exactly between grains; a grain on a wall is
+	 * left with Pgw - Pgg, a few ulps of the force */
+	CHECK(m.residual_max < 1e-12, "lattice: residual %.3g < 1e-12", m.residual_max);
+	CHECK(m.residual_mean < 1e-12, "lattice: mean unbalanced-force ratio %.3g < 1e-12", m.residual_mean);
+	/* fabric: a third of the grain-grain normals along each axis, each exactly +-1 */
+	CHECK(fabs(m.fabric[0] - 1.0 / 3) < 1e-15 && fabs(m.fabric[1] - 1.0 / 3) < 1e-15 &&
+	    fabs(m.fabric[2] - 1.0 / 3) < 1e-15, "lattice: fabric diagonal = 1/3 (%.17g %.17g %.17g)", m.fabric[0],
+	    m.fabric[1], m.fabric[2]);
+	CHECK(m.fabric[3] == 0 && m.fabric[4] == 0 && m.fabric[5] == 0, "lattice: fabric off-diagonal = 0");
+	CHECK(fabs(m.fabric_anisotropy) < 1e-12, "lattice: fabric anisotropy %.3g = 0", m.fabric_anisotropy);
+	CHECK(isnan(m.sliding_ratio) && m.history == 0, "lattice: no history, sliding ratio absent (NaN)");
+	contacts_free(&gc);
+	pack_free(&p);
+}
+
+/* History lines on the lattice: |Q0| = mu P0 slides, |Q0| = mu P0 (1 - 1e-6) does not;
+ * the wall contact uses the wall friction coefficient; a line whose pair is not in contact
+ * is stale and does not count. */
+static void
+test_sliding(void)
+{
+	struct pack p;
+	struct geo_contacts gc;
+	struct pack_measures m;
+	struct pack_contact c;
+	double P0 = 0.25, total = 3.0 * NL * NL * (NL - 1) + 6.0 * NL * NL;
+
+	lattice(&p);
+	memset(&c, 0, sizeof c);
+	c.P0 = P0;
+	c.i = lat(0, 0, 0), c.j = (long)lat(1, 0, 0), c.Q0[1] = p.mu * P0;	/* sliding */
+	pack_add_contact(&p, &c);
+	c.Q0[1] = 0;
+	c.i = lat(2, 0, 0), c.j = (long)lat(1, 0, 0), c.Q0[2] = p.mu * P0 * (1 - 1e-6);	/* sticking */
+	pack_add_contact(&p, &c);
+	c.Q0[2] = 0;
+	c.i = lat(0, 0, 0), c.j = PACK_WALL(WALL_XLO), c.Q0[2] = -p.wall_mu * P0;	/* sliding on the wall */
+	pack_add_contact(&p, &c);
+	c.Q0[2] = 0;
+	c.i = lat(3, 3, 3), c.j = PACK_WALL(WALL_YHI), c.Q0[0] = p.mu * P0;	/* below wall_mu P0: sticking */
+	pack_add_contact(&p, &c);
+	c.Q0[0] = 0;
+	c.i = lat(0, 0, 0), c.j = (long)lat(3, 3, 3), c.Q0[0] = P0;	/* not in contact: stale */
+	pack_add_contact(&p, &c);
+	contacts_init(&gc);
+	CHECK(measure_pack(&p, &gc, &m) == 0, "sliding: measure_pack");
+	CHECK(m.history == 5 && m.stale_history == 1, "sliding: 5 history lines, 1 stale (%zu, %zu)", m.history,
+	    m.stale_history);
+	/* counts over all geometric contacts: 2 sliding of 240 */
+	CHECK(m.sliding_ratio == 2 / total, "sliding: ratio %.17g = 2 / %g (|Q0| = mu P0 slides, (1 - 1e-6) does not)",
+	    m.sliding_ratio, total);
+	contacts_free(&gc);
+	pack_free(&p);
+}
+
+static void
+test_small(void)
+{
+	struct pack p;
+	struct geo_contacts gc;
+	struct pack_measures m;
+	unsigned cnt[1];
+	double x[3] = {5e-4, 5e-4, 5e-4};
+
+	/* one grain alone in a large box */
+	pack_init(&p);
+	p.box[3] = p.box[4] = p.box[5] = 1e-3;
+	p.wall_E = 7e12;
+	pack_add_grain(&p, 0, x, 1e-4, E_, NU, 2420);
+	contacts_init(&gc);
+	CHECK(measure_pack(&p, &gc, &m) == 0, "isolated grain: measure_pack");
+	CHECK(m.rattlers == 1 && m.under4 == 1 && m.coordination == 0 && !m.has_forces,
+	    "isolated grain: a rattler, under 4, coordination 0, no forces");
+	CHECK(m.coordination_nr == 0, "isolated grain: coordination without rattlers 0");
+
+	/* the same grain pushed into a corner: three wall contacts */
+	p.x[0] = p.x[1] = p.x[2] = 1e-4 - 1e-6;
+	CHECK(measure_pack(&p, &gc, &m) == 0, "corner grain: measure_pack");
+	measure_coordination(&p, &gc, cnt);
+	CHECK(cnt[0] == 3 && m.contacts_gw == 3 && m.contacts_gg == 0, "corner grain: 3 wall contacts (%u)", cnt[0]);
+	CHECK(m.under4 == 1 && m.rattlers == 1, "corner grain: under 4 and a rattler");
+	CHECK(m.has_forces && m.P_max > 0, "corner grain: carries forces");
+
+	/* a narrow box in x and y: four wall contacts, not under 4, not a rattler */
+	p.box[3] = p.box[4] = 2e-4 - 2e-6;
+	p.x[0] = p.x[1] = 1e-4 - 1e-6;
+	p.x[2] = 5e-4;
+	CHECK(measure_pack(&p, &gc, &m) == 0, "four walls: measure_pack");
+	CHECK(m.contacts_gw == 4 && m.under4 == 0 && m.rattlers == 0 && m.coordination == 4,
+	    "four walls: 4 contacts, not under 4, not a rattler");
+	contacts_free(&gc);
+	pack_free(&p);
+}
+
+static void
+test_hertz(void)
+{
+	static const double hs[] = {1e-10, 1e-8, 1e-7, 1e-6, 3e-6};
+	double Es = hertz_Estar(7e10, 0.2, 1e11, 0.15), Rs = hertz_Rstar(1e-4, 7e-5);
+	size_t k;
+
+	CHECK_CLOSE(Rs, 1 / (1 / 1e-4 + 1 / 7e-5), 1e-15, "hertz: R* = (1/Ri + 1/Rj)^-1");
+	CHECK_CLOSE(Es, 1 / ((1 - 0.04) / 7e10 + (1 - 0.0225) / 1e11), 1e-15, "hertz: E* = ((1-nu_i^2)/E_i + ...)^-1");
+	CHECK(hertz_force(Es, Rs, 0) == 0 && hertz_force(Es, Rs, -1e-6) == 0 && hertz_energy(Es, Rs, -1e-6) == 0 &&
+	    hertz_stiffness(Es, Rs, -1e-6) == 0 && hertz_overlap(Es, Rs, 0) == 0, "hertz: no overlap, no force");
+	for (k = 0; k < sizeof hs / sizeof hs[0]; k++) {
+		double h = hs[k], e = 1e-5 * h, fd, P = hertz_force(Es, Rs, h);
+		char name[96];
+
+		/* Central differences with step e = 1e-5 h.  Truncation: U'''e^2/6 relative to
+		 * U' = P is (e/h)^2 / 8 = 1.25e-11 for U ~ h^5/2 (and (e/h)^2 / 24 for P ~ h^3/2);
+		 * rounding: 2^-53 U / (e P) = 2^-53 (2/5) h / e ~ 1e-11.  1e-9 is 50 times both. */
+		fd = (hertz_energy(Es, Rs, h + e) - hertz_energy(Es, Rs, h - e)) / (2 * e);
+		snprintf(name, sizeof name, "hertz: P = dU/dh at h = %g", h);
+		CHECK_CLOSE(P, fd, 1e-9, name);
+		fd = (hertz_force(Es, Rs, h + e) - hertz_force(Es, Rs, h - e)) / (2 * e);
+		snprintf(name, sizeof name, "hertz: stiffness = dP/dh at h = %g", h);
+		CHECK_CLOSE(hertz_stiffness(Es, Rs, h), fd, 1e-9, name);
+		/* a cube root, a square root and a few products: under ten ulps */
+		snprintf(name, sizeof name, "hertz: overlap(force(h)) = h at h = %g", h);
+		CHECK_CLOSE(hertz_overlap(Es, Rs, P), h, 1e-14, name);
+		snprintf(name, sizeof name, "hertz: stiffness = 2 E* sqrt(R* h) at h = %g", h);
+		CHECK_CLOSE(hertz_stiffness(Es, Rs, h), 2 * Es * sqrt(Rs * h), 1e-15, name);
+	}
+}
+
+int
+main(void)
+{
+	test_lattice();
+	test_sliding();
+	test_small();
+	test_hertz();
+	return unit_summary();
+}

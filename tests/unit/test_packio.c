@@ -1,0 +1,365 @@
+/* test_packio: the pack writer and reader are exact inverses, and num_format is the shortest
+ * round-trip-safe form (share/doc/pack-format.md, "Numbers").
+ *
+ * No tolerance anywhere in this file: every comparison is of bytes or of bit patterns,
+ * because the format promises that write -> read -> write is the identity. */
+#include "msg.h"
+#include "numfmt.h"
+#include "pack.h"
+#include "packio.h"
+#include "unit.h"
+
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <zlib.h>
+
+/* A pack with awkward numbers (no short decimal form, 1e-300, -0.0, a subnormal, 1e22),
+ * history, meta, a refbox, and grain-grain and grain-wall contacts with nonzero Q0 and M0. */
+static void
+build(struct pack *p)
+{
+	size_t k;
+	struct pack_contact c;
+
+	pack_init(p);
+	p->box[0] = -1.0 / 3.0;
+	p->box[1] = 0;
+	p->box[2] = -0.0;
+	p->box[3] = 1e-3 / 3.0;
+	p->box[4] = 0.1 + 0.2;
+	p->box[5] = 123456789.123456789;
+	memcpy(p->refbox, p->box, sizeof p->box);
+	p->refbox[3] = 2.0 / 3.0 * 1e-3;
+	p->has_refbox = 1;
+	p->wall_E = 7e12 / 3.0;
+	p->wall_nu = 0.495;
+	p->mu = 0.1;
+	p->wall_mu = 1.0 / 3.0;
+	pack_add_history(p, "packgen 0.1.0: packgen -n 5 --seed 7 ; --n=5 --seed=7 --psd=uniform:7e-05,0.00013");
+	pack_add_history(p, "densify 0.1.0: densify '--stress=4e6' - ; --stress=4000000");
+	pack_set_meta(p, "sigma_c", "4000000");
+	pack_set_meta(p, "note", "a value with  spaces\tand a tab");
+	for (k = 0; k < 5; k++) {
+		double x[3] = {0.1 * (double)k * 1e-4, 1.0 / 3.0 * 1e-4, 1e-300};
+		/* ids out of order and with gaps: the writer keeps them, not the indices */
+		pack_add_grain(p, (long)(100 - 7 * k), x, 7e-5 + (double)k / 3.0 * 1e-5, 7e10 / 3.0,
+		    k == 4 ? -0.99 : 0.2 + 1e-17 * (double)k, 2420.123456789123);
+	}
+	p->E[2] = 123456789.123456789;
+	p->nu[3] = -0.0;
+	memset(&c, 0, sizeof c);
+	c.i = 0, c.j = 1, c.P0 = 0.1, c.Q0[0] = 1.0 / 3.0, c.Q0[1] = -1e-300, c.Q0[2] = -0.0, c.M0 = 123456789.123456789;
+	pack_add_contact(p, &c);
+	c.i = 3, c.j = 2, c.P0 = 0, c.Q0[0] = 4.9406564584124654e-324, c.Q0[1] = 0, c.Q0[2] = 1e22, c.M0 = -1.0 / 3.0;
+	pack_add_contact(p, &c);
+	c.i = 2, c.j = PACK_WALL(WALL_ZHI), c.P0 = 1e-300, c.Q0[0] = 0.1, c.Q0[1] = 0.2, c.Q0[2] = 0.3, c.M0 = -0.0;
+	pack_add_contact(p, &c);
+	c.i = 4, c.j = PACK_WALL(WALL_XLO), c.P0 = 6.02214076e23, c.Q0[0] = -1.0 / 3.0, c.Q0[1] = 0, c.Q0[2] = 0, c.M0 = 1e-300;
+	pack_add_contact(p, &c);
+	c.i = 4, c.j = PACK_WALL(WALL_YHI), c.P0 = 2.0 / 3.0, c.Q0[0] = 0, c.Q0[1] = 0.30000000000000004, c.Q0[2] = 0, c.M0 = 0;
+	pack_add_contact(p, &c);
+}
+
+static int
+same_bits(double a, double b)
+{
+	return memcmp(&a, &b, sizeof a) == 0;
+}
+
+static int
+same_array(const double *a, const double *b, size_t n)
+{
+	size_t k;
+
+	for (k = 0; k < n; k++)
+		if (!same_bits(a[k], b[k]))
+			return 0;
+	return 1;
+}
+
+static char *
+slurp(const char *path, size_t *len, int gunzip)
+{
+	char *buf = NULL;
+	size_t cap = 0, n = 0;
+
+	*len = 0;
+	if (gunzip) {
+		gzFile z = gzopen(path, "rb");
+		int got;
+
+		if (!z)
+			return NULL;
+		do {
+			if (n + 4096 > cap) {
+				cap = 2 * (n + 4096);
+				buf = realloc(buf, cap);
+			}
+			got = gzread(z, buf + n, 4096);
+			if (got > 0)
+				n += (size_t)got;
+		} while (got > 0);
+		gzclose(z);
+	} else {
+		FILE *fp = fopen(path, "rb");
+		size_t got;
+
+		if (!fp)
+			return NULL;
+		do {
+			if (n + 4096 > cap) {
+				cap = 2 * (n + 4096);
+				buf = realloc(buf, cap);
+			}
+			got = fread(buf + n, 1, 4096, fp);
+			n += got;
+		} while (got > 0);
+		fclose(fp);
+	}
+	*len = n;
+	return buf;
+}
+
+static int
+same_file(const char *a, const char *b, int gunzip)
+{
+	size_t la, lb;
+	char *x = slurp(a, &la, gunzip), *y = slurp(b, &lb, gunzip);
+	int same = x && y && la == lb && memcmp(x, y, la) == 0;
+
+	free(x);
+	free(y);
+	return same;
+}
+
+static void
+check_fields(const struct pack *a, const struct pack *b, const char *how)
+{
+	size_t k;
+	int ok;
+
+	CHECK(a->n == b->n && memcmp(a->id, b->id, a->n * sizeof *a->id) == 0, "%s: grain count and ids", how);
+	CHECK(same_array(a->x, b->x, 3 * a->n), "%s: centres (bit patterns)", how);
+	CHECK(same_array(a->r, b->r, a->n), "%s: radii", how);
+	CHECK(same_array(a->E, b->E, a->n), "%s: Young's moduli", how);
+	CHECK(same_array(a->nu, b->nu, a->n), "%s: Poisson ratios (with -0)", how);
+	CHECK(same_array(a->rho, b->rho, a->n), "%s: densities", how);
+	CHECK(same_array(a->box, b->box, 6), "%s: box", how);
+	CHECK(a->has_refbox == b->has_refbox && same_array(a->refbox, b->refbox, 6), "%s: refbox", how);
+	CHECK(same_bits(a->wall_E, b->wall_E) && same_bits(a->wall_nu, b->wall_nu) &&
+	    same_bits(a->wall_mu, b->wall_mu), "%s: walls E nu mu", how);
+	CHECK(same_bits(a->mu, b->mu), "%s: friction", how);
+	ok = a->nc == b->nc;
+	for (k = 0; ok && k < a->nc; k++)
+		ok = a->c[k].i == b->c[k].i && a->c[k].j == b->c[k].j;
+	CHECK(ok, "%s: contact pairs (grain-grain and grain-wall)", how);
+	ok = a->nc == b->nc;
+	for (k = 0; ok && k < a->nc; k++)
+		ok = same_bits(a->c[k].P0, b->c[k].P0) && same_array(a->c[k].Q0, b->c[k].Q0, 3) &&
+		    same_bits(a->c[k].M0, b->c[k].M0);
+	CHECK(ok, "%s: contact P0 Q0 M0 (bit patterns)", how);
+	ok = a->nhist == b->nhist;
+	for (k = 0; ok && k < a->nhist; k++)
+		ok = strcmp(a->history[k], b->history[k]) == 0;
+	CHECK(ok, "%s: history lines", how);
+	ok = a->nmeta == b->nmeta;
+	for (k = 0; ok && k < a->nmeta; k++)
+		ok = strcmp(a->meta[k].key, b->meta[k].key) == 0 && strcmp(a->meta[k].value, b->meta[k].value) == 0;
+	CHECK(ok, "%s: meta keys and values", how);
+}
+
+static void
+round_trip(const char *first, const char *second, int gz)
+{
+	struct pack p, q, q2;
+	char how[64];
+
+	snprintf(how, sizeof how, "round trip%s", gz ? " .gz" : "");
+	build(&p);
+	CHECK(pack_validate(&p) == 0, "%s: the built pack is valid (%s)", how, msg_geterr());
+	CHECK(pack_write_path(&p, first) == 0, "%s: write %s", how, first);
+	CHECK(pack_read_path(first, &q) == 0, "%s: read %s back (%s)", how, first, msg_geterr());
+	check_fields(&p, &q, how);
+	CHECK(pack_write_path(&q, second) == 0, "%s: write again", how);
+	CHECK(same_file(first, second, 0), "%s: write-read-write is byte-identical", how);
+	CHECK(pack_read_path(second, &q2) == 0, "%s: read the second file", how);
+	check_fields(&p, &q2, how);
+	pack_free(&p);
+	pack_free(&q);
+	pack_free(&q2);
+}
+
+/* The form num_format must choose: the first of %.15g %.16g %.17g that reads back. */
+static int
+expected_format(char *buf, double v)
+{
+	int prec, n = 0;
+
+	for (prec = 15; prec <= 17; prec++) {
+		n = snprintf(buf, 40, "%.*g", prec, v);
+		if (same_bits(strtod(buf, NULL), v))
+			break;
+	}
+	return n;
+}
+
+static void
+numfmt_random(void)
+{
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	long k, bad_value = 0, bad_bits = 0, bad_short = 0, bad_parse = 0, tried_bits = 0;
+	char buf[40], want[40];
+
+	gsl_rng_set(rng, 1);
+	for (k = 0; k < 100000; k++) {
+		/* values spread over magnitudes: a mantissa times a power of ten */
+		double v = (gsl_rng_uniform(rng) - 0.5) * pow(10.0, (double)gsl_rng_uniform_int(rng, 600) - 300), back;
+		uint64_t bits;
+		double w;
+
+		num_format(buf, v);
+		back = strtod(buf, NULL);
+		if (!same_bits(back, v))
+			bad_value++;
+		expected_format(want, v);
+		if (strcmp(buf, want) != 0)
+			bad_short++;
+		if (num_parse(buf, &back) || !same_bits(back, v))
+			bad_parse++;
+		/* arbitrary bit patterns: every finite double, subnormals included */
+		bits = ((uint64_t)gsl_rng_get(rng) << 32) | (uint64_t)gsl_rng_get(rng);
+		memcpy(&w, &bits, sizeof w);
+		if (!isfinite(w))
+			continue;
+		tried_bits++;
+		num_format(buf, w);
+		if (!same_bits(strtod(buf, NULL), w))
+			bad_bits++;
+		expected_format(want, w);
+		if (strcmp(buf, want) != 0)
+			bad_short++;
+	}
+	CHECK(bad_value == 0, "num_format: 1e5 random doubles over 1e-300..1e300 read back exactly (%ld failed)",
+	    bad_value);
+	CHECK(bad_bits == 0 && tried_bits > 99000, "num_format: %ld random finite bit patterns read back exactly (%ld failed)",
+	    tried_bits, bad_bits);
+	CHECK(bad_short == 0, "num_format: always the first of %%.15g %%.16g %%.17g that reads back (%ld not)",
+	    bad_short);
+	CHECK(bad_parse == 0, "num_parse reads num_format's output back exactly (%ld failed)", bad_parse);
+	gsl_rng_free(rng);
+}
+
+static void
+numfmt_hand(void)
+{
+	static const struct {
+		double v;
+		const char *s;
+	} t[] = {
+		{0.1, "0.1"},
+		{1.0 / 3.0, "0.3333333333333333"},
+		{0.1 + 0.2, "0.30000000000000004"},
+		{1e-300, "1e-300"},
+		{-0.0, "-0"},
+		{0, "0"},
+		{123456789.123456789, "123456789.12345679"},
+		{2420, "2420"},
+		{7e10, "70000000000"},
+		{1e22, "1e+22"},
+		{0.0001220703125, "0.0001220703125"},
+		{4.9406564584124654e-324, "4.94065645841247e-324"},	/* subnormal: 15 digits suffice */
+		{2.0 / 3.0, "0.6666666666666666"},
+	};
+	size_t k;
+	char buf[40];
+
+	for (k = 0; k < sizeof t / sizeof t[0]; k++) {
+		int n = num_format(buf, t[k].v);
+		CHECK(strcmp(buf, t[k].s) == 0 && n == (int)strlen(t[k].s), "num_format(%.17g) = '%s' (want '%s')",
+		    t[k].v, buf, t[k].s);
+	}
+}
+
+static void
+numparse_strict(void)
+{
+	double v;
+	long l;
+
+	CHECK(num_parse("nan", &v) != 0 && num_parse("inf", &v) != 0 && num_parse("-inf", &v) != 0,
+	    "num_parse refuses nan and inf");
+	CHECK(num_parse("1e999", &v) != 0, "num_parse refuses overflow");
+	CHECK(num_parse("1e-320", &v) == 0 && v > 0, "num_parse takes a subnormal");
+	CHECK(num_parse("1x", &v) != 0 && num_parse("", &v) != 0 && num_parse("1 ", &v) != 0,
+	    "num_parse wants the whole token");
+	CHECK(num_parse_long("12", &l) == 0 && l == 12 && num_parse_long("1.5", &l) != 0 &&
+	    num_parse_long("99999999999999999999999", &l) != 0, "num_parse_long: whole integer tokens in range");
+}
+
+/* Two packs back to back in one stream, read with pack_read_next; pack_read_path refuses it. */
+static void
+two_in_a_stream(const char *path)
+{
+	struct pack p, a, b, c;
+	struct pack_reader *rd;
+	FILE *fp;
+	int r1, r2, r3;
+
+	build(&p);
+	fp = fopen(path, "wb");
+	pack_write_stream(&p, fp, 0);
+	pack_write_stream(&p, fp, 0);
+	fclose(fp);
+	fp = fopen(path, "rb");
+	rd = pack_reader_open(fp, path);
+	r1 = pack_read_next(rd, &a);
+	r2 = pack_read_next(rd, &b);
+	r3 = pack_read_next(rd, &c);
+	CHECK(r1 == 1 && r2 == 1 && r3 == 0, "two packs in one stream: 1, 1, then 0 at the end (%d %d %d)", r1, r2, r3);
+	if (r1 == 1 && r2 == 1)
+		check_fields(&a, &b, "second pack of a stream");
+	pack_reader_close(rd);
+	fclose(fp);
+	CHECK(pack_read_path(path, &c) != 0 && strstr(msg_geterr(), "second pack"),
+	    "pack_read_path refuses a second pack (%s)", msg_geterr());
+	pack_free(&a);
+	pack_free(&b);
+	pack_free(&p);
+}
+
+int
+main(void)
+{
+	char dir[] = "/tmp/qusgm-test-packio.XXXXXX", a[128], b[128];
+
+	if (!mkdtemp(dir)) {
+		CHECK(0, "mkdtemp");
+		return unit_summary();
+	}
+	snprintf(a, sizeof a, "%s/a.pack", dir);
+	snprintf(b, sizeof b, "%s/b.pack", dir);
+	round_trip(a, b, 0);
+	{
+		char ag[128], bg[128];
+		snprintf(ag, sizeof ag, "%s/a.pack.gz", dir);
+		snprintf(bg, sizeof bg, "%s/b.pack.gz", dir);
+		round_trip(ag, bg, 1);
+		CHECK(same_file(ag, bg, 0), "round trip .gz: the compressed bytes are identical too");
+		CHECK(!same_file(ag, a, 0), "a .gz name compresses");
+		CHECK(same_file(ag, a, 1), "the .gz file holds exactly the plain file's bytes");
+		unlink(ag);
+		unlink(bg);
+	}
+	two_in_a_stream(b);
+	unlink(a);
+	unlink(b);
+	rmdir(dir);
+	numfmt_hand();
+	numfmt_random();
+	numparse_strict();
+	return unit_summary();
+}
