@@ -14,6 +14,14 @@
 #include <unistd.h>
 
 static int usage_errors;
+static char *argv_text_owned;
+
+static void
+free_argv_text(void)
+{
+	free(argv_text_owned);
+}
+
 static int help_flag, version_flag;
 static const char *output_path;
 static int verbose_count, quiet_flag;
@@ -271,7 +279,8 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 		    t->max_operands == 1 ? "" : "s");
 	st->input = st->noperands > 0 ? st->operands[0] : NULL;
 	st->output = output_path;
-	st->argv_text = shell_quote_argv(argc, argv);
+	st->argv_text = argv_text_owned = shell_quote_argv(argc, argv);
+	atexit(free_argv_text);
 }
 
 char *

@@ -38,7 +38,7 @@ struct cli_state {
 	const char *input;	/* the operand, or NULL/"-" for stdin */
 	char **operands;
 	int noperands;
-	char *argv_text;	/* the command line as typed, shell-quoted */
+	char *argv_text;	/* the command line as typed, shell-quoted; owned by cli, freed at exit */
 };
 
 /* Parse argv against the tool's table; exits 0 for --help/--version, 2 for usage errors

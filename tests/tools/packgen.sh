@@ -1,0 +1,74 @@
+# packgen as a user runs it: a valid loose pack, same seed same bytes, the loose-pack
+# properties the issue asks for, and every usage error.
+. "$TOP/tests/tools/lib.sh"
+
+N=400
+expect_ok "packgen -n $N writes a pack" packgen -n $N --seed 3 -o a.pack
+expect_ok "packgen again with the same seed" packgen -n $N --seed 3 -o b.pack
+expect_same "same seed, same bytes" a.pack b.pack
+packgen -n $N --seed 4 -o c.pack 2>/dev/null
+if cmp -s a.pack c.pack; then fail "another seed gives another pack" "identical"; else pass "another seed gives another pack"; fi
+packgen -n $N --seed 3 >d.pack 2>/dev/null
+expect_same "stdout and -o give the same bytes" a.pack d.pack
+packgen -n $N --seed 3 -o e.pack.gz 2>/dev/null
+gzip -dc e.pack.gz >e.pack 2>/dev/null
+expect_same ".gz output decompresses to the same pack" a.pack e.pack
+
+expect_ok "packinfo reads the pack" packinfo a.pack
+packinfo a.pack >info.txt
+expect_num "grains" "$(info_value info.txt grains)" == $N
+# A loose pack: grains touch (contacts exist) without significant overlap...
+expect_num "largest overlap / R below 1e-3" "$(info_value info.txt overlap_max)" "<" 1e-3
+expect_num "grains touch their neighbours (coordination)" "$(info_value info.txt coordination)" ">" 2
+# ...and many have fewer than 4 contacts, which densify will fix.
+expect_num "many grains under 4 contacts" "$(info_value info.txt under4)" ">" $((N / 10))
+# Porosity of a loose random pack in a small box with walls: well above random close
+# packing (0.36) and below a random sequential placement (0.7: phi0 = 0.3).
+expect_num "porosity above close packing" "$(info_value info.txt porosity)" ">" 0.38
+expect_num "porosity below the initial placement" "$(info_value info.txt porosity)" "<" 0.6
+# Radii inside the default uniform distribution 0.07-0.13 mm.
+expect_num "smallest radius" "$(info_value info.txt r_min)" ">=" 7e-5
+expect_num "largest radius" "$(info_value info.txt r_max)" "<=" 1.3e-4
+grep -q '^history packgen ' a.pack && pass "history line recorded" || fail "history line recorded" "none"
+grep -q -- '--seed=3' a.pack && pass "history records the seed" || fail "history records the seed" "no --seed=3"
+grep -q '^walls 7e+12 0.495 0.3$' a.pack && pass "walls 100 E_glass, 0.495, mu 0.3" || fail "walls 100 E_glass, 0.495, mu 0.3" "$(grep ^walls a.pack)"
+
+# Moduli drawn with a 10 % spread around glass (70 GPa, 0.2): sample mean and spread.
+awk '/^end$/ { on = 1; next } on && NF == 8 { n++; s += $6; s2 += $6 * $6; t += $7 }
+     END { m = s / n; sd = sqrt(s2 / n - m * m); print m, sd / m, t / n }' a.pack >mod.txt
+read -r Em Esd num <mod.txt
+# 150 draws: standard error of the mean 0.1/sqrt(150) = 0.8 % of E; 4 sigma = 3.3 %.
+expect_num "mean E within 4 standard errors of 70 GPa" "$(awk -v e="$Em" 'BEGIN { print (e > 70e9 ? e - 70e9 : 70e9 - e) / 70e9 }')" "<" 0.033
+expect_num "spread of E about 10 %" "$Esd" ">" 0.07
+expect_num "spread of E about 10 % (upper)" "$Esd" "<" 0.13
+
+expect_ok "quartz preset" packgen -n 40 --seed 1 --material quartz -o q.pack
+grep -q '^walls 1e+13 ' q.pack && pass "quartz walls 100 x 100 GPa" || fail "quartz walls" "$(grep ^walls q.pack)"
+printf 'E 5e9\nnu 0.3\nrho 1000\n' >soft.mat
+expect_ok "material file" packgen -n 40 --seed 1 --material ./soft.mat -o s.pack
+printf '1e-4 1\n1.2e-4 2\n' >sizes.txt
+expect_ok "size table" packgen -n 40 --seed 1 --psd table:sizes.txt -o t.pack
+awk '/^end$/ { on = 1; next } on && NF == 8 && $5 != 1e-4 && $5 != 1.2e-4 { bad = 1 } END { exit bad }' t.pack &&
+    pass "size table radii only" || fail "size table radii only" "other radii"
+expect_ok "lognormal sizes" packgen -n 40 --seed 1 --psd lognormal:1e-4,0.2 -o l.pack
+expect_ok "elongated box" packgen -n 60 --seed 1 --aspect 1,1,2 -o z.pack
+packinfo z.pack >z.txt
+expect_num "aspect 1,1,2 gives a taller box" "$(awk '$1=="lz"{z=$2} $1=="lx"{x=$2} END{print z/x}' z.txt)" ">" 1.6
+
+expect_error "unknown option" 2 '^packgen: unknown option' packgen --bogus
+expect_error "non-numeric grains" 2 '^packgen: --grains' packgen -n ten
+expect_error "zero grains" 2 '^packgen: --grains' packgen -n 0
+expect_error "bad psd" 2 '^packgen: --psd' packgen --psd uniform:2,1
+expect_error "unknown material" 2 "^packgen: --material: unknown material 'steel'" packgen --material steel
+expect_error "negative friction" 2 '^packgen: --friction' packgen --friction -1
+expect_error "bad aspect" 2 '^packgen: --aspect' packgen --aspect 1,0,1
+expect_error "operand not allowed" 2 '^packgen: too many operands' packgen extra.pack
+expect_error "NaN option" 2 'not a finite number' packgen --overlap nan
+rm -f fail.pack
+packgen -n 40 --max-steps 10 -o fail.pack 2>fail.err
+rc=$?
+if [ "$rc" -eq 1 ] && [ ! -e fail.pack ] && ! ls .fail.pack.* >/dev/null 2>&1; then
+	pass "a run that fails leaves no output and no temporary file"
+else
+	fail "a run that fails leaves no output and no temporary file" "rc $rc, $(ls -a | tr '\n' ' ')"
+fi
