@@ -183,6 +183,14 @@ shell_quote_argv(int argc, char **argv)
 		int plain = *a != 0;
 		const char *c;
 
+		/* The output name is left out: where the bytes go must not change them. */
+		if (i > 0 && (strcmp(a, "-o") == 0 || strcmp(a, "--output") == 0)) {
+			i++;
+			continue;
+		}
+		if (i > 0 && (strncmp(a, "--output=", 9) == 0 || (a[0] == '-' && a[1] == 'o' && a[2])))
+			continue;
+
 		for (c = a; *c; c++)
 			if (!strchr("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.,:=+/@%", *c))
 				plain = 0;
