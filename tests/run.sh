@@ -46,6 +46,7 @@ for b in "$@"; do
 	for t in "$top"/tests/tools/*.sh; do
 		[ -f "$t" ] || continue
 		n=$(basename "$t" .sh)
+		[ "$n" = lib ] && continue	# the helpers, not a test
 		w="$out/$b/tools/$n.d"
 		mkdir -p "$w"
 		cd "$w" || exit 1
