@@ -2,6 +2,7 @@
 #include "dem.h"
 #include "cell.h"
 #include "msg.h"
+#include "vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -264,14 +265,6 @@ need_rebuild(const struct dem *d)
 	return 2 * sqrt(maxd2) + shrink * (2 * d->rmax + d->skin) > d->skin;
 }
 
-static void
-cross(const double a[3], const double b[3], double c[3])
-{
-	c[0] = a[1] * b[2] - a[2] * b[1];
-	c[1] = a[2] * b[0] - a[0] * b[2];
-	c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 /* Tangential spring update and Coulomb limit; returns the tangential force on i in ft. */
 static void
 tangential(double *xi, const double n[3], const double vt[3], double dt, double kt, double fmaxt, double ft[3])
@@ -334,10 +327,10 @@ forces(struct dem *d)
 			meff = d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
 			for (a = 0; a < 3; a++)
 				wr[a] = -ri * nn[a];
-			cross(d->w + 3 * i, wr, ca);
+			vec3_cross(d->w + 3 * i, wr, ca);
 			for (a = 0; a < 3; a++)
 				wr[a] = d->r[j] * nn[a];
-			cross(d->w + 3 * j, wr, cb);
+			vec3_cross(d->w + 3 * j, wr, cb);
 			for (a = 0; a < 3; a++)
 				vr[a] = d->v[3 * i + a] + ca[a] - d->v[3 * j + a] - cb[a];
 			vn = vr[0] * nn[0] + vr[1] * nn[1] + vr[2] * nn[2];
@@ -352,7 +345,7 @@ forces(struct dem *d)
 				d->f[3 * i + a] += F[a];
 				d->f[3 * j + a] -= F[a];
 			}
-			cross(nn, ft, c);
+			vec3_cross(nn, ft, c);
 			for (a = 0; a < 3; a++) {
 				d->t[3 * i + a] -= ri * c[a];
 				d->t[3 * j + a] -= d->r[j] * c[a];
@@ -377,7 +370,7 @@ forces(struct dem *d)
 			d->wallf[wl] += fn;
 			for (a = 0; a < 3; a++)
 				wr[a] = -ri * nn[a];
-			cross(d->w + 3 * i, wr, ca);
+			vec3_cross(d->w + 3 * i, wr, ca);
 			for (a = 0; a < 3; a++)
 				vr[a] = d->v[3 * i + a] + ca[a];
 			vn = vr[ax] * nn[ax];
@@ -389,7 +382,7 @@ forces(struct dem *d)
 			tangential(spring, nn, vt, d->dt, KT_RATIO * kn, d->mu * fn, ft);
 			for (a = 0; a < 3; a++)
 				d->f[3 * i + a] += fn * nn[a] + ft[a];
-			cross(nn, ft, c);
+			vec3_cross(nn, ft, c);
 			for (a = 0; a < 3; a++)
 				d->t[3 * i + a] -= ri * c[a];
 			d->ncontacts++;

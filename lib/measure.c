@@ -1,6 +1,7 @@
 /* measure: porosity, coordination, stresses, residual, fabric (see measure.h). */
 #include "measure.h"
 #include "msg.h"
+#include "vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -56,20 +57,6 @@ measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned c
 	}
 	free(cnt);
 	return nr;
-}
-
-static void
-cross(const double a[3], const double b[3], double c[3])
-{
-	c[0] = a[1] * b[2] - a[2] * b[1];
-	c[1] = a[2] * b[0] - a[0] * b[2];
-	c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double
-norm3(const double a[3])
-{
-	return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
 }
 
 /* Lever arm lengths from centres to the contact plane (physics.md §3). */
@@ -164,7 +151,7 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 		}
 		for (a = 0; a < 3; a++)
 			f[a] = c->P * c->n[a] + Q[a];
-		fm = norm3(f);
+		fm = vec3_norm(f);
 		Psum += c->P;
 		fsum += fm;
 		m->P_max = fmax(m->P_max, c->P);
@@ -188,7 +175,7 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 			F[3 * i + a] += f[a];
 		{
 			double arm[3] = {-c->n[0] * li, -c->n[1] * li, -c->n[2] * li};
-			cross(arm, Q, t);
+			vec3_cross(arm, Q, t);
 			for (a = 0; a < 3; a++)
 				M[3 * i + a] += t[a] + Mt * c->n[a];
 		}
@@ -198,7 +185,7 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 			double arm[3] = {c->n[0] * lj, c->n[1] * lj, c->n[2] * lj}, mQ[3] = {-Q[0], -Q[1], -Q[2]};
 			for (a = 0; a < 3; a++)
 				F[3 * j + a] -= f[a];
-			cross(arm, mQ, t);
+			vec3_cross(arm, mQ, t);
 			for (a = 0; a < 3; a++)
 				M[3 * j + a] += t[a] - Mt * c->n[a];
 			fbig[j] = fmax(fbig[j], fm);
@@ -233,8 +220,8 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 			double fr, mr;
 			if (!(fbig[k] > 0))
 				continue;
-			fr = norm3(F + 3 * k);
-			mr = norm3(M + 3 * k) / p->r[k];
+			fr = vec3_norm(F + 3 * k);
+			mr = vec3_norm(M + 3 * k) / p->r[k];
 			m->residual_max = fmax(m->residual_max, fmax(fr, mr) / fbig[k]);
 			Fsum += fr;
 			nres++;
@@ -247,7 +234,7 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 			const struct pack_contact *h = &p->c[gc->c[k].hist];
 			double mu = PACK_IS_WALL(h->j) ? p->wall_mu : p->mu, qmax = mu * h->P0;
 			nfr++;
-			if (qmax > 0 && norm3(h->Q0) >= qmax * (1 - 1e-9))
+			if (qmax > 0 && vec3_norm(h->Q0) >= qmax * (1 - 1e-9))
 				nsl++;
 		}
 	m->stale_history = p->nc - nfr;
