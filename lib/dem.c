@@ -1,6 +1,7 @@
 /* dem: explicit DEM compaction for loose packs (see dem.h). */
 #include "dem.h"
 #include "cell.h"
+#include "nlist.h"
 #include "msg.h"
 #include "vec3.h"
 
@@ -18,12 +19,14 @@ struct dem {
 	double lo[3], hi[3];
 	double rmax, skin, dt, mu, damping, rate, viscous;
 	int unloading;		/* slow, quasi-static expansion towards the final stress */
-	/* Verlet list in CSR form (i < j), with the tangential spring of each pair */
-	size_t *first, *nbr, npairs, cap;
-	double *xi;
-	size_t *first2, *nbr2, cap2, *fill;
-	double *xi2;
-	double *xb, blo[3], bhi[3];	/* positions and box at the last build */
+	/* two Verlet lists, the current one and the next build, each with the tangential
+	 * spring of every listed pair, so springs carry over a rebuild */
+	struct nlist list[2];
+	double *spring[2];
+	size_t spring_cap[2];
+	int cur;
+	size_t *first, *nbr;	/* the current list's rows */
+	double *xi;		/* the current list's springs */
 	double *xiw;			/* wall springs, 6 x 3 per grain */
 	double wallf[NWALLS];
 	struct cell_grid grid;
@@ -35,8 +38,8 @@ static void
 dem_free(struct dem *d)
 {
 	free(d->x), free(d->v), free(d->w), free(d->f), free(d->t), free(d->r), free(d->m), free(d->I);
-	free(d->first), free(d->nbr), free(d->xi), free(d->first2), free(d->nbr2), free(d->xi2);
-	free(d->fill), free(d->xb), free(d->xiw);
+	nlist_free(&d->list[0]), nlist_free(&d->list[1]);
+	free(d->spring[0]), free(d->spring[1]), free(d->xiw);
 	cell_free(&d->grid);
 }
 
@@ -162,107 +165,43 @@ sort_spatially(struct dem *d, size_t *perm)
 	return 0;
 }
 
-struct build_ctx {
-	struct dem *d;
-	int pass;
-};
-
-static int
-on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
-{
-	struct build_ctx *b = vctx;
-
-	(void)dx;
-	(void)d2;
-	if (b->pass == 0)
-		b->d->first2[i + 1]++;
-	else
-		b->d->nbr2[b->d->fill[i]++] = j;
-	return 0;
-}
-
+/* Build the next list and carry the springs of pairs that were already listed. */
 static int
 build_list(struct dem *d)
 {
-	struct build_ctx b = {d, 0};
+	int nx = 1 - d->cur;
+	struct nlist *old = &d->list[d->cur], *nl = &d->list[nx];
 	size_t i, k, n = d->n;
 
-	if (cell_build(&d->grid, d->x, n, d->lo, d->hi, 2 * d->rmax + d->skin))
+	if (nlist_build(nl, d->x, d->r, n, d->lo, d->hi, d->rmax, d->skin))
 		return -1;
-	memset(d->first2, 0, (n + 1) * sizeof *d->first2);
-	cell_for_pairs(&d->grid, d->x, d->r, d->skin, on_pair, &b);
-	for (i = 0; i < n; i++)
-		d->first2[i + 1] += d->first2[i];
-	if (d->first2[n] > d->cap2) {
-		size_t cap = d->first2[n] + d->first2[n] / 4 + 16;
-		free(d->nbr2), free(d->xi2);
-		d->nbr2 = malloc(cap * sizeof *d->nbr2);
-		d->xi2 = malloc(3 * cap * sizeof *d->xi2);
-		if (!d->nbr2 || !d->xi2) {
+	if (nl->npairs > d->spring_cap[nx] || !d->spring[nx]) {
+		size_t cap = nl->npairs + nl->npairs / 4 + 16;
+		free(d->spring[nx]);
+		d->spring[nx] = malloc(3 * cap * sizeof *d->spring[nx]);
+		if (!d->spring[nx]) {
 			msg_seterr("out of memory for the neighbour list");
 			return -1;
 		}
-		d->cap2 = cap;
+		d->spring_cap[nx] = cap;
 	}
-	memcpy(d->fill, d->first2, n * sizeof *d->fill);
-	b.pass = 1;
-	cell_for_pairs(&d->grid, d->x, d->r, d->skin, on_pair, &b);
-	/* sort each row by j and carry the springs of pairs that were already listed */
 	for (i = 0; i < n; i++) {
-		size_t s = d->first2[i], e = d->first2[i + 1], o = d->first[i], oe = d->first[i + 1];
-		for (k = s + 1; k < e; k++) {
-			size_t v = d->nbr2[k], q = k;
-			while (q > s && d->nbr2[q - 1] > v) {
-				d->nbr2[q] = d->nbr2[q - 1];
-				q--;
-			}
-			d->nbr2[q] = v;
-		}
-		for (k = s; k < e; k++) {
-			while (o < oe && d->nbr[o] < d->nbr2[k])
+		size_t o = old->first ? old->first[i] : 0, oe = old->first ? old->first[i + 1] : 0;
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			double *to = d->spring[nx] + 3 * k;
+			while (o < oe && old->nbr[o] < nl->nbr[k])
 				o++;
-			if (o < oe && d->nbr[o] == d->nbr2[k])
-				memcpy(d->xi2 + 3 * k, d->xi + 3 * o, 3 * sizeof *d->xi);
+			if (o < oe && old->nbr[o] == nl->nbr[k])
+				memcpy(to, d->spring[d->cur] + 3 * o, 3 * sizeof *to);
 			else
-				d->xi2[3 * k] = d->xi2[3 * k + 1] = d->xi2[3 * k + 2] = 0;
+				to[0] = to[1] = to[2] = 0;
 		}
 	}
-	{
-		size_t *t1 = d->first, *t2 = d->nbr, c = d->cap;
-		double *t3 = d->xi;
-		d->first = d->first2, d->nbr = d->nbr2, d->xi = d->xi2, d->cap = d->cap2;
-		d->first2 = t1, d->nbr2 = t2, d->xi2 = t3, d->cap2 = c;
-	}
-	d->npairs = d->first[n];
-	memcpy(d->xb, d->x, 3 * n * sizeof *d->x);
-	memcpy(d->blo, d->lo, sizeof d->lo);
-	memcpy(d->bhi, d->hi, sizeof d->hi);
+	d->cur = nx;
+	d->first = nl->first;
+	d->nbr = nl->nbr;
+	d->xi = d->spring[nx];
 	return 0;
-}
-
-/* Rebuild when a pair may have come within range: twice the largest non-affine
- * displacement plus the affine shortening of the longest listed pair exceeds the skin. */
-static int
-need_rebuild(const struct dem *d)
-{
-	double maxd2 = 0, shrink = 0, s[3];
-	size_t i;
-	int a;
-
-	for (a = 0; a < 3; a++) {
-		s[a] = (d->hi[a] - d->lo[a]) / (d->bhi[a] - d->blo[a]);
-		shrink = fmax(shrink, 1 - s[a]);
-	}
-	for (i = 0; i < d->n; i++) {
-		double e2 = 0;
-		for (a = 0; a < 3; a++) {
-			double ref = d->lo[a] + (d->xb[3 * i + a] - d->blo[a]) * s[a];
-			double e = d->x[3 * i + a] - ref;
-			e2 += e * e;
-		}
-		maxd2 = fmax(maxd2, e2);
-	}
-	return 2 * sqrt(maxd2) + shrink * (2 * d->rmax + d->skin) > d->skin;
 }
 
 /* Tangential spring update and Coulomb limit; returns the tangential force on i in ft. */
@@ -523,15 +462,12 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	d.r = malloc(n * sizeof *d.r);
 	d.m = malloc(n * sizeof *d.m);
 	d.I = malloc(n * sizeof *d.I);
-	d.first = calloc(n + 1, sizeof *d.first);
-	d.first2 = calloc(n + 1, sizeof *d.first2);
-	d.fill = malloc(n * sizeof *d.fill);
-	d.xb = malloc(3 * n * sizeof *d.xb);
+	nlist_init(&d.list[0]);
+	nlist_init(&d.list[1]);
 	d.xiw = calloc(18 * n, sizeof *d.xiw);
 	order = malloc(n * sizeof *order);
 	cell_init(&d.grid);
-	if (!d.x || !d.v || !d.w || !d.f || !d.t || !d.r || !d.m || !d.I || !d.first || !d.first2 || !d.fill ||
-	    !d.xb || !d.xiw || !order) {
+	if (!d.x || !d.v || !d.w || !d.f || !d.t || !d.r || !d.m || !d.I || !d.xiw || !order) {
 		msg_seterr("out of memory for %zu grains", n);
 		goto out;
 	}
@@ -593,7 +529,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	for (step = 1; step <= dp->max_steps; step++) {
 		double ratio;
 
-		if (need_rebuild(&d)) {
+		if (nlist_stale(&d.list[d.cur], d.x, d.lo, d.hi)) {
 			if (build_list(&d))
 				goto out;
 			rebuilds++;
