@@ -27,8 +27,31 @@ static const char *output_path;
 static int verbose_count, quiet_flag;
 
 /* The temporary file in flight, removed by the signal handler and at exit. */
-static volatile sig_atomic_t tmp_live;
-static char tmp_pending[4096];
+/* The temporary files in flight (a tool may write a pack and a log at once), removed by
+ * the signal handler and at exit unless committed. */
+#define MAX_TMP 8
+static volatile sig_atomic_t tmp_live[MAX_TMP];
+static char tmp_pending[MAX_TMP][4096];
+
+static void
+remove_all_tmp(void)
+{
+	int k;
+
+	for (k = 0; k < MAX_TMP; k++)
+		if (tmp_live[k])
+			unlink(tmp_pending[k]);
+}
+
+static void
+forget_tmp(const char *path)
+{
+	int k;
+
+	for (k = 0; k < MAX_TMP; k++)
+		if (tmp_live[k] && strcmp(tmp_pending[k], path) == 0)
+			tmp_live[k] = 0;
+}
 
 static struct cli_opt common_opts[] = {
 	{"output", 'o', CLI_STRING, &output_path, "FILE", "write to FILE (atomically) instead of stdout; .gz compresses", NULL},
@@ -330,8 +353,7 @@ cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 static void
 remove_tmp_on_signal(int sig)
 {
-	if (tmp_live)
-		unlink(tmp_pending);
+	remove_all_tmp();
 	signal(sig, SIG_DFL);
 	raise(sig);
 }
@@ -339,8 +361,7 @@ remove_tmp_on_signal(int sig)
 static void
 remove_tmp_at_exit(void)
 {
-	if (tmp_live)
-		unlink(tmp_pending);
+	remove_all_tmp();
 }
 
 int
@@ -356,7 +377,7 @@ cli_out_open(struct cli_out *o, const char *path)
 		o->fp = stdout;
 		return 0;
 	}
-	if (strlen(path) + 16 >= sizeof tmp_pending) {
+	if (strlen(path) + 16 >= sizeof tmp_pending[0]) {
 		msg_seterr("%s: path too long", path);
 		return -1;
 	}
@@ -383,8 +404,19 @@ cli_out_open(struct cli_out *o, const char *path)
 		msg_seterr("%s: cannot create temporary file: %s", path, strerror(errno));
 		return -1;
 	}
-	strcpy(tmp_pending, o->tmp);
-	tmp_live = 1;
+	{
+		int k;
+		for (k = 0; k < MAX_TMP && tmp_live[k]; k++)
+			;
+		if (k == MAX_TMP) {
+			close(fd);
+			unlink(o->tmp);
+			msg_seterr("%s: too many outputs at once", path);
+			return -1;
+		}
+		strcpy(tmp_pending[k], o->tmp);
+		tmp_live[k] = 1;
+	}
 	{
 		mode_t mask = umask(0);
 
@@ -430,7 +462,7 @@ cli_out_commit(struct cli_out *o)
 		cli_out_abort(o);
 		return -1;
 	}
-	tmp_live = 0;
+	forget_tmp(o->tmp);
 	free(o->tmp);
 	free(o->path);
 	o->tmp = o->path = NULL;
@@ -445,7 +477,7 @@ cli_out_abort(struct cli_out *o)
 	o->fp = NULL;
 	if (o->tmp) {
 		unlink(o->tmp);
-		tmp_live = 0;
+		forget_tmp(o->tmp);
 	}
 	free(o->tmp);
 	free(o->path);

@@ -573,9 +573,30 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 		    dp->max_steps, st->p_ratio, st->unbalanced);
 		goto out;
 	}
-	for (i = 0; i < n; i++)
+	/* The pack takes the spatial order too (ids 1..N along it): every later stage then
+	 * walks memory in the order neighbours are met.  Radii and moduli were drawn
+	 * independently, so renumbering loses nothing. */
+	{
+		double *tmp = malloc(n * sizeof *tmp);
+		double *arrs[4] = {p->r, p->E, p->nu, p->rho};
+		int q;
+
+		if (!tmp) {
+			msg_seterr("out of memory");
+			goto out;
+		}
+		for (q = 0; q < 4; q++) {
+			memcpy(tmp, arrs[q], n * sizeof *tmp);
+			for (i = 0; i < n; i++)
+				arrs[q][i] = tmp[order[i]];
+		}
+		free(tmp);
+	}
+	for (i = 0; i < n; i++) {
+		p->id[i] = (long)i + 1;
 		for (a = 0; a < 3; a++)
-			p->x[3 * order[i] + a] = d.x[3 * i + a] * rmean;
+			p->x[3 * i + a] = d.x[3 * i + a] * rmean;
+	}
 	for (a = 0; a < 3; a++) {
 		p->box[a] = d.lo[a] * rmean;
 		p->box[a + 3] = d.hi[a] * rmean;

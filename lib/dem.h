@@ -47,7 +47,7 @@ typedef void (*dem_progress_fn)(const struct dem_status *s, void *ctx);
 void dem_params_default(struct dem_params *dp);
 
 /* Place p's grains (radii set by the caller, in metres) and set the box: on return the
- * grains are at rest in the fitted box.  0 on success; -1 with the error slot set (also
+ * grains are at rest in the fitted box, renumbered (ids 1..N) in spatial order.  0 on success; -1 with the error slot set (also
  * when max_steps is reached before rest). */
 int dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_progress_fn fn,
     void *ctx, struct dem_status *final);

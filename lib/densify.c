@@ -1,0 +1,282 @@
+/* densify: grow under-coordinated grains, shrink, minimise; then compact (see densify.h). */
+#include "densify.h"
+#include "contacts.h"
+#include "functional.h"
+#include "loading.h"
+#include "msg.h"
+#include "table.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void
+densify_params_default(struct densify_params *dp)
+{
+	dp->stress = 4e6;
+	dp->onset = 1e4;
+	dp->stress_tol = 0.01;
+	dp->strain_step = 2e-3;
+	dp->max_growth = 0.05;
+	dp->min_coord = 4;
+	dp->max_rounds = 1000;
+	dp->nsub = 1;
+	dp->k_inc = 10;
+	dp->skin = 0.3;
+	qs_min_params_default(&dp->min);
+}
+
+struct gaps {
+	double g[4];	/* the four smallest surface gaps, ascending (negative: overlap) */
+	unsigned k;
+};
+
+static void
+gap_insert(struct gaps *gp, unsigned want, double v)
+{
+	unsigned q;
+
+	if (gp->k < want)
+		gp->k++;
+	else if (v >= gp->g[want - 1])
+		return;
+	for (q = gp->k - 1; q > 0 && gp->g[q - 1] > v; q--)
+		gp->g[q] = gp->g[q - 1];
+	gp->g[q] = v;
+}
+
+/* Grow each grain with fewer than min_coord contacts until it touches its min_coord-th
+ * nearest neighbour or wall (from the Verlet list: neighbours within the skin), by at most
+ * max_growth of its radius.  Returns the number of grains grown. */
+static size_t
+grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const struct densify_params *dp,
+    struct gaps *gp)
+{
+	struct pack *p = s->p;
+	size_t i, k, grown = 0;
+	unsigned want = dp->min_coord < 4 ? dp->min_coord : 4;
+	int w;
+
+	if (want == 0)
+		return 0;
+	for (i = 0; i < s->n; i++)
+		gp[i].k = 0;
+	for (i = 0; i < s->n; i++) {
+		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
+			size_t j = s->nl.nbr[k];
+			double d0 = x[3 * i] - x[3 * j], d1 = x[3 * i + 1] - x[3 * j + 1], d2 = x[3 * i + 2] - x[3 * j + 2];
+			double gap = sqrt(d0 * d0 + d1 * d1 + d2 * d2) - p->r[i] - p->r[j];
+			if (cnt[i] < dp->min_coord)
+				gap_insert(&gp[i], want, gap);
+			if (cnt[j] < dp->min_coord)
+				gap_insert(&gp[j], want, gap);
+		}
+		if (cnt[i] < dp->min_coord)
+			for (w = 0; w < NWALLS; w++) {
+				int a = w / 2;
+				double dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
+				gap_insert(&gp[i], want, dist - p->r[i]);
+			}
+	}
+	for (i = 0; i < s->n; i++) {
+		double dr, cap = dp->max_growth * p->r[i];
+		if (cnt[i] >= dp->min_coord)
+			continue;
+		/* touch the want-th gap with a small overlap (1e-6 R) so that it counts */
+		dr = gp[i].k == want ? gp[i].g[want - 1] + 1e-6 * p->r[i] : cap;
+		if (dr <= 0)
+			continue;
+		p->r[i] += fmin(dr, cap);
+		grown++;
+	}
+	if (grown)
+		qs_radii_changed(s);
+	return grown;
+}
+
+static void
+stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densify_stage *st)
+{
+	double sig[3], sum = 0;
+	size_t i;
+
+	qs_wall_stress(s, sig);
+	st->sigma_c = (sig[0] + sig[1] + sig[2]) / 3;
+	st->porosity = 1 - pack_grain_volume(s->p) / pack_box_volume(s->p->box);
+	qs_coordination(s, x, cnt);
+	st->under4 = 0;
+	for (i = 0; i < s->n; i++) {
+		sum += cnt[i];
+		st->under4 += cnt[i] < 4;
+	}
+	st->coordination = sum / s->n;
+}
+
+/* Contact lines for every touching pair: P0 from Hertz, no tangential history yet. */
+static int
+write_contacts(struct pack *p)
+{
+	struct geo_contacts gc;
+	size_t k;
+
+	contacts_init(&gc);
+	p->nc = 0;
+	if (contacts_find(p, &gc))
+		return -1;
+	for (k = 0; k < gc.n; k++) {
+		struct pack_contact c = {gc.c[k].i, gc.c[k].j, gc.c[k].P, {0, 0, 0}, 0};
+		if (pack_add_contact(p, &c)) {
+			contacts_free(&gc);
+			return -1;
+		}
+	}
+	contacts_free(&gc);
+	return 0;
+}
+
+int
+densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx, struct densify_stage *last)
+{
+	struct qs_system s;
+	struct qs_min_report rep;
+	struct densify_stage st;
+	struct gaps *gp = NULL;
+	unsigned *cnt = NULL;
+	double *x = NULL, r0sum = 0, zero[3] = {0, 0, 0};
+	double e_prev = NAN, y_prev = NAN, eps_now = 0;
+	size_t i;
+	long round;
+	int status = -1, limit_hit = 0, have_ref = p->has_refbox;
+
+	memset(&st, 0, sizeof st);
+	if (qs_init(&s, p, dp->skin))
+		return -1;
+	x = malloc(3 * p->n * sizeof *x);
+	cnt = malloc(p->n * sizeof *cnt);
+	gp = malloc(p->n * sizeof *gp);
+	if (!x || !cnt || !gp) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	memcpy(x, p->x, 3 * p->n * sizeof *x);
+	for (i = 0; i < p->n; i++)
+		r0sum += p->r[i];
+	/* Before the pack carries the onset stress there is no load to balance: judge forces
+	 * against what a contact carries at the onset, about onset x (2 r_mean)^2. */
+	s.force_floor = dp->min.tol_floor * dp->onset * 4 * (r0sum / p->n) * (r0sum / p->n);
+
+#define RECORD(name, rnd)                                                        \
+	do {                                                                     \
+		double rs_ = 0;                                                  \
+		stage_measures(&s, x, cnt, &st);                                 \
+		for (i = 0; i < p->n; i++)                                       \
+			rs_ += p->r[i];                                          \
+		st.stage = name;                                                 \
+		st.round = rnd;                                                  \
+		st.growth = rs_ / r0sum - 1;                                     \
+		st.iterations = rep.iter;                                        \
+		st.res_max = rep.res_max;                                        \
+		st.res_mean = rep.res_mean;                                      \
+		st.min_status = rep.status;                                      \
+		limit_hit |= rep.status == 1;                                    \
+		if (fn)                                                          \
+			fn(&st, ctx);                                            \
+	} while (0)
+
+	if (qs_minimize(&s, x, &dp->min, &rep) < 0)
+		goto out;
+	RECORD("relax", 0);
+	for (round = 1;; round++) {
+		double de;
+		size_t grown;
+
+		if (st.sigma_c >= dp->onset && !have_ref) {
+			memcpy(p->refbox, p->box, sizeof p->refbox);
+			have_ref = 1;
+		}
+		if (st.under4 == 0 && st.sigma_c >= dp->onset)
+			break;
+		if (round > dp->max_rounds) {
+			msg_seterr("phase (a) did not finish in %ld rounds: %zu grains under %u contacts, sigma_c %g Pa",
+			    dp->max_rounds, st.under4, dp->min_coord, st.sigma_c);
+			goto out;
+		}
+		grown = grow_grains(&s, x, cnt, dp, gp);
+		de = st.sigma_c < dp->onset ? dp->strain_step : 0;
+		if (grown == 0 && de == 0) {
+			/* under-coordinated grains that cannot grow (already touching): rattlers
+			 * of a stressed pack; squeeze the box a little to seat them */
+			de = 0.1 * dp->strain_step;
+		}
+		{
+			double d3[3] = {de, de, de};
+			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &dp->min, &rep) < 0)
+				goto out;
+		}
+		RECORD("grow", round);
+	}
+	if (!have_ref) {
+		memcpy(p->refbox, p->box, sizeof p->refbox);
+		have_ref = 1;
+	}
+	p->has_refbox = 1;
+	/* compaction to the target: secant on y = sigma_c^(2/3) against the strain */
+	for (round = 1; fabs(st.sigma_c / dp->stress - 1) > dp->stress_tol || st.under4 > 0; round++) {
+		double y = pow(st.sigma_c, 2.0 / 3.0), yt = pow(dp->stress, 2.0 / 3.0), de, d3[3];
+		double eps[3];
+
+		if (round > dp->max_rounds) {
+			msg_seterr("compaction did not reach %g Pa in %ld steps (sigma_c %g Pa)", dp->stress,
+			    dp->max_rounds, st.sigma_c);
+			goto out;
+		}
+		load_strain(p->box, p->refbox, eps);
+		eps_now = (eps[0] + eps[1] + eps[2]) / 3;
+		if (!isnan(e_prev) && eps_now != e_prev && (y - y_prev) / (eps_now - e_prev) > 0)
+			de = (yt - y) / ((y - y_prev) / (eps_now - e_prev));
+		else
+			de = st.sigma_c < dp->stress ? dp->strain_step : -dp->strain_step;
+		de = fmax(-dp->strain_step, fmin(dp->strain_step, de));
+		e_prev = eps_now;
+		y_prev = y;
+		d3[0] = d3[1] = d3[2] = de;
+		/* compaction can leave a grain with fewer than min_coord contacts: grow it too */
+		if (st.under4 > 0)
+			grow_grains(&s, x, cnt, dp, gp);
+		if (fabs(st.sigma_c / dp->stress - 1) <= dp->stress_tol)
+			d3[0] = d3[1] = d3[2] = 0;
+		if (load_increment(&s, x, d3, dp->nsub, dp->k_inc, &dp->min, &rep) < 0)
+			goto out;
+		RECORD("compact", round);
+	}
+#undef RECORD
+	memcpy(p->x, x, 3 * p->n * sizeof *x);
+	if (write_contacts(p))
+		goto out;
+	status = limit_hit ? 1 : 0;
+	if (limit_hit)
+		msg_seterr("a minimisation stopped at its iteration limit (largest residual %.3g)", st.res_max);
+out:
+	if (last)
+		*last = st;
+	qs_free(&s);
+	free(x), free(cnt), free(gp);
+	return status;
+}
+
+void
+densify_log_header(FILE *fp)
+{
+	fputs("# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean\n",
+	    fp);
+}
+
+void
+densify_log_row(FILE *fp, const struct densify_stage *st)
+{
+	double v[8] = {st->sigma_c, st->porosity, st->coordination, (double)st->under4, st->growth,
+	    (double)st->iterations, st->res_max, st->res_mean};
+
+	fprintf(fp, "%s\t%ld\t", st->stage, st->round);
+	table_row(fp, v, 8);
+}

@@ -1,0 +1,57 @@
+/* densify: phase (a) of making a pack (physics.md §9, S §2.4): frictionless isotropic
+ * compaction of a loose pack.
+ *
+ * Rounds: every grain with fewer than min_coord contacts (grain plus wall) is expanded until
+ * it touches min_coord neighbours or walls (at most max_growth of its radius per round), the
+ * box is shrunk by strain_step while the confining stress is below the onset, and the pack is
+ * brought to equilibrium.  The rounds end when no grain has fewer than min_coord contacts and
+ * the stress has reached the onset; the box where the stress first reached the onset becomes
+ * the reference box for strains.  Then the box is compressed isotropically (a secant on
+ * sigma_c^(2/3), which Hertz contacts make nearly linear in strain) until sigma_c is within
+ * stress_tol of the target.  Every equilibrium is the minimiser's. */
+#ifndef QUSGM_DENSIFY_H
+#define QUSGM_DENSIFY_H
+
+#include "minimize.h"
+#include "pack.h"
+
+struct densify_params {
+	double stress;		/* target confining stress sigma_c (Pa) */
+	double onset;		/* stress that marks the reference box (Pa) */
+	double stress_tol;	/* relative tolerance on the final sigma_c */
+	double strain_step;	/* largest isotropic strain per step */
+	double max_growth;	/* largest relative growth of a radius per round */
+	unsigned min_coord;
+	long max_rounds;
+	int nsub;		/* sub-increments per strain step */
+	long k_inc;		/* minimiser iterations between sub-increments */
+	double skin;		/* Verlet skin / smallest radius */
+	struct qs_min_params min;
+};
+
+struct densify_stage {
+	const char *stage;	/* "relax", "grow", "compact" */
+	long round;
+	double sigma_c, porosity, coordination;
+	size_t under4;
+	double growth;		/* mean relative radius growth so far */
+	long iterations;
+	double res_max, res_mean;
+	int min_status;
+};
+
+typedef void (*densify_log_fn)(const struct densify_stage *st, void *ctx);
+
+void densify_params_default(struct densify_params *dp);
+/* Densify p in place (positions, radii, box, refbox, contacts).  0 on success; 1 when a
+ * minimisation hit its iteration limit (p holds the state reached); -1 on error. */
+int densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx,
+    struct densify_stage *last);
+
+#include <stdio.h>
+
+/* The log: one TSV header, one row per stage. */
+void densify_log_header(FILE *fp);
+void densify_log_row(FILE *fp, const struct densify_stage *st);
+
+#endif

@@ -1,0 +1,141 @@
+/* densify: frictionless isotropic compaction of a loose pack to a confining stress. */
+#include "cli.h"
+#include "densify.h"
+#include "minopts.h"
+#include "msg.h"
+#include "numfmt.h"
+#include "packio.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static struct densify_params dp;
+static const char *log_path;
+static int allow_limit;
+static long min_coord = 4, nsub = 1;
+
+static struct cli_opt opts[] = {
+	{"stress", 'p', CLI_DOUBLE, &dp.stress, "PA", "target confining stress sigma_c = tr(sigma)/3", "Pa"},
+	{"log", 'l', CLI_STRING, &log_path, "FILE", "write a TSV row per stage to FILE", NULL},
+	{"onset", 0, CLI_DOUBLE, &dp.onset, "PA", "stress that marks the reference box for strains", "Pa"},
+	{"stress-tol", 0, CLI_DOUBLE, &dp.stress_tol, "RATIO", "relative tolerance on the final sigma_c", NULL},
+	{"strain-step", 0, CLI_DOUBLE, &dp.strain_step, "EPS", "largest isotropic strain per step", NULL},
+	{"max-growth", 0, CLI_DOUBLE, &dp.max_growth, "RATIO", "largest growth of a radius per round / radius", NULL},
+	{"min-coord", 0, CLI_LONG, &min_coord, "N", "grains with fewer contacts (grains and walls) are expanded", NULL},
+	{"max-rounds", 0, CLI_LONG, &dp.max_rounds, "N", "limit on growth rounds and on compaction steps", NULL},
+	{"sub-increments", 0, CLI_LONG, &nsub, "N", "sub-increments per strain step (affine guess each)", NULL},
+	{"k-inc", 0, CLI_LONG, &dp.k_inc, "N", "minimiser iterations between sub-increments", NULL},
+	{"skin", 0, CLI_DOUBLE, &dp.skin, "RATIO", "Verlet skin / smallest radius", NULL},
+	{"allow-limit", 0, CLI_FLAG, &allow_limit, NULL, "write the pack even if a minimisation hit --max-iter (exit 0)", NULL},
+	QS_MIN_OPTS(dp.min),
+	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
+};
+
+static const struct cli_tool tool = {
+	"densify", "[options] [FILE]",
+	"Frictionless isotropic compaction: expand grains with fewer than 4 contacts, shrink, minimise; then compress to --stress.",
+	opts, 1,
+};
+
+struct log_ctx {
+	FILE *fp;
+};
+
+static void
+on_stage(const struct densify_stage *st, void *vctx)
+{
+	struct log_ctx *c = vctx;
+
+	if (c->fp)
+		densify_log_row(c->fp, st);
+	cli_progress("%s %ld  sigma_c %.4g Pa  porosity %.4f  coordination %.3f  under4 %zu  growth %.2e  iter %ld  residual %.2e",
+	    st->stage, st->round, st->sigma_c, st->porosity, st->coordination, st->under4, st->growth,
+	    st->iterations, st->res_max);
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_state st;
+	struct cli_out logout = {0};
+	struct log_ctx lc = {NULL};
+	struct densify_stage last;
+	struct pack p;
+	char *hist, buf[40];
+	double Emean = 0;
+	size_t i;
+	int a, r;
+
+	msg_init(argv[0]);
+	densify_params_default(&dp);
+	cli_parse(&tool, argc, argv, &st);
+	qs_min_opts_check(&dp.min);
+	if (!(dp.stress > 0))
+		cli_usage_error("--stress: must be positive");
+	if (!(dp.onset > 0))
+		cli_usage_error("--onset: must be positive");
+	if (!(dp.stress_tol > 0 && dp.stress_tol < 0.5))
+		cli_usage_error("--stress-tol: must be in (0, 0.5)");
+	if (!(dp.strain_step > 0 && dp.strain_step <= 0.05))
+		cli_usage_error("--strain-step: must be in (0, 0.05]");
+	if (!(dp.max_growth > 0 && dp.max_growth <= 0.5))
+		cli_usage_error("--max-growth: must be in (0, 0.5]");
+	if (min_coord < 0 || min_coord > 4)
+		cli_usage_error("--min-coord: must be in [0, 4]");
+	if (dp.max_rounds < 1 || nsub < 1 || nsub > 1000 || dp.k_inc < 1)
+		cli_usage_error("--max-rounds, --sub-increments (<= 1000) and --k-inc must be positive");
+	if (!(dp.skin > 0 && dp.skin <= 2))
+		cli_usage_error("--skin: must be in (0, 2]");
+	cli_usage_done();
+	dp.min_coord = (unsigned)min_coord;
+	dp.nsub = (int)nsub;
+
+	if (pack_read_path(st.input, &p))
+		msg_die_err(EXIT_DATA);
+	if (p.n < 5)
+		msg_die(EXIT_DATA, "%s: %zu grains: densify needs at least 5", st.input ? st.input : "<stdin>", p.n);
+	for (i = 0; i < p.n; i++)
+		Emean += p.E[i] / p.n;
+	for (a = 0; a < 3; a++)
+		for (i = 0; i < p.n; i++)
+			if (pack_box_length(p.box, a) < 2 * p.r[i])
+				msg_die(EXIT_DATA, "the box is thinner than grain %ld along %c", p.id[i], 'x' + a);
+	/* Hertz theory is for small strains: overlaps ~ (sigma/E)^(2/3) R reach 5 % near E/100. */
+	if (dp.stress >= 0.01 * Emean)
+		msg_die(EXIT_USAGE, "--stress %g Pa is beyond the small-strain range of Hertz contacts (E/100 = %g Pa)",
+		    dp.stress, 0.01 * Emean);
+	if (dp.stress <= dp.onset)
+		msg_die(EXIT_USAGE, "--stress %g Pa must exceed --onset %g Pa", dp.stress, dp.onset);
+	if (log_path) {
+		if (cli_out_open(&logout, log_path))
+			msg_die_err(EXIT_DATA);
+		lc.fp = logout.fp;
+		densify_log_header(lc.fp);
+	}
+	r = densify_run(&p, &dp, on_stage, &lc, &last);
+	cli_progress_end();
+	if (r < 0 || (r == 1 && !allow_limit)) {
+		if (log_path)
+			cli_out_abort(&logout);
+		if (r == 1)
+			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
+		msg_die_err(EXIT_DATA);
+	}
+	if (r == 1)
+		msg_warn("%s (kept: --allow-limit)", msg_geterr());
+	msg_info(1, "sigma_c %.6g Pa, porosity %.4f, coordination %.3f, under4 %zu, residual %.2e", last.sigma_c,
+	    last.porosity, last.coordination, last.under4, last.res_max);
+	num_format(buf, last.sigma_c);
+	pack_set_meta(&p, "sigma_c0", buf);
+	hist = cli_history_line(&tool, &st);
+	pack_add_history(&p, hist);
+	free(hist);
+	if (pack_write_path(&p, st.output))
+		msg_die_err(EXIT_DATA);
+	if (log_path && cli_out_commit(&logout))
+		msg_die_err(EXIT_DATA);
+	pack_free(&p);
+	return 0;
+}
