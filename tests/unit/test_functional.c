@@ -1,0 +1,640 @@
+/* test_functional: lib/functional.c (Hertz energy, gradient, wall forces) and the neighbour
+ * list behind it, against closed forms, finite differences and O(N^2) searches.
+ *
+ *  - one grain-grain and one grain-wall contact on exactly representable geometry: U, P, the
+ *    direction and sign of the gradient, wall forces and wall stress (a few ulps);
+ *  - central finite differences of Pi on random polydisperse packs, every coordinate, with a
+ *    tolerance from the truncation/rounding analysis, and a check that the tolerance rejects
+ *    a gradient 1 % too large;
+ *  - Newton's third law: the grain-grain forces cancel in pairs, so sum_i dPi/dx_i equals
+ *    the reaction on the walls;
+ *  - the contacts found through the Verlet list equal an O(N^2) search, before and after
+ *    moves small, near the skin, adversarial (a pair just outside the list driven into
+ *    contact), large, and after box changes and radius growth. */
+#include "functional.h"
+#include "hertz.h"
+#include "loading.h"
+#include "pack.h"
+#include "unit.h"
+
+#include <float.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---------- random packs ---------- */
+
+/* n grains, radii uniform in scale * [0.7, 1.3], E normal about 70 GPa (sd 10 %), nu uniform
+ * in [0.15, 0.25], uniformly placed in a box of nominal solid fraction phi (not at the origin,
+ * not a cube), walls 100 x stiffer; then sweeps of pairwise separation push every overlap back
+ * below ovmax times the pair's mean radius (a random target below it, so that overlaps spread
+ * over (0, ovmax]); grain-wall overlaps likewise below ovmax R. */
+static void
+random_pack(struct pack *p, gsl_rng *rng, size_t n, double scale, double phi, double ovmax)
+{
+	double vol = 0, L;
+	size_t i, j;
+	int a, sweep;
+
+	pack_init(p);
+	for (i = 0; i < n; i++) {
+		double x[3] = {0, 0, 0}, r = scale * (0.7 + 0.6 * gsl_rng_uniform(rng));
+		double E = 7e10 * (1 + 0.1 * gsl_ran_gaussian(rng, 1.0));
+		pack_add_grain(p, (long)i, x, r, E, 0.15 + 0.1 * gsl_rng_uniform(rng), 2420);
+		vol += 4.0 / 3.0 * M_PI * r * r * r;
+	}
+	L = cbrt(vol / phi);
+	for (a = 0; a < 3; a++) {
+		p->box[a] = (a - 1) * 0.37 * L;
+		p->box[3 + a] = p->box[a] + L * (1 + 0.05 * a);
+	}
+	p->wall_E = 7e12;
+	p->wall_nu = 0.495;
+	for (i = 0; i < n; i++)
+		for (a = 0; a < 3; a++)
+			p->x[3 * i + a] = p->box[a] + p->r[i] + gsl_rng_uniform(rng) * (p->box[3 + a] - p->box[a] - 2 * p->r[i]);
+	for (sweep = 0; sweep < 4000; sweep++) {
+		long moved = 0;
+		for (i = 0; i < n; i++) {
+			double *xi = p->x + 3 * i;
+			for (j = i + 1; j < n; j++) {
+				double *xj = p->x + 3 * j, d[3], dd = 0, sum = p->r[i] + p->r[j], dist, ov, lim, push;
+				for (a = 0; a < 3; a++) {
+					d[a] = xi[a] - xj[a];
+					dd += d[a] * d[a];
+				}
+				if (dd >= sum * sum)
+					continue;
+				dist = sqrt(dd);
+				ov = sum - dist;
+				lim = ovmax * sum / 2;
+				if (ov <= lim)
+					continue;
+				push = (ov - lim * gsl_rng_uniform(rng)) / 2;
+				for (a = 0; a < 3; a++) {
+					double u = dist > 0 ? d[a] / dist : (a == 0);
+					xi[a] += push * u;
+					xj[a] -= push * u;
+				}
+				moved++;
+			}
+			for (a = 0; a < 3; a++) {
+				double lim = (1 - ovmax) * p->r[i];
+				if (xi[a] - p->box[a] < lim) {
+					xi[a] = p->box[a] + p->r[i] * (1 - ovmax * gsl_rng_uniform(rng));
+					moved++;
+				}
+				if (p->box[3 + a] - xi[a] < lim) {
+					xi[a] = p->box[3 + a] - p->r[i] * (1 - ovmax * gsl_rng_uniform(rng));
+					moved++;
+				}
+			}
+		}
+		if (!moved)
+			break;
+	}
+}
+
+/* ---------- O(N^2) reference ---------- */
+
+struct ref {
+	double E;		/* energy */
+	double *g;		/* gradient (3n) */
+	double *fsum;		/* sum of contact force magnitudes on each grain (n) */
+	unsigned *cnt;		/* contacts per grain (n) */
+	double wf[NWALLS];	/* normal force on each wall */
+	size_t ngg, ngw;
+	double hmin_abs;	/* not used by every caller */
+};
+
+static void
+ref_alloc(struct ref *rf, size_t n)
+{
+	memset(rf, 0, sizeof *rf);
+	rf->g = malloc(3 * n * sizeof *rf->g);
+	rf->fsum = malloc(n * sizeof *rf->fsum);
+	rf->cnt = malloc(n * sizeof *rf->cnt);
+}
+
+static void
+ref_free(struct ref *rf)
+{
+	free(rf->g);
+	free(rf->fsum);
+	free(rf->cnt);
+}
+
+/* Every pair and every grain-wall pair, with hertz.h's closed forms. */
+static void
+ref_eval(const struct pack *p, const double *x, struct ref *rf)
+{
+	size_t i, j, n = p->n;
+	int a, w;
+
+	rf->E = 0;
+	rf->ngg = rf->ngw = 0;
+	memset(rf->g, 0, 3 * n * sizeof *rf->g);
+	memset(rf->fsum, 0, n * sizeof *rf->fsum);
+	memset(rf->cnt, 0, n * sizeof *rf->cnt);
+	memset(rf->wf, 0, sizeof rf->wf);
+	for (i = 0; i < n; i++) {
+		for (j = i + 1; j < n; j++) {
+			double d[3], dd = 0, sum = p->r[i] + p->r[j], dist, h, Es, Rs, P;
+			for (a = 0; a < 3; a++) {
+				d[a] = x[3 * i + a] - x[3 * j + a];
+				dd += d[a] * d[a];
+			}
+			if (dd >= sum * sum)
+				continue;
+			dist = sqrt(dd);
+			h = sum - dist;
+			Es = hertz_Estar(p->E[i], p->nu[i], p->E[j], p->nu[j]);
+			Rs = hertz_Rstar(p->r[i], p->r[j]);
+			P = hertz_force(Es, Rs, h);
+			rf->E += hertz_energy(Es, Rs, h);
+			for (a = 0; a < 3; a++) {
+				rf->g[3 * i + a] -= P * d[a] / dist;
+				rf->g[3 * j + a] += P * d[a] / dist;
+			}
+			rf->fsum[i] += P;
+			rf->fsum[j] += P;
+			rf->cnt[i]++;
+			rf->cnt[j]++;
+			rf->ngg++;
+		}
+		for (w = 0; w < NWALLS; w++) {
+			double dist, h, Es, P;
+			a = w / 2;
+			dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
+			h = p->r[i] - dist;
+			if (h <= 0)
+				continue;
+			Es = hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu);
+			P = hertz_force(Es, p->r[i], h);
+			rf->E += hertz_energy(Es, p->r[i], h);
+			rf->g[3 * i + a] += w % 2 ? P : -P;
+			rf->fsum[i] += P;
+			rf->cnt[i]++;
+			rf->wf[w] += P;
+			rf->ngw++;
+		}
+	}
+}
+
+/* ---------- one contact ---------- */
+
+/* Two grains whose centre distance and overlap are exact in binary: radii 2^-13 and 3 2^-15
+ * (sum 7 2^-15), centres c +- t (1, 3/2, 3) with t = 2^-15 - 2^-24, so x_i - x_j = t (2, 3, 6),
+ * |x_i - x_j| = 7 t exactly and h = 7 2^-24 (0.42 um, 0.8 % of R*).  The only rounding is in
+ * the force law (E*, sqrt R*, h^(3/2)): a few ulps, so 1e-13 relative is a safe bound that
+ * still catches any wrong constant. */
+static void
+test_pair(void)
+{
+	struct pack p;
+	struct qs_system s;
+	double R1 = ldexp(1, -13), R2 = 3 * ldexp(1, -15), t = ldexp(1, -15) - ldexp(1, -24), c = ldexp(1, -8);
+	double u[3] = {2.0 / 7, 3.0 / 7, 6.0 / 7}, x[6], g[6], fm[2], h = 7 * ldexp(1, -24);
+	double Es = 1 / ((1 - 0.2 * 0.2) / 7e10 + (1 - 0.15 * 0.15) / 1e11), Rs = 1 / (1 / R1 + 1 / R2);
+	double Uex = 8.0 / 15.0 * Es * sqrt(Rs) * pow(h, 2.5), Pex = 4.0 / 3.0 * Es * sqrt(Rs) * pow(h, 1.5);
+	double E, E2, gn = 0, gl = 0, perp = 0;
+	int a;
+
+	pack_init(&p);
+	{
+		double x1[3] = {c + t, c + 1.5 * t, c + 3 * t}, x2[3] = {c - t, c - 1.5 * t, c - 3 * t};
+		pack_add_grain(&p, 0, x1, R1, 7e10, 0.2, 2420);
+		pack_add_grain(&p, 1, x2, R2, 1e11, 0.15, 2650);
+	}
+	for (a = 0; a < 3; a++) {
+		p.box[a] = 0;
+		p.box[3 + a] = 2 * c;
+	}
+	p.wall_E = 7e11;
+	memcpy(x, p.x, sizeof x);
+	CHECK(R1 + R2 - sqrt((x[0] - x[3]) * (x[0] - x[3]) + (x[1] - x[4]) * (x[1] - x[4]) + (x[2] - x[5]) * (x[2] - x[5])) ==
+	    h, "pair: the geometry is exact (h = 7 2^-24)");
+	CHECK(qs_init(&s, &p, 0.3) == 0, "pair: qs_init");
+	E = qs_energy(&s, x, g, fm);
+	CHECK_CLOSE(E, Uex, 1e-13, "pair: Pi = 8/15 E* sqrt(R*) h^(5/2)");
+	CHECK(s.ncontacts == 1, "pair: one contact (%zu)", s.ncontacts);
+	CHECK_CLOSE(s.sum_force, Pex, 1e-13, "pair: contact force = 4/3 E* sqrt(R*) h^(3/2)");
+	CHECK_CLOSE(fm[0], Pex, 1e-13, "pair: largest contact force on grain 0");
+	CHECK(fm[1] == fm[0], "pair: largest contact force on grain 1 is the same");
+	for (a = 0; a < 3; a++) {
+		gn += g[a] * u[a];
+		gl += g[a] * g[a];
+	}
+	for (a = 0; a < 3; a++)
+		perp = fmax(perp, fabs(g[a] - gn * u[a]));
+	CHECK_CLOSE(sqrt(gl), Pex, 1e-13, "pair: |dPi/dx_0| = P");
+	/* the sign: dPi/dx_0 . n = -P (n from grain 1 to grain 0), so moving grain 0 away lowers Pi */
+	CHECK_CLOSE(gn, -Pex, 1e-13, "pair: dPi/dx_0 . n = -P (energy falls as the grains separate)");
+	CHECK(perp <= 1e-13 * Pex, "pair: the gradient lies along the normal (off-normal part %.3g N)", perp);
+	CHECK(g[3] == -g[0] && g[4] == -g[1] && g[5] == -g[2], "pair: dPi/dx_1 = -dPi/dx_0 exactly");
+	/* a separation of 1e-3 h along n changes Pi by about -P 1e-3 h, far above rounding */
+	for (a = 0; a < 3; a++)
+		x[a] += 1e-3 * h * u[a];
+	E2 = qs_energy(&s, x, NULL, NULL);
+	CHECK(E2 < E, "pair: Pi falls when the grains move apart (%.6g < %.6g)", E2, E);
+	for (a = 0; a < 3; a++)
+		x[a] -= 2e-3 * h * u[a];
+	E2 = qs_energy(&s, x, NULL, NULL);
+	CHECK(E2 > E, "pair: Pi rises when the grains move together");
+	for (a = 0; a < NWALLS; a++)
+		if (s.wall_force[a] != 0)
+			break;
+	CHECK(a == NWALLS, "pair: no wall force");
+	qs_free(&s);
+	pack_free(&p);
+}
+
+/* Two grains, each on one wall: grain 0 (radius 2^-13) on zlo with overlap 2^-22, grain 1
+ * (radius 3 2^-15) on xhi with overlap 2^-21; R* = R_i, E* from the grain and pack.wall_E,
+ * wall_nu.  Exact geometry again, so 1e-13. */
+static void
+test_walls(void)
+{
+	struct pack p;
+	struct qs_system s;
+	double R0 = ldexp(1, -13), R1 = 3 * ldexp(1, -15), h0 = ldexp(1, -22), h1 = ldexp(1, -21), L = ldexp(1, -7);
+	double Ew = 3e11, nuw = 0.3, E0 = 7e10, nu0 = 0.2, E1 = 1e11, nu1 = 0.15, x[6], g[6], sig[3];
+	double Es0 = 1 / ((1 - nu0 * nu0) / E0 + (1 - nuw * nuw) / Ew), Es1 = 1 / ((1 - nu1 * nu1) / E1 + (1 - nuw * nuw) / Ew);
+	double P0 = 4.0 / 3.0 * Es0 * sqrt(R0) * pow(h0, 1.5), P1 = 4.0 / 3.0 * Es1 * sqrt(R1) * pow(h1, 1.5);
+	double U = 8.0 / 15.0 * (Es0 * sqrt(R0) * pow(h0, 2.5) + Es1 * sqrt(R1) * pow(h1, 2.5)), E;
+	int w, others = 0;
+
+	pack_init(&p);
+	{
+		double x0[3] = {L / 4, L / 4, R0 - h0}, x1[3] = {L - R1 + h1, L / 4, L / 2};
+		pack_add_grain(&p, 0, x0, R0, E0, nu0, 2420);
+		pack_add_grain(&p, 1, x1, R1, E1, nu1, 2650);
+	}
+	for (w = 0; w < 3; w++) {
+		p.box[w] = 0;
+		p.box[3 + w] = L;
+	}
+	p.box[4] = L / 2;	/* y: not a cube, so the wall areas differ */
+	p.wall_E = Ew;
+	p.wall_nu = nuw;
+	memcpy(x, p.x, sizeof x);
+	CHECK(qs_init(&s, &p, 0.3) == 0, "walls: qs_init");
+	E = qs_energy(&s, x, g, NULL);
+	CHECK_CLOSE(E, U, 1e-13, "walls: Pi = sum of 8/15 E*_w sqrt(R_i) h^(5/2)");
+	CHECK(s.ncontacts == 2, "walls: two contacts (%zu)", s.ncontacts);
+	/* zlo pushes grain 0 up (+z): dPi/dz_0 = -P0; xhi pushes grain 1 towards -x: dPi/dx_1 = +P1 */
+	CHECK_CLOSE(g[2], -P0, 1e-13, "walls: dPi/dz = -P on the low z wall (energy falls moving away from it)");
+	CHECK_CLOSE(g[3], P1, 1e-13, "walls: dPi/dx = +P on the high x wall");
+	CHECK(g[0] == 0 && g[1] == 0 && g[4] == 0 && g[5] == 0, "walls: no tangential gradient");
+	CHECK_CLOSE(s.wall_force[WALL_ZLO], P0, 1e-13, "walls: force on zlo = P0");
+	CHECK_CLOSE(s.wall_force[WALL_XHI], P1, 1e-13, "walls: force on xhi = P1");
+	for (w = 0; w < NWALLS; w++)
+		others += w != WALL_ZLO && w != WALL_XHI && s.wall_force[w] != 0;
+	CHECK(others == 0, "walls: no force on the other four walls");
+	qs_wall_stress(&s, sig);
+	/* (force on the two walls of an axis) / 2 / area: areas Ly Lz = L^2/2 for x, Lx Ly = L^2/2 for z */
+	CHECK_CLOSE(sig[0], P1 / 2 / (L * L / 2), 1e-13, "walls: sig_xx = (F_xlo + F_xhi) / (2 Ly Lz)");
+	CHECK_CLOSE(sig[2], P0 / 2 / (L * L / 2), 1e-13, "walls: sig_zz = (F_zlo + F_zhi) / (2 Lx Ly)");
+	CHECK(sig[1] == 0, "walls: sig_yy = 0");
+	qs_free(&s);
+	pack_free(&p);
+}
+
+/* ---------- finite differences ---------- */
+
+/* Central differences of Pi for every coordinate of a random pack.
+ *
+ * Step hs = 1e-5 of the mean radius (1e-9 m for 0.1 mm grains; overlaps are 0.1-4 % of R,
+ * i.e. 1e2-4e3 hs).  Error of (Pi(x + hs e_k) - Pi(x - hs e_k)) / 2hs against dPi/dx_k:
+ *  - truncation hs^2/6 |Pi'''|; per contact, with h(xi) = S - d(xi), |dh/dxi| <= 1,
+ *    |d2h/dxi2| <= 1/d, |d3h/dxi3| <= 3/d^2, and P = c h^(3/2), P' = 3P/2h, P'' = 3P/4h^2:
+ *    |U'''| <= 3P/(4h^2) + 9P/(2hd) + 3P/d^2.  Summed over grain i's contacts.
+ *  - rounding: each Pi is a sum of M terms, each off by a few ulps plus the cancellation in
+ *    h = S - d (an error of order eps S in h, eps S P in U); the sum adds at most M eps |Pi|
+ *    (worst case; typically sqrt(M)).  So |dPi| <= eps (M |Pi| + 4 sum P S) per evaluation and
+ *    the difference quotient is off by |dPi| / hs.
+ * The tolerance of coordinate k is 2 (truncation + rounding): the analysis is a bound, and the
+ * factor 2 covers the few-ulp terms left out; it comes to about 1e-7 of the largest force on the
+ * grain.  Coordinates of grains with a contact (or a near contact) within 50 hs of h = 0, where
+ * Hertz is not C3 and the truncation bound does not hold, are left out and counted.  A gradient
+ * scaled by 1.01 must fail this tolerance on nearly every coordinate (|0.01 g_k| is 1e5 times
+ * the tolerance unless g_k nearly cancels), so the check can fail. */
+static void
+test_fd(gsl_rng *rng, size_t n, double scale, double phi, const char *tag)
+{
+	struct pack p;
+	struct qs_system s;
+	struct ref rf;
+	double *x, *g, *fm, *trunc, *excl, Pi, hs, Mterms, rsum = 0, worst = 0, worst_f = 0;
+	size_t i, j, k, tested = 0, bad = 0, scaled_fail = 0, excluded = 0, contacts_per = 0;
+	unsigned with_contacts = 0, with_wall = 0;
+	int a, w;
+
+	random_pack(&p, rng, n, scale, phi, 0.04);
+	x = malloc(3 * n * sizeof *x);
+	g = malloc(3 * n * sizeof *g);
+	fm = malloc(n * sizeof *fm);
+	trunc = calloc(n, sizeof *trunc);
+	excl = calloc(n, sizeof *excl);
+	memcpy(x, p.x, 3 * n * sizeof *x);
+	ref_alloc(&rf, n);
+	ref_eval(&p, x, &rf);
+	for (i = 0; i < n; i++) {
+		with_contacts += rf.cnt[i] > 0;
+		for (a = 0; a < 3; a++)
+			with_wall += (x[3 * i + a] - p.box[a] < p.r[i]) + (p.box[3 + a] - x[3 * i + a] < p.r[i]);
+	}
+	CHECK(with_contacts >= 8 * n / 10 && with_wall >= 10,
+	    "fd %s: the pack is dense (%u of %zu grains in contact, %u wall contacts, %zu grain-grain)", tag,
+	    with_contacts, n, with_wall, rf.ngg);
+	CHECK(qs_init(&s, &p, 0.3) == 0, "fd %s: qs_init", tag);
+	Pi = qs_energy(&s, x, g, fm);
+	hs = 1e-5 * scale;
+	/* per grain: truncation bound and exclusion */
+	for (i = 0; i < n; i++) {
+		for (j = 0; j < n; j++) {
+			double dd = 0, S = p.r[i] + p.r[j], d, h, Es, P;
+			if (j == i)
+				continue;
+			for (a = 0; a < 3; a++)
+				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);
+			d = sqrt(dd);
+			h = S - d;
+			if (fabs(h) < 50 * hs)
+				excl[i] = 1;
+			if (h <= 0)
+				continue;
+			Es = hertz_Estar(p.E[i], p.nu[i], p.E[j], p.nu[j]);
+			P = hertz_force(Es, hertz_Rstar(p.r[i], p.r[j]), h);
+			trunc[i] += 0.75 * P / (h * h) + 4.5 * P / (h * d) + 3 * P / (d * d);
+			if (i < j)
+				rsum += 4 * P * S;
+			contacts_per++;
+		}
+		for (w = 0; w < NWALLS; w++) {
+			double dist, h, P;
+			a = w / 2;
+			dist = w % 2 ? p.box[3 + a] - x[3 * i + a] : x[3 * i + a] - p.box[a];
+			h = p.r[i] - dist;
+			if (fabs(h) < 50 * hs)
+				excl[i] = 1;
+			if (h <= 0)
+				continue;
+			P = hertz_force(hertz_Estar(p.E[i], p.nu[i], p.wall_E, p.wall_nu), p.r[i], h);
+			trunc[i] += 0.75 * P / (h * h);
+			rsum += 4 * P * p.r[i];
+		}
+		trunc[i] *= hs * hs / 6;
+	}
+	Mterms = (double)(rf.ngg + rf.ngw);
+	for (k = 0; k < 3 * n; k++) {
+		double save = x[k], ep, em, fd, tol, err;
+		i = k / 3;
+		if (excl[i]) {
+			excluded++;
+			continue;
+		}
+		if (!(fm[i] > 0))
+			continue;	/* no contact: the gradient is 0 and so is the difference */
+		x[k] = save + hs;
+		ep = qs_energy(&s, x, NULL, NULL);
+		x[k] = save - hs;
+		em = qs_energy(&s, x, NULL, NULL);
+		x[k] = save;
+		fd = (ep - em) / (2 * hs);
+		tol = 2 * (trunc[i] + DBL_EPSILON * (Mterms * fabs(Pi) + rsum) / hs);
+		err = fabs(g[k] - fd);
+		tested++;
+		if (!(err <= tol))
+			bad++;
+		if (fabs(1.01 * g[k] - fd) > tol)
+			scaled_fail++;
+		worst = fmax(worst, err / tol);
+		worst_f = fmax(worst_f, err / fm[i]);
+	}
+	CHECK(tested >= 300, "fd %s: %zu coordinates tested (%zu left out within 50 hs of h = 0)", tag, tested, excluded);
+	CHECK(bad == 0, "fd %s: dPi/dx_k = central difference on every coordinate (%zu outside; worst error %.3g of the "
+	    "tolerance, %.3g of the grain's largest force)", tag, bad, worst, worst_f);
+	CHECK(scaled_fail >= 95 * tested / 100,
+	    "fd %s: a gradient scaled by 1.01 fails the same tolerance on %zu of %zu coordinates", tag, scaled_fail, tested);
+	(void)contacts_per;
+
+	/* Newton's third law: every grain-grain force enters g_i and g_j as the same number with
+	 * opposite signs, so sum_i g_i is the reaction on the walls, -sum_w F_w n_w, with n_w the
+	 * inward normal: component a is F_(a,hi) - F_(a,lo).  Rounding: each g_i adds at most a few
+	 * tens of terms and the sum over grains n more, each term at most the total force, so the
+	 * bound is (n + 64) eps sum|P|. */
+	{
+		double sum[3] = {0, 0, 0}, dev = 0, bound = (double)(n + 64) * DBL_EPSILON * 2 * s.sum_force, wdev = 0;
+		qs_energy(&s, x, g, NULL);
+		for (i = 0; i < n; i++)
+			for (a = 0; a < 3; a++)
+				sum[a] += g[3 * i + a];
+		for (a = 0; a < 3; a++)
+			dev = fmax(dev, fabs(sum[a] - (s.wall_force[2 * a + 1] - s.wall_force[2 * a])));
+		CHECK(dev <= bound, "fd %s: sum_i dPi/dx_i = wall reaction (deviation %.3g N, bound %.3g N, total force %.3g N)",
+		    tag, dev, bound, s.sum_force);
+		/* the wall forces themselves against the O(N^2) sums: the same terms, maybe in another
+		 * order: a few ulps of the total */
+		for (w = 0; w < NWALLS; w++)
+			wdev = fmax(wdev, fabs(s.wall_force[w] - rf.wf[w]));
+		CHECK(wdev <= 1e-13 * s.sum_force, "fd %s: wall forces = O(N^2) sums (deviation %.3g N)", tag, wdev);
+		CHECK(rf.wf[0] > 0 && rf.wf[5] > 0, "fd %s: walls are loaded (xlo %.3g N, zhi %.3g N)", tag, rf.wf[0],
+		    rf.wf[5]);
+	}
+	ref_free(&rf);
+	qs_free(&s);
+	free(x), free(g), free(fm), free(trunc), free(excl);
+	pack_free(&p);
+}
+
+/* ---------- neighbour list ---------- */
+
+static int
+listed(const struct nlist *nl, size_t i, size_t j)
+{
+	size_t lo = nl->first[i], hi = nl->first[i + 1];
+
+	while (lo < hi) {
+		size_t m = (lo + hi) / 2;
+		if (nl->nbr[m] == j)
+			return 1;
+		if (nl->nbr[m] < j)
+			lo = m + 1;
+		else
+			hi = m;
+	}
+	return 0;
+}
+
+/* Compare one evaluation with the O(N^2) reference.  Energies: the same terms in another
+ * order, so at most M eps |Pi| apart; 1e-12 relative holds for M < 4500 contacts.  Gradient:
+ * a few terms per grain, compared against 1e-12 of the sum of the contact forces on the
+ * grain.  Counts, contact numbers and the pair set: exact. */
+static void
+compare(struct qs_system *s, const double *x, struct ref *rf, const char *what, long want_rebuild)
+{
+	const struct pack *p = s->p;
+	size_t n = s->n, i, j, missing = 0, cdiff = 0;
+	double *g = malloc(3 * n * sizeof *g), *fm = malloc(n * sizeof *fm), E, gdev = 0;
+	unsigned *cnt = malloc(n * sizeof *cnt);
+	long builds = s->nl.builds;
+	int a;
+
+	E = qs_energy(s, x, g, fm);
+	ref_eval(p, x, rf);
+	qs_coordination(s, x, cnt);
+	for (i = 0; i < n; i++) {
+		cdiff += cnt[i] != rf->cnt[i];
+		for (a = 0; a < 3; a++)
+			gdev = fmax(gdev, fabs(g[3 * i + a] - rf->g[3 * i + a]) / fmax(rf->fsum[i], 1e-300));
+		for (j = i + 1; j < n; j++) {
+			double dd = 0, S = p->r[i] + p->r[j];
+			for (a = 0; a < 3; a++)
+				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);
+			if (dd < S * S && !listed(&s->nl, i, j))
+				missing++;
+		}
+	}
+	CHECK_CLOSE(E, rf->E, 1e-12, what);
+	CHECK(missing == 0 && cdiff == 0 && s->ncontacts == rf->ngg + rf->ngw,
+	    "%s: the same contacts as the O(N^2) search (%zu + %zu; %zu overlapping pairs missing from the list, %zu "
+	    "grains with other counts, %zu found)", what, rf->ngg, rf->ngw, missing, cdiff, s->ncontacts);
+	CHECK(gdev <= 1e-12, "%s: gradient = O(N^2) gradient (%.3g of the grain's force sum)", what, gdev);
+	if (want_rebuild >= 0)
+		CHECK((s->nl.builds > builds) == (want_rebuild > 0), "%s: the list was %s (as intended)", what,
+		    s->nl.builds > builds ? "rebuilt" : "reused");
+	free(g), free(fm), free(cnt);
+}
+
+/* Random displacements of length up to amp (uniform direction and length), kept inside the box. */
+static void
+jiggle(gsl_rng *rng, const struct pack *p, double *x, double amp)
+{
+	size_t i;
+	int a;
+
+	for (i = 0; i < p->n; i++) {
+		double v[3], l = amp * gsl_rng_uniform(rng);
+		gsl_ran_dir_3d(rng, v, v + 1, v + 2);
+		for (a = 0; a < 3; a++) {
+			double y = x[3 * i + a] + l * v[a], lo = p->box[a] + 0.5 * p->r[i], hi = p->box[3 + a] - 0.5 * p->r[i];
+			x[3 * i + a] = y < lo ? lo : y > hi ? hi : y;
+		}
+	}
+}
+
+static void
+test_nlist(gsl_rng *rng)
+{
+	struct pack p;
+	struct qs_system s;
+	struct ref rf;
+	size_t n = 250, i, j, bi = 0, bj = 0;
+	double *x, skin, gbest = INFINITY;
+	int a;
+
+	random_pack(&p, rng, n, 1e-4, 0.6, 0.04);
+	x = malloc(3 * n * sizeof *x);
+	memcpy(x, p.x, 3 * n * sizeof *x);
+	ref_alloc(&rf, n);
+	CHECK(qs_init(&s, &p, 0.3) == 0, "nlist: qs_init");
+	skin = s.skin;
+	compare(&s, x, &rf, "nlist: first evaluation", 1);
+	CHECK(rf.ngg > n, "nlist: the pack has many contacts (%zu grain-grain, %zu wall)", rf.ngg, rf.ngw);
+
+	/* moves that keep 2 max|u| below the skin: the list is reused and must still hold every contact */
+	jiggle(rng, &p, x, 1e-3 * p.r[0]);
+	compare(&s, x, &rf, "nlist: moves of 1e-3 R", 0);
+	memcpy(x, s.nl.xb, 3 * n * sizeof *x);
+	jiggle(rng, &p, x, 0.45 * skin);
+	compare(&s, x, &rf, "nlist: moves up to 0.45 skin", 0);
+	jiggle(rng, &p, x, 0.8 * skin);
+	compare(&s, x, &rf, "nlist: further moves up to 0.8 skin", -1);
+
+	/* adversarial: the unlisted pair with the smallest gap g (>= skin) is driven into contact,
+	 * each grain moving g/2 (1 + 1e-3) towards the other.  Each moves only just over skin/2:
+	 * a staleness test that forgot that two grains close a gap together would keep the list
+	 * and miss this contact. */
+	memcpy(x, s.nl.xb, 3 * n * sizeof *x);
+	for (i = 0; i < n; i++)
+		for (j = i + 1; j < n; j++) {
+			double dd = 0, gap;
+			if (listed(&s.nl, i, j))
+				continue;
+			for (a = 0; a < 3; a++)
+				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);
+			gap = sqrt(dd) - p.r[i] - p.r[j];
+			if (gap < gbest) {
+				gbest = gap;
+				bi = i;
+				bj = j;
+			}
+		}
+	CHECK(gbest >= skin && gbest < 1.5 * skin, "nlist: the nearest unlisted pair has a gap of %.3g skin", gbest / skin);
+	{
+		double d[3], dd = 0, m;
+		for (a = 0; a < 3; a++) {
+			d[a] = x[3 * bj + a] - x[3 * bi + a];
+			dd += d[a] * d[a];
+		}
+		m = gbest / 2 * (1 + 1e-3) / sqrt(dd);
+		for (a = 0; a < 3; a++) {
+			x[3 * bi + a] += m * d[a];
+			x[3 * bj + a] -= m * d[a];
+		}
+	}
+	compare(&s, x, &rf, "nlist: nearest unlisted pair driven into contact", 1);
+
+	jiggle(rng, &p, x, 3 * p.r[0]);
+	compare(&s, x, &rf, "nlist: moves up to 3 R", 1);
+
+	/* box changes: z wall moved in by 3 % with the grains left in place (non-affine) */
+	{
+		double de[3] = {0, 0, 0};
+		p.box[5] -= 0.03 * (p.box[5] - p.box[2]);
+		compare(&s, x, &rf, "nlist: z box shortened 3 %, grains fixed", -1);
+		/* affine 3 % along x: the affine shortening of the longest listed pair, 3 % of
+		 * 2 rmax + skin, is below the skin, so the list may be kept */
+		de[0] = 0.03;
+		load_strain_box(p.box, x, n, de);
+		compare(&s, x, &rf, "nlist: x box shortened 3 %, affine", 0);
+		/* affine 15 % along y: now pairs beyond the skin can close */
+		de[0] = 0;
+		de[1] = 0.15;
+		load_strain_box(p.box, x, n, de);
+		compare(&s, x, &rf, "nlist: y box shortened 15 %, affine", 1);
+		/* expansion with the grains fixed */
+		de[1] = -0.05;
+		p.box[0] -= 0.05 * (p.box[3] - p.box[0]);
+		compare(&s, x, &rf, "nlist: x box lengthened 5 %, grains fixed", -1);
+		jiggle(rng, &p, x, 0.3 * skin);
+		compare(&s, x, &rf, "nlist: then moves up to 0.3 skin", -1);
+	}
+	/* radius growth: qs_radii_changed makes the next evaluation rebuild */
+	for (i = 0; i < n; i++)
+		p.r[i] *= 1.03;
+	qs_radii_changed(&s);
+	compare(&s, x, &rf, "nlist: radii grown 3 %", 1);
+	ref_free(&rf);
+	qs_free(&s);
+	free(x);
+	pack_free(&p);
+}
+
+int
+main(void)
+{
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+
+	gsl_rng_set(rng, 77031);
+	test_pair();
+	test_walls();
+	test_fd(rng, 300, 1e-4, 0.62, "0.1 mm, n=300");
+	test_fd(rng, 120, 1e-3, 0.64, "1 mm, n=120");
+	test_nlist(rng);
+	gsl_rng_free(rng);
+	return unit_summary();
+}

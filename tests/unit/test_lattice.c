@@ -1,0 +1,395 @@
+/* test_lattice: compressed lattices of identical spheres between walls, brought to equilibrium
+ * by qs_minimize (CG and FIRE), against solutions known independently of lib/.
+ *
+ * Simple cubic (SC), NL^3 grains of radius R at spacing 2R, walls touching the outer layers.
+ * After a strain the box lengths are L_a; by symmetry every row along axis a is a chain whose
+ * contacts all lie along a, and equilibrium of each grain along a makes all grain-grain
+ * forces of the chain equal, P_gg(h_a), and the wall force P_gw(h_w) = P_gg(h_a).  Hertz
+ * is homogeneous, so h_w = kappa h_a with
+ *     kappa = (E*_gg sqrt(R/2) / (E*_gw sqrt(R)))^(2/3),
+ * and the chain must fit the box: 2 NL R - L_a = (NL - 1) h_a + 2 kappa h_a, so
+ *     h_a = (2 NL R - L_a) / (NL - 1 + 2 kappa),
+ *     x_a(i) = lo_a + R - kappa h_a + i (2R - h_a),
+ *     sig_aa = NL^2 P_gg(h_a) / (L_b L_c)   (NL^2 contacts per wall, the force on both walls
+ *                                            of the axis being equal).
+ * With rigid walls (E_w = inf) E*_gw = E/(1-nu^2) = 2 E*_gg and kappa = 1/2: the wall is a
+ * mirror, half a grain-grain contact (P_gw(h/2) = P_gg(h)), and the affine state is exact.
+ * With the papers' walls (E_w = 100 E, nu_w = 0.495) kappa is about 0.63 and the outer layers
+ * must move: a non-affine equilibrium, still in closed form.  Transverse stability: a grain
+ * moved sideways by y feels -P y / d from its two axial contacts and 2 E* a y from the
+ * transverse ones; E* a / (P/d) ~ d / h >> 1, so the lattice is a strict minimum.
+ *
+ * Face-centred cubic (FCC), conventional cubic cell (edge a = 2 sqrt2 R), sites (i, j, k) a/2
+ * with i + j + k even, 0 <= i, j, k < M (M odd: the block has the full cubic symmetry), walls
+ * at R from the outer layers.  Here no wall makes the affine state exact: a face grain has
+ * 4 diagonal contacts pushing it into the wall (need P_w = 2 sqrt2 P_gg), an edge grain 3, and
+ * affinity gives h_w = h/2 for every wall contact, so the equilibrium is non-affine and has no
+ * closed form.  The reference is Newton's method with the exact Hessian of an O(N^2) Hertz
+ * energy written here (independent of lib/functional.c and lib/minimize.c), converged to
+ * rounding; the same solver reproduces the SC closed form, which validates it.  Checks that
+ * need no reference: sig_xx = sig_yy = sig_zz under isotropic strain (cubic symmetry), and the
+ * force on a wall equals the force carried across every plane between two layers (balance of
+ * each slab of grains). */
+#include "functional.h"
+#include "hertz.h"
+#include "loading.h"
+#include "minimize.h"
+#include "pack.h"
+#include "unit.h"
+
+#include <float.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define R_ ldexp(1.0, -13)	/* 122 um */
+#define E_ 7e10
+#define NU 0.2
+#define EPS1 1e-3		/* isotropic strain */
+#define EPS2 1e-3		/* then uniaxial strain along z */
+
+enum { SC, FCC };
+
+static double worst_sig, worst_pos;	/* achieved errors, for the closing line */
+
+/* ---------- lattices ---------- */
+
+static void
+lattice(struct pack *p, int kind, int m, double wall_E, double wall_nu)
+{
+	double step = kind == SC ? 2 * R_ : sqrt(2.0) * R_;
+	int i, j, k, a;
+
+	pack_init(p);
+	for (k = 0; k < m; k++)
+		for (j = 0; j < m; j++)
+			for (i = 0; i < m; i++) {
+				double x[3] = {R_ + i * step, R_ + j * step, R_ + k * step};
+				if (kind == FCC && (i + j + k) % 2)
+					continue;
+				pack_add_grain(p, (long)p->n, x, R_, E_, NU, 2420);
+			}
+	for (a = 0; a < 3; a++) {
+		p->box[a] = 0;
+		p->box[3 + a] = 2 * R_ + (m - 1) * step;
+	}
+	p->wall_E = wall_E;
+	p->wall_nu = wall_nu;
+}
+
+/* ---------- O(N^2) energy, gradient, Hessian (the reference) ---------- */
+
+/* Gradient g (3n) and, unless H is NULL, the Hessian (3n x 3n); wall forces into wf. */
+static void
+ref_eval(const struct pack *p, const double *x, double *g, gsl_matrix *H, double wf[NWALLS])
+{
+	size_t n = p->n, i, j;
+	int a, b, w;
+
+	memset(g, 0, 3 * n * sizeof *g);
+	memset(wf, 0, NWALLS * sizeof *wf);
+	if (H)
+		gsl_matrix_set_zero(H);
+	for (i = 0; i < n; i++) {
+		for (j = i + 1; j < n; j++) {
+			double d[3], dd = 0, S = p->r[i] + p->r[j], dist, h, Es, Rs, P, k, nv[3];
+			for (a = 0; a < 3; a++) {
+				d[a] = x[3 * i + a] - x[3 * j + a];
+				dd += d[a] * d[a];
+			}
+			if (dd >= S * S)
+				continue;
+			dist = sqrt(dd);
+			h = S - dist;
+			Es = hertz_Estar(p->E[i], p->nu[i], p->E[j], p->nu[j]);
+			Rs = hertz_Rstar(p->r[i], p->r[j]);
+			P = hertz_force(Es, Rs, h);
+			k = hertz_stiffness(Es, Rs, h);
+			for (a = 0; a < 3; a++) {
+				nv[a] = d[a] / dist;
+				g[3 * i + a] -= P * nv[a];
+				g[3 * j + a] += P * nv[a];
+			}
+			if (H)
+				for (a = 0; a < 3; a++)
+					for (b = 0; b < 3; b++) {
+						/* d(-P n_a)/dx_ib = k n_a n_b - (P/d)(delta_ab - n_a n_b) */
+						double B = k * nv[a] * nv[b] - P / dist * ((a == b) - nv[a] * nv[b]);
+						*gsl_matrix_ptr(H, 3 * i + a, 3 * i + b) += B;
+						*gsl_matrix_ptr(H, 3 * j + a, 3 * j + b) += B;
+						*gsl_matrix_ptr(H, 3 * i + a, 3 * j + b) -= B;
+						*gsl_matrix_ptr(H, 3 * j + a, 3 * i + b) -= B;
+					}
+		}
+		for (w = 0; w < NWALLS; w++) {
+			double dist, h, Es, P;
+			a = w / 2;
+			dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
+			h = p->r[i] - dist;
+			if (h <= 0)
+				continue;
+			Es = hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu);
+			P = hertz_force(Es, p->r[i], h);
+			g[3 * i + a] += w % 2 ? P : -P;
+			wf[w] += P;
+			if (H)
+				*gsl_matrix_ptr(H, 3 * i + a, 3 * i + a) += hertz_stiffness(Es, p->r[i], h);
+		}
+	}
+}
+
+/* Newton from x (in place): x -= H^-1 g until the step stops shrinking.  Returns the last
+ * step (m). */
+static double
+newton(const struct pack *p, double *x)
+{
+	size_t n3 = 3 * p->n, k;
+	gsl_matrix *H = gsl_matrix_alloc(n3, n3);
+	gsl_vector *gv = gsl_vector_alloc(n3), *dx = gsl_vector_alloc(n3);
+	gsl_permutation *perm = gsl_permutation_alloc(n3);
+	double *g = malloc(n3 * sizeof *g), wf[NWALLS], step = INFINITY, prev;
+	int it, sgn;
+
+	for (it = 0; it < 40; it++) {
+		ref_eval(p, x, g, H, wf);
+		for (k = 0; k < n3; k++)
+			gsl_vector_set(gv, k, g[k]);
+		gsl_linalg_LU_decomp(H, perm, &sgn);
+		gsl_linalg_LU_solve(H, perm, gv, dx);
+		prev = step;
+		step = 0;
+		for (k = 0; k < n3; k++) {
+			x[k] -= gsl_vector_get(dx, k);
+			step = fmax(step, fabs(gsl_vector_get(dx, k)));
+		}
+		/* quadratic convergence ends at rounding, where the step stops falling */
+		if (step < 1e-15 * R_ && step >= 0.5 * prev)
+			break;
+	}
+	gsl_matrix_free(H);
+	gsl_vector_free(gv);
+	gsl_vector_free(dx);
+	gsl_permutation_free(perm);
+	free(g);
+	return step;
+}
+
+static void
+wall_stress(const double box[6], const double wf[NWALLS], double sig[3])
+{
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		int u = (a + 1) % 3, v = (a + 2) % 3;
+		sig[a] = (wf[2 * a] + wf[2 * a + 1]) / (2 * (box[3 + u] - box[u]) * (box[3 + v] - box[v]));
+	}
+}
+
+/* ---------- the SC closed form ---------- */
+
+static void
+sc_solution(const struct pack *p, int nl, double *x, double sig[3], double hgg[3])
+{
+	double Egg = hertz_Estar(E_, NU, E_, NU), Egw = hertz_Estar(E_, NU, p->wall_E, p->wall_nu);
+	double kappa = cbrt(pow(Egg * sqrt(0.5) / Egw, 2)), L[3];
+	int i, j, k, a;
+
+	for (a = 0; a < 3; a++) {
+		L[a] = p->box[3 + a] - p->box[a];
+		hgg[a] = (2 * nl * R_ - L[a]) / (nl - 1 + 2 * kappa);
+	}
+	for (k = 0; k < nl; k++)
+		for (j = 0; j < nl; j++)
+			for (i = 0; i < nl; i++) {
+				int idx[3] = {i, j, k};
+				size_t g = (size_t)i + nl * ((size_t)j + nl * (size_t)k);
+				for (a = 0; a < 3; a++)
+					x[3 * g + a] = p->box[a] + R_ - kappa * hgg[a] + idx[a] * (2 * R_ - hgg[a]);
+			}
+	for (a = 0; a < 3; a++)
+		sig[a] = nl * nl * hertz_force(Egg, R_ / 2, hgg[a]) / (L[(a + 1) % 3] * L[(a + 2) % 3]);
+}
+
+/* ---------- one case ---------- */
+
+/* Largest |x - xr| over all coordinates. */
+static double
+maxdiff(const double *x, const double *xr, size_t n3)
+{
+	double m = 0;
+	size_t k;
+
+	for (k = 0; k < n3; k++)
+		m = fmax(m, fabs(x[k] - xr[k]));
+	return m;
+}
+
+/* Force carried across the plane between layers l and l+1 normal to z: sum of P n_z over the
+ * contacts whose centres lie on either side. */
+static double
+plane_force(const struct pack *p, const double *x, double zc)
+{
+	double F = 0;
+	size_t i, j;
+	int a;
+
+	for (i = 0; i < p->n; i++)
+		for (j = 0; j < p->n; j++) {
+			double d[3], dd = 0, S = 2 * R_, dist;
+			if (!(x[3 * i + 2] < zc && x[3 * j + 2] > zc))
+				continue;
+			for (a = 0; a < 3; a++) {
+				d[a] = x[3 * j + a] - x[3 * i + a];
+				dd += d[a] * d[a];
+			}
+			if (dd >= S * S)
+				continue;
+			dist = sqrt(dd);
+			F += hertz_force(hertz_Estar(E_, NU, E_, NU), R_ / 2, S - dist) * d[2] / dist;
+		}
+	return F;
+}
+
+static void
+one_case(gsl_rng *rng, int kind, int m, double wall_E, double wall_nu, enum qs_method method, const char *tag)
+{
+	struct pack p;
+	struct qs_system s;
+	struct qs_min_params mp;
+	struct qs_min_report rep;
+	double *x, *xr, *g, sig[3], sigr[3], hgg[3], wf[NWALLS], de[3], hmin;
+	size_t n, n3, k;
+	int stage, a;
+
+	lattice(&p, kind, m, wall_E, wall_nu);
+	n = p.n;
+	n3 = 3 * n;
+	x = malloc(n3 * sizeof *x);
+	xr = malloc(n3 * sizeof *xr);
+	g = malloc(n3 * sizeof *g);
+	memcpy(x, p.x, n3 * sizeof *x);
+	CHECK(qs_init(&s, &p, 0.3) == 0, "%s: qs_init", tag);
+	qs_min_params_default(&mp);
+	mp.method = method;
+	/* the residual is the largest |F_i| / (largest contact force on i).  Its floor is set by
+	 * the spacing of doubles near the centres, not by the force sums: ulp(1.2e-3 m) = 2.2e-19 m
+	 * is 0.9e-12 of the overlap h = 2.4e-7 m, which moves a Hertz force by 1.4e-12 of itself.
+	 * 1e-11 is above that floor by a factor 7; CG stalls between 1e-12 and 6e-12. */
+	mp.tol = 1e-11;
+	mp.max_iter = 20000;
+	for (stage = 0; stage < 2; stage++) {
+		char name[160];
+		double esig = 0, epos;
+
+		de[0] = de[1] = stage ? 0 : EPS1;
+		de[2] = stage ? EPS2 : EPS1;
+		load_strain_box(p.box, x, n, de);
+		/* the reference, from the affine state */
+		memcpy(xr, x, n3 * sizeof *x);
+		if (kind == SC) {
+			double xn[3 * 125], stepn;
+			sc_solution(&p, m, xr, sigr, hgg);
+			hmin = fmin(hgg[0], fmin(hgg[1], hgg[2]));
+			if (n <= 125) {
+				/* the Newton reference reproduces the closed form: it is validated here
+				 * before it is trusted for FCC; to rounding of positions, 1e-15 R */
+				memcpy(xn, x, n3 * sizeof *x);
+				stepn = newton(&p, xn);
+				snprintf(name, sizeof name, "%s %s: Newton reference = SC closed form", tag, stage ? "uniaxial" : "isotropic");
+				CHECK(maxdiff(xn, xr, n3) <= 1e-8 * hmin && stepn < 1e-14 * R_, "%s (%.3g of the overlap)", name,
+				    maxdiff(xn, xr, n3) / hmin);
+			}
+		} else {
+			newton(&p, xr);
+			ref_eval(&p, xr, g, NULL, wf);
+			wall_stress(p.box, wf, sigr);
+			/* smallest grain-grain overlap of the affine state, as the position scale: the
+			 * (1,1,0) contacts keep 2R EPS1 under the uniaxial stage */
+			hmin = 2 * R_ * EPS1;
+		}
+		/* a random start near the affine state, so that the minimiser has work to do */
+		for (k = 0; k < n3; k++)
+			x[k] += 0.1 * hmin * (2 * gsl_rng_uniform(rng) - 1);
+		qs_minimize(&s, x, &mp, &rep);
+		snprintf(name, sizeof name, "%s %s: converged (status %d, %s, %ld iterations, residual %.3g)", tag,
+		    stage ? "uniaxial" : "isotropic", rep.status, rep.stopped_by ? rep.stopped_by : "-", rep.iter,
+		    rep.res_max);
+		CHECK(rep.status == 0 && rep.res_max <= mp.tol, "%s", name);
+		/* wall stress of the minimiser's last evaluation against the reference */
+		qs_wall_stress(&s, sig);
+		for (a = 0; a < 3; a++)
+			esig = fmax(esig, fabs(sig[a] - sigr[a]) / sigr[a]);
+		epos = maxdiff(x, xr, n3) / hmin;
+		worst_sig = fmax(worst_sig, esig);
+		worst_pos = fmax(worst_pos, epos);
+		/* a residual of 1e-11 leaves forces off by about 1e-11 P and positions by 1e-11 P / k
+		 * = 1e-11 h; the Hertz law turns that into 1.5e-11 of the stress, amplified along
+		 * the chains by at most the number of layers (5): 1e-9 holds with a margin of 10 */
+		snprintf(name, sizeof name, "%s %s: wall stresses %.10g %.10g %.10g Pa = reference (largest error %.3g)",
+		    tag, stage ? "uniaxial" : "isotropic", sig[0], sig[1], sig[2], esig);
+		CHECK(esig <= 1e-9, "%s", name);
+		snprintf(name, sizeof name, "%s %s: positions = reference (largest error %.3g of the overlap %.3g m)", tag,
+		    stage ? "uniaxial" : "isotropic", epos, hmin);
+		CHECK(epos <= 1e-9, "%s", name);
+		if (kind == FCC && stage == 0) {
+			/* cubic symmetry: the three stresses agree to the residual */
+			double sd = fmax(fabs(sig[0] - sig[2]), fabs(sig[1] - sig[2])) / sig[2];
+			CHECK(sd <= 1e-9, "%s isotropic: sig_xx = sig_yy = sig_zz by symmetry (%.3g)", tag, sd);
+		}
+		if (kind == FCC) {
+			/* the force on zlo equals the force across each plane between two layers */
+			double dev = 0;
+			int l;
+			for (l = 0; l + 1 < m; l++) {
+				/* midway between layers l and l+1, mapped affinely from the unstrained box */
+				double zc = p.box[2] + (R_ + (l + 0.5) * sqrt(2.0) * R_) * (p.box[5] - p.box[2]) /
+				    (2 * R_ + (m - 1) * sqrt(2.0) * R_);
+				dev = fmax(dev, fabs(plane_force(&p, x, zc) - s.wall_force[WALL_ZLO]) / s.wall_force[WALL_ZLO]);
+			}
+			dev = fmax(dev, fabs(s.wall_force[WALL_ZHI] - s.wall_force[WALL_ZLO]) / s.wall_force[WALL_ZLO]);
+			CHECK(dev <= 1e-9, "%s %s: the force on each z wall = the force across every layer plane (%.3g)", tag,
+			    stage ? "uniaxial" : "isotropic", dev);
+		}
+		if (kind == SC && stage == 1) {
+			/* the uniaxial stage carries the isotropic one: h_z = 2R (1 - (1-e1)(1-e2)) when kappa
+			 * = 1/2; with kappa != 1/2 the closed form already checked covers it */
+			double Egg = hertz_Estar(E_, NU, E_, NU);
+			CHECK(sigr[2] > sigr[0] && sigr[0] == sigr[1],
+			    "%s uniaxial: sig_zz %.6g > sig_xx = sig_yy %.6g (Pa; P_gg(h_z) = %.6g N)", tag, sigr[2], sigr[0],
+			    hertz_force(Egg, R_ / 2, hgg[2]));
+		}
+	}
+	qs_free(&s);
+	free(x), free(xr), free(g);
+	pack_free(&p);
+}
+
+int
+main(void)
+{
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	double Egg = hertz_Estar(E_, NU, E_, NU), Egw = hertz_Estar(E_, NU, INFINITY, 0.495), h = 1e-7;
+	int method;
+
+	gsl_rng_set(rng, 4242);
+	/* a rigid wall is half a grain-grain contact: P_gw(h/2) = P_gg(h); the compliances are
+	 * (1-nu^2)/E + 0 against twice that, so only rounding separates them */
+	CHECK_CLOSE(hertz_force(Egw, R_, h / 2), hertz_force(Egg, R_ / 2, h), 1e-14,
+	    "rigid wall: P_gw(h/2) = P_gg(h), so the affine SC state is exact");
+	for (method = QS_CG; method <= QS_FIRE; method++) {
+		char tag[64];
+		snprintf(tag, sizeof tag, "SC 4^3 rigid walls %s", qs_method_name(method));
+		one_case(rng, SC, 4, INFINITY, 0.495, method, tag);
+		snprintf(tag, sizeof tag, "SC 5^3 walls E_w = 100 E %s", qs_method_name(method));
+		one_case(rng, SC, 5, 100 * E_, 0.495, method, tag);
+		snprintf(tag, sizeof tag, "FCC 63 rigid walls %s", qs_method_name(method));
+		one_case(rng, FCC, 5, INFINITY, 0.495, method, tag);
+		snprintf(tag, sizeof tag, "FCC 63 walls E_w = 100 E %s", qs_method_name(method));
+		one_case(rng, FCC, 5, 100 * E_, 0.495, method, tag);
+	}
+	printf("# achieved: wall stress relative error %.3g, positions %.3g of the overlap\n", worst_sig, worst_pos);
+	gsl_rng_free(rng);
+	return unit_summary();
+}

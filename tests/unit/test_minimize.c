@@ -1,0 +1,269 @@
+/* test_minimize: lib/minimize.c on a random dense polydisperse pack.
+ *
+ * The pack (200 grains, radii 0.07-0.13 mm, glass-like moduli with a 10 % spread, walls
+ * 100 x stiffer) is made by random placement and pairwise separation, brought to equilibrium
+ * once, and then strained by 1e-3 along z (affine) and perturbed: that is the common start.
+ *  - CG and FIRE both converge from it (status 0, residual <= tol) to the same equilibrium:
+ *    energies to 1e-8 relative, positions of grains that carry contacts to a small fraction
+ *    of R (rattlers float and are left out);
+ *  - CG never raises the energy: the runs with max_iter = 1, 2, 3 ... from the same start on
+ *    fresh systems are prefixes of one another (the method is deterministic), so their final
+ *    energies are the energies of successive iterations; each such run also reports status 1
+ *    and stopped_by "max_iter";
+ *  - the displacement cap: between successive iterations no grain moves more than cap R, and
+ *    the cap is reached (so the check is not vacuous); FIRE likewise for its first step. */
+#include "functional.h"
+#include "loading.h"
+#include "minimize.h"
+#include "pack.h"
+#include "unit.h"
+
+#include <float.h>
+#include <gsl/gsl_randist.h>
+#include <gsl/gsl_rng.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* n grains, radii uniform in scale * [0.7, 1.3], E normal about 70 GPa (sd 10 %), nu uniform
+ * in [0.15, 0.25], uniformly placed in a box of nominal solid fraction phi (not at the origin,
+ * not a cube), walls 100 x stiffer; then sweeps of pairwise separation push every overlap back
+ * below ovmax times the pair's mean radius (a random target below it, so that overlaps spread
+ * over (0, ovmax]); grain-wall overlaps likewise below ovmax R. */
+static void
+random_pack(struct pack *p, gsl_rng *rng, size_t n, double scale, double phi, double ovmax)
+{
+	double vol = 0, L;
+	size_t i, j;
+	int a, sweep;
+
+	pack_init(p);
+	for (i = 0; i < n; i++) {
+		double x[3] = {0, 0, 0}, r = scale * (0.7 + 0.6 * gsl_rng_uniform(rng));
+		double E = 7e10 * (1 + 0.1 * gsl_ran_gaussian(rng, 1.0));
+		pack_add_grain(p, (long)i, x, r, E, 0.15 + 0.1 * gsl_rng_uniform(rng), 2420);
+		vol += 4.0 / 3.0 * M_PI * r * r * r;
+	}
+	L = cbrt(vol / phi);
+	for (a = 0; a < 3; a++) {
+		p->box[a] = (a - 1) * 0.37 * L;
+		p->box[3 + a] = p->box[a] + L * (1 + 0.05 * a);
+	}
+	p->wall_E = 7e12;
+	p->wall_nu = 0.495;
+	for (i = 0; i < n; i++)
+		for (a = 0; a < 3; a++)
+			p->x[3 * i + a] = p->box[a] + p->r[i] + gsl_rng_uniform(rng) * (p->box[3 + a] - p->box[a] - 2 * p->r[i]);
+	for (sweep = 0; sweep < 4000; sweep++) {
+		long moved = 0;
+		for (i = 0; i < n; i++) {
+			double *xi = p->x + 3 * i;
+			for (j = i + 1; j < n; j++) {
+				double *xj = p->x + 3 * j, d[3], dd = 0, sum = p->r[i] + p->r[j], dist, ov, lim, push;
+				for (a = 0; a < 3; a++) {
+					d[a] = xi[a] - xj[a];
+					dd += d[a] * d[a];
+				}
+				if (dd >= sum * sum)
+					continue;
+				dist = sqrt(dd);
+				ov = sum - dist;
+				lim = ovmax * sum / 2;
+				if (ov <= lim)
+					continue;
+				push = (ov - lim * gsl_rng_uniform(rng)) / 2;
+				for (a = 0; a < 3; a++) {
+					double u = dist > 0 ? d[a] / dist : (a == 0);
+					xi[a] += push * u;
+					xj[a] -= push * u;
+				}
+				moved++;
+			}
+			for (a = 0; a < 3; a++) {
+				double lim = (1 - ovmax) * p->r[i];
+				if (xi[a] - p->box[a] < lim) {
+					xi[a] = p->box[a] + p->r[i] * (1 - ovmax * gsl_rng_uniform(rng));
+					moved++;
+				}
+				if (p->box[3 + a] - xi[a] < lim) {
+					xi[a] = p->box[3 + a] - p->r[i] * (1 - ovmax * gsl_rng_uniform(rng));
+					moved++;
+				}
+			}
+		}
+		if (!moved)
+			break;
+	}
+}
+
+static double
+energy_from(struct pack *p, const double *x0, enum qs_method m, long max_iter, double tol, double cap, double *x,
+    struct qs_min_report *rep, unsigned *cnt)
+{
+	struct qs_system s;
+	struct qs_min_params mp;
+
+	memcpy(x, x0, 3 * p->n * sizeof *x);
+	qs_init(&s, p, 0.3);
+	qs_min_params_default(&mp);
+	mp.method = m;
+	mp.max_iter = max_iter;
+	mp.tol = tol;
+	if (cap > 0)
+		mp.cap = cap;
+	qs_minimize(&s, x, &mp, rep);
+	if (cnt) {
+		qs_energy(&s, x, NULL, NULL);
+		qs_coordination(&s, x, cnt);
+	}
+	qs_free(&s);
+	return rep->energy;
+}
+
+/* Largest displacement between two configurations, in units of each grain's radius. */
+static double
+maxmove(const struct pack *p, const double *a, const double *b)
+{
+	double m = 0;
+	size_t i;
+
+	for (i = 0; i < p->n; i++) {
+		double d0 = a[3 * i] - b[3 * i], d1 = a[3 * i + 1] - b[3 * i + 1], d2 = a[3 * i + 2] - b[3 * i + 2];
+		m = fmax(m, sqrt(d0 * d0 + d1 * d1 + d2 * d2) / p->r[i]);
+	}
+	return m;
+}
+
+/* Rounding of a displacement measured as a difference of centres: a few ulps of the largest
+ * coordinate, over the smallest radius (2e-9 of a 1e-4 R step for 1 mm boxes). */
+static double
+move_slack(const struct pack *p, const double *x)
+{
+	double xm = 0, rmin = INFINITY;
+	size_t i;
+
+	for (i = 0; i < 3 * p->n; i++)
+		xm = fmax(xm, fabs(x[i]));
+	for (i = 0; i < p->n; i++)
+		rmin = fmin(rmin, p->r[i]);
+	return 4 * DBL_EPSILON * xm / rmin;
+}
+
+int
+main(void)
+{
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	struct pack p;
+	struct qs_min_report rep, rc, rf;
+	size_t n = 200, n3 = 3 * n, i, k;
+	double *x0, *xc, *xf, *xa, *xb, de[3] = {0, 0, 1e-4}, tol = 1e-9, Ec, Ef, dpos = 0, rmean = 0;
+	unsigned *cc, *cf, nz = 0, rattlers = 0;
+
+	gsl_rng_set(rng, 31337);
+	random_pack(&p, rng, n, 1e-4, 0.66, 0.04);
+	x0 = malloc(n3 * sizeof *x0);
+	xc = malloc(n3 * sizeof *xc);
+	xf = malloc(n3 * sizeof *xf);
+	xa = malloc(n3 * sizeof *xa);
+	xb = malloc(n3 * sizeof *xb);
+	cc = malloc(n * sizeof *cc);
+	cf = malloc(n * sizeof *cf);
+	for (i = 0; i < n; i++)
+		rmean += p.r[i] / n;
+
+	/* the common start: equilibrium of the generated pack, strained 1e-3 along z, perturbed */
+	energy_from(&p, p.x, QS_CG, 200000, 1e-6, 0, x0, &rep, cc);
+	CHECK(rep.status == 0, "setup: the generated pack reaches equilibrium (%ld iterations, residual %.3g)", rep.iter,
+	    rep.res_max);
+	for (i = 0; i < n; i++)
+		nz += cc[i] >= 4;
+	CHECK(nz >= 8 * n / 10 && rep.energy > 0, "setup: jammed: %u of %zu grains with >= 4 contacts, Pi = %.3g J", nz, n,
+	    rep.energy);
+	load_strain_box(p.box, x0, n, de);
+	for (k = 0; k < n3; k++)
+		x0[k] += 1e-5 * rmean * (2 * gsl_rng_uniform(rng) - 1);
+
+	/* both methods from the same start */
+	Ec = energy_from(&p, x0, QS_CG, 200000, tol, 0, xc, &rc, cc);
+	Ef = energy_from(&p, x0, QS_FIRE, 200000, tol, 0, xf, &rf, cf);
+	CHECK(rc.status == 0 && rc.res_max <= tol && strcmp(rc.stopped_by, "residual") == 0,
+	    "cg converges (status %d, %ld iterations, %ld evaluations, residual %.3g <= %g)", rc.status, rc.iter, rc.evals,
+	    rc.res_max, tol);
+	CHECK(rf.status == 0 && rf.res_max <= tol && strcmp(rf.stopped_by, "residual") == 0,
+	    "fire converges (status %d, %ld iterations, residual %.3g <= %g)", rf.status, rf.iter, rf.res_max, tol);
+	/* at a residual of 1e-9 the energy sits within about (1e-9)^2 of the minimum, relative; two
+	 * runs into the same minimum agree far below 1e-8 */
+	CHECK_CLOSE(Ec, Ef, 1e-8, "cg and fire reach the same energy");
+	for (i = 0; i < n; i++) {
+		int a;
+		if (cc[i] == 0 || cf[i] == 0) {
+			rattlers++;
+			continue;
+		}
+		for (a = 0; a < 3; a++)
+			dpos = fmax(dpos, fabs(xc[3 * i + a] - xf[3 * i + a]) / p.r[i]);
+	}
+	/* forces off by 1e-9 of the largest contact force move a grain by about 1e-9 h / 1.5 through
+	 * its stiffest contacts and more along soft collective modes; 1e-6 R is 1e-4 of a typical
+	 * overlap, far below the distance between two distinct minima */
+	CHECK(dpos <= 1e-6, "cg and fire reach the same positions: %.3g R apart (%u rattlers left out)", dpos, rattlers);
+
+	/* CG iteration by iteration: max_iter = k from the same start on a fresh system */
+	{
+		/* the start is 1e-4 strain from equilibrium, so a cap of 2e-5 R binds */
+		double cap = 2e-5, eprev, rise = 0, mv = 0, mvmax = 0;
+		int allmax = 1;
+		long kk, K = 40;
+		eprev = energy_from(&p, x0, QS_CG, 0, 1e-30, cap, xa, &rep, NULL);
+		allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == 0;
+		for (kk = 1; kk <= K; kk++) {
+			double e = energy_from(&p, x0, QS_CG, kk, 1e-30, cap, xb, &rep, NULL);
+			allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == kk;
+			/* rounding: the energy is a sum of a few thousand terms, so 1e-13 relative */
+			rise = fmax(rise, (e - eprev) / fabs(eprev));
+			mv = maxmove(&p, xa, xb);
+			mvmax = fmax(mvmax, mv);
+			eprev = e;
+			memcpy(xa, xb, n3 * sizeof *xa);
+		}
+		CHECK(rise <= 1e-13, "cg: the energy never rises over %ld iterations (largest relative rise %.3g)", K, rise);
+		CHECK(allmax, "cg: max_iter too small gives status 1, stopped_by \"max_iter\" and iter = max_iter");
+		/* the line search may stop at alpha_max, where one grain moves exactly cap R: allow the
+		 * rounding of measuring the move (move_slack) above it */
+		CHECK(mvmax <= cap + move_slack(&p, x0) && mvmax >= 0.5 * cap,
+		    "cg: no grain moves more than cap R = %g R in one iteration (largest %.17g R)", cap, mvmax);
+	}
+	{
+		double cap = 1e-4, mv;
+		energy_from(&p, x0, QS_CG, 1, 1e-30, cap, xa, &rep, NULL);
+		mv = maxmove(&p, x0, xa);
+		CHECK(mv <= cap + move_slack(&p, x0) && mv >= 0.999 * cap, "cg, max_iter = 1, cap %g: largest move %.8g R", cap, mv);
+		CHECK(rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0, "cg, max_iter = 1: status 1, max_iter");
+		energy_from(&p, x0, QS_FIRE, 1, 1e-30, cap, xa, &rep, NULL);
+		mv = maxmove(&p, x0, xa);
+		CHECK(mv <= cap + move_slack(&p, x0) && mv > 0, "fire, max_iter = 1, cap %g: largest move %.8g R", cap, mv);
+		CHECK(rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0, "fire, max_iter = 1: status 1, max_iter");
+	}
+	{
+		/* FIRE step by step, as for CG; its first steps are short (dt starts at dt_max / 10),
+		 * so the cap is smaller */
+		double cap = 1e-6, mvmax = 0;
+		long kk;
+		energy_from(&p, x0, QS_FIRE, 0, 1e-30, cap, xa, &rep, NULL);
+		for (kk = 1; kk <= 60; kk++) {
+			energy_from(&p, x0, QS_FIRE, kk, 1e-30, cap, xb, &rep, NULL);
+			mvmax = fmax(mvmax, maxmove(&p, xa, xb));
+			memcpy(xa, xb, n3 * sizeof *xa);
+		}
+		CHECK(mvmax <= cap + move_slack(&p, x0) && mvmax >= 0.5 * cap, "fire: no grain moves more than cap R = %g R in one iteration (largest %.17g R)",
+		    cap, mvmax);
+	}
+	/* an equilibrium is recognised at once */
+	energy_from(&p, xc, QS_CG, 10, tol, 0, xa, &rep, NULL);
+	CHECK(rep.status == 0 && rep.iter == 0 && maxmove(&p, xa, xc) == 0,
+	    "cg from its own equilibrium: status 0 after 0 iterations, nothing moves");
+	free(x0), free(xc), free(xf), free(xa), free(xb), free(cc), free(cf);
+	pack_free(&p);
+	gsl_rng_free(rng);
+	return unit_summary();
+}
