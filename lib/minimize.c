@@ -301,9 +301,14 @@ run_fire(struct work *w, double *x, const struct qs_min_params *mp, struct qs_mi
 			npos = 0;
 			dt = fmax(dt * fdec, 0.02 * dtmax);
 			alpha = alpha0;
-			for (k = 0; k < w->n3; k++) {
-				x[k] -= 0.5 * dt * w->v[k];
-				w->v[k] = 0;
+			/* half a step back, under the same per-grain cap as a forward step */
+			for (i = 0; i < w->s->n; i++) {
+				double *v = w->v + 3 * i, l = 0.5 * dt * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]),
+				       lim = mp->cap * w->s->p->r[i], sc = l > lim ? lim / l : 1;
+				for (k = 0; k < 3; k++) {
+					x[3 * i + k] -= sc * 0.5 * dt * v[k];
+					v[k] = 0;
+				}
 			}
 		}
 		/* semi-implicit Euler with FIRE's mixing of the velocity towards the force */
