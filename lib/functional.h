@@ -12,6 +12,10 @@
 #include "nlist.h"
 #include "pack.h"
 
+/* Default floor of a grain's largest contact force in the residual, relative to the mean
+ * normal contact force (see qs_residual); packinfo and the minimisers share it. */
+#define QS_RESIDUAL_FLOOR 1e-3
+
 struct qs_system {
 	struct pack *p;		/* radii, moduli; p->box is the current box */
 	size_t n;

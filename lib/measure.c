@@ -1,6 +1,7 @@
 /* measure: porosity, coordination, stresses, residual, fabric (see measure.h). */
 #include "measure.h"
 #include "msg.h"
+#include "functional.h"
 #include "vec3.h"
 
 #include <math.h>
@@ -217,12 +218,13 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 			m->sig_lw[a] /= m->volume;
 		m->P_mean = Psum / nct;
 		for (k = 0; k < p->n; k++) {
-			double fr, mr;
+			double fr, mr, floor_ = QS_RESIDUAL_FLOOR * m->P_mean;
 			if (!(fbig[k] > 0))
 				continue;
 			fr = vec3_norm(F + 3 * k);
 			mr = vec3_norm(M + 3 * k) / p->r[k];
-			m->residual_max = fmax(m->residual_max, fmax(fr, mr) / fbig[k]);
+			m->residual_strict = fmax(m->residual_strict, fmax(fr, mr) / fbig[k]);
+			m->residual_max = fmax(m->residual_max, fmax(fr, mr) / fmax(fbig[k], floor_));
 			Fsum += fr;
 			nres++;
 		}

@@ -6,7 +6,9 @@
  * statistics, the largest overlap over the smaller radius; and, when contacts carry forces,
  * wall stresses (normal contact forces on the two walls of an axis, averaged, over the wall
  * area), the volume-averaged (Love-Weber) stress, normal-force statistics, the force-balance
- * residual (largest per-grain |F_i| / largest contact force on i, with moments |M_i|/R_i
+ * residual (largest per-grain |F_i| / largest contact force on i, that force floored at
+ * QS_RESIDUAL_FLOOR times the mean normal contact force as the minimisers do (functional.h;
+ * residual_strict has no floor), with moments |M_i|/R_i
  * counted the same way, and the mean unbalanced-force ratio mean|F_i| / mean|f_c|), the
  * sliding ratio from the contact history, and the fabric tensor <n n> of grain-grain
  * contacts with its anisotropy a = 15/2 sqrt(3/2 d:d), d = <n n> - I/3. */
@@ -26,6 +28,7 @@ struct pack_measures {
 	double sigma_c;		/* tr(sig_wall)/3 */
 	double P_mean, P_max;
 	double residual_max, residual_mean;
+	double residual_strict;	/* residual_max without the floor */
 	double sliding_ratio;	/* NaN when no contact carries friction history */
 	double fabric[6], fabric_anisotropy;
 };

@@ -14,13 +14,14 @@ qs_min_params_default(struct qs_min_params *mp)
 	mp->method = QS_CG;
 	mp->max_iter = 200000;
 	mp->tol = 1e-4;
-	mp->tol_floor = 1e-3;
+	mp->tol_floor = QS_RESIDUAL_FLOOR;
 	mp->eps1 = 0;
 	mp->eps2 = 0;
 	mp->cap = 0.02;
 	mp->k_sd = 50;
 	mp->ls_sigma = 0.1;
 	mp->fire_dt = 1.0;
+	mp->lbfgs_m = 8;
 }
 
 int
@@ -30,6 +31,8 @@ qs_method_parse(const char *name, enum qs_method *m)
 		*m = QS_CG;
 	else if (strcmp(name, "fire") == 0)
 		*m = QS_FIRE;
+	else if (strcmp(name, "lbfgs") == 0)
+		*m = QS_LBFGS;
 	else
 		return -1;
 	return 0;
@@ -38,7 +41,7 @@ qs_method_parse(const char *name, enum qs_method *m)
 const char *
 qs_method_name(enum qs_method m)
 {
-	return m == QS_FIRE ? "fire" : "cg";
+	return m == QS_FIRE ? "fire" : m == QS_LBFGS ? "lbfgs" : "cg";
 }
 
 /* Workspace shared by both methods. */
@@ -333,6 +336,105 @@ run_fire(struct work *w, double *x, const struct qs_min_params *mp, struct qs_mi
 	return 0;
 }
 
+/* L-BFGS: the two-loop recursion over the last m steps, H0 = (s.y / y.y) I, the same capped
+ * derivative line search as CG but first trying alpha = 1 and accepting a weak Wolfe point
+ * (|dPi/dalpha| <= 0.9 |dPi/dalpha(0)|), as quasi-Newton methods want. */
+static int
+run_lbfgs(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_report *rep, double scale2)
+{
+	int m = (int)mp->lbfgs_m, head = 0, count = 0, q;
+	size_t n3 = w->n3, k;
+	double *S = malloc((size_t)m * n3 * sizeof *S), *Y = malloc((size_t)m * n3 * sizeof *Y);
+	double *rho = malloc((size_t)m * sizeof *rho), *al = malloc((size_t)m * sizeof *al), eprev = INFINITY;
+	gsl_root_fsolver *solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+	long it;
+	int status = 0;
+
+	if (!S || !Y || !rho || !al || !solver) {
+		msg_seterr("out of memory for L-BFGS");
+		status = -1;
+		goto out;
+	}
+	for (it = 0;; it++) {
+		double amax, alpha, gamma = 1, sy, yy;
+
+		rep->iter = it;
+		if (converged(w, mp, eprev, rep, scale2))
+			break;
+		if (it >= mp->max_iter) {
+			rep->stopped_by = "max_iter";
+			rep->status = 1;
+			break;
+		}
+		/* d = -H g by the two-loop recursion */
+		for (k = 0; k < n3; k++)
+			w->d[k] = -w->g[k];
+		for (q = 0; q < count; q++) {
+			int c = (head - 1 - q + m) % m;
+			al[c] = rho[c] * dot(S + (size_t)c * n3, w->d, n3);
+			for (k = 0; k < n3; k++)
+				w->d[k] -= al[c] * Y[(size_t)c * n3 + k];
+		}
+		if (count > 0) {
+			int c = (head - 1 + m) % m;
+			gamma = dot(S + (size_t)c * n3, Y + (size_t)c * n3, n3) / dot(Y + (size_t)c * n3, Y + (size_t)c * n3, n3);
+		} else {
+			/* first step: as far as the cap allows along -g */
+			gamma = alpha_cap(w, w->g, mp->cap);
+		}
+		for (k = 0; k < n3; k++)
+			w->d[k] *= gamma;
+		for (q = count - 1; q >= 0; q--) {
+			int c = (head - 1 - q + m) % m;
+			double b = rho[c] * dot(Y + (size_t)c * n3, w->d, n3);
+			for (k = 0; k < n3; k++)
+				w->d[k] += (al[c] - b) * S[(size_t)c * n3 + k];
+		}
+		if (dot(w->d, w->g, n3) >= 0) {	/* not downhill: forget the history */
+			count = 0;
+			for (k = 0; k < n3; k++)
+				w->d[k] = -w->g[k] * alpha_cap(w, w->g, mp->cap);
+		}
+		amax = alpha_cap(w, w->d, mp->cap);
+		alpha = line_search(w, x, 1.0, amax, 0.9, solver);
+		if (alpha < 0) {
+			status = -1;
+			goto out;
+		}
+		/* new pair s = alpha d, y = g_new - g */
+		sy = yy = 0;
+		for (k = 0; k < n3; k++) {
+			double sk = w->xt[k] - x[k], yk = w->gt[k] - w->g[k];
+			S[(size_t)head * n3 + k] = sk;
+			Y[(size_t)head * n3 + k] = yk;
+			sy += sk * yk;
+			yy += yk * yk;
+		}
+		if (sy > 1e-300 && yy > 0) {
+			rho[head] = 1 / sy;
+			head = (head + 1) % m;
+			if (count < m)
+				count++;
+		}
+		memcpy(x, w->xt, n3 * sizeof *x);
+		eprev = w->e;
+		w->e = w->et;
+		{
+			double *t = w->g;
+			w->g = w->gt;
+			w->gt = t;
+			t = w->fmax;
+			w->fmax = w->ft;
+			w->ft = t;
+		}
+	}
+out:
+	free(S), free(Y), free(rho), free(al);
+	if (solver)
+		gsl_root_fsolver_free(solver);
+	return status;
+}
+
 int
 qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, struct qs_min_report *rep)
 {
@@ -368,7 +470,8 @@ qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, stru
 		st = rep->status = -1;
 		goto out;
 	}
-	st = mp->method == QS_FIRE ? run_fire(&w, x, mp, rep, scale2) : run_cg(&w, x, mp, rep, scale2);
+	st = mp->method == QS_FIRE ? run_fire(&w, x, mp, rep, scale2) :
+	    mp->method == QS_LBFGS ? run_lbfgs(&w, x, mp, rep, scale2) : run_cg(&w, x, mp, rep, scale2);
 	if (st < 0)
 		rep->status = -1;
 	else

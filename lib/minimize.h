@@ -10,6 +10,8 @@
  *  - fire: FIRE 2.0 (Guénolé et al. 2020, as in LAMMPS min_fire) with unit masses, the time
  *    step bounded by 1 / sqrt(Gershgorin bound on the stiffness) at the start, and the same
  *    per-grain displacement cap.
+ *  - lbfgs: limited-memory BFGS (m stored steps) with the same capped derivative line
+ *    search, trying the quasi-Newton step first and accepting |dPi/dalpha| <= 0.9 |dPi/dalpha(0)|.
  *
  * Stopping: the residual (largest per-grain |F_i| / largest contact force on i, that force
  * floored at tol_floor times the mean contact force, see qs_residual) at or below tol; or the papers' criteria when set (> 0): Pi^(k-1) - Pi^k < eps1 |Pi^(k-1)|, or
@@ -19,7 +21,7 @@
 
 #include "functional.h"
 
-enum qs_method { QS_CG, QS_FIRE };
+enum qs_method { QS_CG, QS_FIRE, QS_LBFGS };
 
 struct qs_min_params {
 	enum qs_method method;
@@ -31,6 +33,7 @@ struct qs_min_params {
 	long k_sd;		/* CG: steepest-descent restart period */
 	double ls_sigma;	/* CG: stop the line search at |dPi/dalpha| <= sigma |dPi/dalpha(0)| */
 	double fire_dt;		/* FIRE: dt_max in units of 1/sqrt(k bound) */
+	long lbfgs_m;		/* L-BFGS: stored steps */
 };
 
 struct qs_min_report {
@@ -41,7 +44,7 @@ struct qs_min_report {
 };
 
 void qs_min_params_default(struct qs_min_params *mp);
-/* Parse "cg" / "fire"; 0 or -1. */
+/* Parse "cg" / "fire" / "lbfgs"; 0 or -1. */
 int qs_method_parse(const char *name, enum qs_method *m);
 const char *qs_method_name(enum qs_method m);
 

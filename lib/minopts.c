@@ -7,7 +7,7 @@ void
 qs_min_opts_check(struct qs_min_params *mp)
 {
 	if (qs_method_parse(qs_method_arg, &mp->method))
-		cli_usage_error("--method: '%s' is not cg or fire", qs_method_arg);
+		cli_usage_error("--method: '%s' is not cg, fire or lbfgs", qs_method_arg);
 	if (!(mp->tol > 0 && mp->tol < 1))
 		cli_usage_error("--tol: must be in (0, 1)");
 	if (!(mp->tol_floor >= 0 && mp->tol_floor <= 1))
@@ -22,6 +22,8 @@ qs_min_opts_check(struct qs_min_params *mp)
 		cli_usage_error("--ls-sigma: must be in (0, 1)");
 	if (!(mp->eps1 >= 0) || !(mp->eps2 >= 0))
 		cli_usage_error("--eps1, --eps2: must be non-negative");
+	if (mp->lbfgs_m < 1 || mp->lbfgs_m > 100)
+		cli_usage_error("--lbfgs-m: must be in [1, 100]");
 	if (!(mp->fire_dt > 0 && mp->fire_dt <= 10))
 		cli_usage_error("--fire-dt: must be in (0, 10]");
 }

@@ -73,6 +73,7 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "force_max", "N", m->has_forces ? m->P_max : NAN);
 	add(r, "residual", NULL, m->has_forces ? m->residual_max : NAN);
 	add(r, "residual_mean", NULL, m->has_forces ? m->residual_mean : NAN);
+	add(r, "residual_strict", NULL, m->has_forces ? m->residual_strict : NAN);
 	add(r, "sliding_ratio", NULL, m->sliding_ratio);
 	add(r, "fabric_xx", NULL, m->fabric[0]);
 	add(r, "fabric_yy", NULL, m->fabric[1]);
