@@ -1,39 +1,126 @@
 #!/bin/sh
-# make bench: packgen wall time and peak memory at 2740, 1e4 and 1e5 grains.
-# Results go to bench/results.md (a readable table) with the machine and the commit.
-# BENCH_SIZES overrides the sizes (e.g. BENCH_SIZES="2740 10000" for a quicker run).
+# make bench: at 2740, 1e4 and 1e5 grains,
+#  - packgen: wall time and peak memory of making the loose pack (seed 1, glass);
+#  - densify to 4 MPa: wall time, peak memory, iterations (the log's sum), per minimiser;
+#  - one isotropic strain increment of 1e-4 from the dense pack, per minimiser
+#    (build/bench/increment): iterations, evaluations, time per evaluation per contact.
+# Results go to bench/results.md (readable tables) with the machine and the commit.
+#
+# Knobs: BENCH_SIZES (e.g. "2740 10000" for a quicker run); BENCH_METHODS (densify's
+# minimisers, default "cg fire"); BENCH_REGEN=1 remakes the loose packs.  The packs are kept
+# in bench/ (loose-N.pack.gz, dense-N-METHOD.pack.gz, the densify logs) so that a later run
+# reuses the loose ones: packgen takes about 40 minutes at 1e5 grains.
 set -u
 bin=${1:-build/bin}
+case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
+incr="$bin/../bench/increment"
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/bench"
 mkdir -p "$out"
 res="$out/results.md"
 tmp="$out/run.tmp"
 sizes=${BENCH_SIZES:-"2740 10000 100000"}
+methods=${BENCH_METHODS:-"cg fire"}
+export LC_ALL=C
+
+# info FILE KEY [FORMAT]
+info() { awk -v k="$2" -v f="${3:-%s}" '$1 == k { printf f, $2 }' "$1"; }
+
+gen_rows=""
+dens_rows=""
+inc_rows=""
+for n in $sizes; do
+	loose="$out/loose-$n.pack.gz"
+	# packgen: make the loose pack, or reuse the one an earlier run made
+	if [ "${BENCH_REGEN:-0}" = 1 ] || [ ! -s "$loose" ] || [ ! -s "$out/loose-$n.time" ]; then
+		if ! /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/packgen" -n "$n" --seed 1 -o "$loose" 2>"$tmp.err"; then
+			gen_rows="$gen_rows
+| $n | failed: $(tail -n 1 "$tmp.err") | | | | | | |"
+			continue
+		fi
+		mv "$tmp.time" "$out/loose-$n.time"
+		made=now
+	else
+		made="earlier run"
+	fi
+	read -r secs kib <"$out/loose-$n.time"
+	"$bin/packinfo" "$loose" >"$tmp.info"
+	gen_rows="$gen_rows
+$(awk -v n="$n" -v s="$secs" -v k="$kib" -v p="$(info "$tmp.info" porosity %.4f)" -v c="$(info "$tmp.info" coordination %.3f)" \
+	    -v o="$(info "$tmp.info" overlap_max %.2e)" -v m="$made" \
+	    'BEGIN { printf "| %d | %.1f | %.1f | %.2f | %s | %s | %s | %s |", n, s, k / 1024, k / n, p, c, o, m }')"
+
+	for m in $methods; do
+		dense="$out/dense-$n-$m.pack.gz"
+		log="$out/dense-$n-$m.tsv"
+		if ! /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/densify" --stress 4e6 --method "$m" --log "$log" \
+		    -o "$dense" "$loose" 2>"$tmp.err"; then
+			dens_rows="$dens_rows
+| $n | $m | failed: $(tail -n 1 "$tmp.err") | | | | | | | | | |"
+			continue
+		fi
+		read -r secs kib <"$tmp.time"
+		"$bin/packinfo" "$dense" >"$tmp.info"
+		# iterations: the sum over the log's stages; per iteration per contact uses the
+		# final contact count (grain-grain plus grain-wall)
+		set -- $(awk -F '\t' '!/^#/ { it += $8; st[$1]++ } END { print it + 0, st["grow"] + 0, st["compact"] + 0 }' "$log")
+		iters=$1 grow=$2 comp=$3
+		nc=$(($(info "$tmp.info" contacts_gg) + $(info "$tmp.info" contacts_gw)))
+		dens_rows="$dens_rows
+$(awk -v n="$n" -v m="$m" -v s="$secs" -v k="$kib" -v it="$iters" -v g="$grow" -v c="$comp" -v nc="$nc" \
+		    -v sc="$(info "$tmp.info" sigma_c)" -v p="$(info "$tmp.info" porosity)" -v z="$(info "$tmp.info" coordination)" \
+		    -v r="$(info "$tmp.info" residual)" \
+		    'BEGIN { printf "| %d | %s | %.1f | %.1f | %d | %d / %d | %d | %.0f | %.3f | %.4f | %.3f | %.1e |",
+		        n, m, s, k / 1024, it, g, c, nc, it ? 1e9 * s / it / nc : 0, sc / 1e6, p, z, r }')"
+	done
+
+	# one strain increment from the dense pack of the first method
+	m=$(echo $methods | cut -d ' ' -f 1)
+	dense="$out/dense-$n-$m.pack.gz"
+	if [ ! -x "$incr" ]; then
+		inc_rows="$inc_rows
+| $n | (no $incr: run make bench) | | | | | | | |"
+	elif [ -s "$dense" ] && "$incr" "$dense" >"$tmp.inc" 2>"$tmp.err"; then
+		inc_rows="$inc_rows
+$(awk -F '\t' '!/^#/ { printf "| %d | %s | %d | %d | %d | %.4f | %.1f | %.1f | %s |\n", $2, $1, $3, $4, $5, $6, $4 && $3 ? 1e9 * $6 / $4 / $3 : 0, $7, $8 }' "$tmp.inc")"
+	else
+		inc_rows="$inc_rows
+| $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | | |"
+	fi
+done
+
 {
 	echo "# qusgm benchmarks"
 	echo
 	echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
 	echo "- commit: $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 	echo "- machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//')"
+	echo "- every program runs on one core"
 	echo
 	echo "## packgen (DEM compaction to a loose pack, seed 1, glass)"
 	echo
-	echo "| grains | wall time (s) | peak memory (MiB) | memory per grain (KiB) | porosity | coordination | largest overlap/R |"
-	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+	echo "| grains | wall time (s) | peak memory (MiB) | memory per grain (KiB) | porosity | coordination | largest overlap/R | pack made |"
+	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | :--- |"
+	echo "$gen_rows" | sed '/^$/d'
+	echo
+	echo "## densify to 4 MPa (from the packgen pack; --tol 1e-4)"
+	echo
+	echo "Iterations are the sum over the log's stages (growth rounds and compaction steps);"
+	echo "time per iteration per contact divides the wall time by them and by the final contacts."
+	echo
+	echo "| grains | method | wall time (s) | peak memory (MiB) | iterations | stages grow / compact | contacts | ns per iteration per contact | sigma_c (MPa) | porosity | coordination | residual |"
+	echo "| ---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+	echo "$dens_rows" | sed '/^$/d'
+	echo
+	echo "## one isotropic strain increment of 1e-4 from the dense pack (build/bench/increment)"
+	echo
+	echo "From densify's $(echo $methods | cut -d ' ' -f 1) pack at 4 MPa; one sub-increment with the affine guess, minimised to the"
+	echo "residual 1e-4 (largest per-grain |F_i| / largest contact force on i); wall time includes"
+	echo "the neighbour lists.  An evaluation is one pass of energy and gradient."
+	echo
+	echo "| grains | method | contacts | iterations | evaluations | wall time (s) | ns per iteration per contact | ns per evaluation per contact | residual |"
+	echo "| ---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+	echo "$inc_rows" | sed '/^$/d'
 } >"$res"
-for n in $sizes; do
-	/usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/packgen" -n "$n" --seed 1 -o "$tmp.pack" 2>"$tmp.err" || {
-		echo "| $n | failed: $(tail -n 1 "$tmp.err") | | | | | |" >>"$res"
-		continue
-	}
-	read -r secs kib <"$tmp.time"
-	"$bin/packinfo" "$tmp.pack" >"$tmp.info"
-	por=$(awk '$1 == "porosity" { printf "%.4f", $2 }' "$tmp.info")
-	coo=$(awk '$1 == "coordination" { printf "%.3f", $2 }' "$tmp.info")
-	ovl=$(awk '$1 == "overlap_max" { printf "%.2e", $2 }' "$tmp.info")
-	awk -v n="$n" -v s="$secs" -v k="$kib" -v p="$por" -v c="$coo" -v o="$ovl" \
-	    'BEGIN { printf "| %d | %.1f | %.1f | %.2f | %s | %s | %s |\n", n, s, k / 1024, k / n, p, c, o }' >>"$res"
-done
 rm -f "$tmp".*
 cat "$res"

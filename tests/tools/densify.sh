@@ -1,0 +1,150 @@
+# densify as a user runs it: a loose packgen pack compacted frictionlessly to 1 and 4 MPa,
+# checked with packinfo (which finds the contacts and forces itself, so its residual and
+# stresses are an independent check), the log, determinism, the FIRE minimiser, and every
+# error the issue lists.  Small packs (300 grains): a few seconds per run.
+. "$TOP/tests/tools/lib.sh"
+
+# rel A B: |A - B| / |B|
+rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
+
+expect_ok "packgen makes the loose pack" packgen -n 300 --seed 2 -o loose.pack
+packinfo loose.pack >loose.txt
+
+# check_dense NAME PACK TARGET: the equilibrium properties every densified pack must have.
+check_dense() {
+	n=$1 pk=$2 target=$3
+	if packinfo "$pk" >"$pk.txt" 2>"$pk.err"; then pass "$n: packinfo reads it"; else fail "$n: packinfo reads it" "$(cat "$pk.err")"; fi
+	expect_num "$n: sigma_c within --stress-tol (0.01) of $target" "$(rel "$(info_value "$pk.txt" sigma_c)" "$target")" "<=" 0.01
+	# packinfo computes every force from the positions: an independent residual
+	expect_num "$n: packinfo residual" "$(info_value "$pk.txt" residual)" "<=" 1e-4
+	# in equilibrium the volume average of the contact forces (Love-Weber) equals the
+	# stress on the walls, axis by axis
+	for ax in xx yy zz; do
+		expect_num "$n: Love-Weber sig_$ax equals the wall stress" \
+		    "$(rel "$(info_value "$pk.txt" sig_lw_$ax)" "$(info_value "$pk.txt" sig_$ax)")" "<" 1e-3
+	done
+	expect_num "$n: no grain under 4 contacts" "$(info_value "$pk.txt" under4)" == 0
+	expect_num "$n: no rattlers" "$(info_value "$pk.txt" rattlers)" == 0
+	expect_num "$n: porosity below the loose pack's" "$(info_value "$pk.txt" porosity)" "<" "$(info_value loose.txt porosity)"
+	# Frictionless spheres jam isostatic: 3 force unknowns per contact pair balance 3
+	# equations per grain, so the mean coordination is near 6 (more under load).  Wall
+	# contacts count once and grains at the walls have fewer neighbours, which lowers a
+	# 300-grain pack's mean a little: 5.5 is a safe floor, a loose pack is near 2.4.
+	expect_num "$n: coordination of a jammed frictionless pack" "$(info_value "$pk.txt" coordination)" ">=" 5.5
+	if grep -q '^refbox ' "$pk"; then pass "$n: refbox line"; else fail "$n: refbox line" "none"; fi
+	awk '$1 == "contacts" && !on { m = $2 } /^end$/ { on = 1; next }
+	     on && NF == 7 { k++; if (!($3 > 0)) bad++ }
+	     END { exit !(m > 0 && k == m && bad == 0) }' "$pk" &&
+	    pass "$n: contact lines, all with P0 > 0" || fail "$n: contact lines, all with P0 > 0" "$(grep '^contacts' "$pk")"
+}
+
+# 1 MPa and 4 MPa, with logs
+expect_ok "densify --stress 1e6" densify --stress 1e6 --log d1.tsv -o d1.pack loose.pack
+check_dense "1 MPa" d1.pack 1e6
+densify --stress 4e6 --log d4.tsv loose.pack >d4.pack 2>d4.err
+rc=$?
+if [ "$rc" -eq 0 ]; then pass "densify --stress 4e6 (stdout)"; else fail "densify --stress 4e6 (stdout)" "exit $rc: $(head -c 300 d4.err)"; fi
+check_dense "4 MPa" d4.pack 4e6
+# Hertz overlaps grow as (sigma/E)^(2/3): about 1 % of R at 4 MPa for glass (70 GPa)
+expect_num "4 MPa: largest overlap / R small" "$(info_value d4.pack.txt overlap_max)" "<" 0.05
+expect_num "4 MPa denser than 1 MPa" "$(info_value d4.pack.txt porosity)" "<" "$(info_value d1.pack.txt porosity)"
+
+# The log: the documented header, then one row per stage: relax 0, grow 1..k, compact 1..m,
+# ten columns each; the last row is the pack written.
+hdr=$(printf '# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean')
+for lg in d1.tsv d4.tsv; do
+	if [ "$(head -n 1 $lg)" = "$hdr" ]; then pass "$lg: header"; else fail "$lg: header" "$(head -n 1 $lg)"; fi
+	awk -F '\t' 'NR == 1 { next }
+	     { n++; if (NF != 10) bad = "row " NR " has " NF " columns" }
+	     n == 1 && !($1 == "relax" && $2 == 0) { bad = "first row is not relax 0" }
+	     n > 1 && $1 == "grow" && !(prev == "relax" || prev == "grow") { bad = "grow after " prev }
+	     n > 1 && $1 == "compact" && !(prev == "grow" || prev == "compact" || prev == "relax") { bad = "compact after " prev }
+	     n > 1 && $1 != "grow" && $1 != "compact" { bad = "stage " $1 }
+	     n > 1 { want = ($1 == prev) ? r + 1 : 1; if ($2 != want) bad = "row " NR ": round " $2 ", wanted " want }
+	     { prev = $1; r = $2 }
+	     END { if (bad) { print bad; exit 1 } if (prev != "compact") { print "last stage " prev; exit 1 } }' \
+	    $lg >log.why && pass "$lg: one row per stage, in order" || fail "$lg: one row per stage, in order" "$(cat log.why)"
+done
+last=$(tail -n 1 d4.tsv | cut -f 3)
+expect_num "log's last sigma_c is packinfo's" "$(rel "$last" "$(info_value d4.pack.txt sigma_c)")" "<" 1e-9
+last=$(tail -n 1 d1.tsv | cut -f 6)
+expect_num "log's last under4 is 0" "$last" == 0
+
+# Determinism: the same command gives the same bytes; stdin and -o give the same pack as a
+# file operand and stdout, apart from the history line that records the command line.
+densify --stress 4e6 --log d4.tsv loose.pack >d4b.pack 2>/dev/null
+expect_same "same input, same bytes" d4.pack d4b.pack
+cat loose.pack | densify --stress 4e6 -o d4c.pack 2>/dev/null
+grep -v '^history densify ' d4.pack >d4.nohist
+grep -v '^history densify ' d4c.pack >d4c.nohist 2>/dev/null
+expect_same "pipe and -o give the same pack as file and stdout" d4.nohist d4c.nohist
+
+# An already dense pack is only compacted: no growth rounds, and the reference box stays.
+expect_ok "densify a dense pack further" densify --stress 4e6 --log re.tsv -o re.pack d1.pack
+if ! grep -q '^grow' re.tsv; then pass "dense pack: no growth rounds"; else fail "dense pack: no growth rounds" "$(grep -c '^grow' re.tsv) rows"; fi
+if [ "$(grep '^refbox' re.pack)" = "$(grep '^refbox' d1.pack)" ]; then pass "dense pack: reference box kept"; else fail "dense pack: reference box kept" "changed"; fi
+check_dense "1 -> 4 MPa" re.pack 4e6
+
+# FIRE reaches the same target and residual
+expect_ok "densify --method fire" densify --stress 4e6 --method fire -o fire.pack loose.pack
+check_dense "fire" fire.pack 4e6
+
+# Errors: exit status, nothing on stdout, one line on stderr, no output file.
+# expect_fail NAME STATUS REGEX ARGS...: densify ARGS -o nothing.pack, as expect_error, and
+# neither nothing.pack nor a temporary file is left.
+expect_fail() {
+	n=$1 st=$2 re=$3
+	shift 3
+	rm -f nothing.pack
+	expect_error "$n" "$st" "$re" densify "$@" -o nothing.pack
+	if [ ! -e nothing.pack ] && ! ls .nothing.pack* >/dev/null 2>&1; then
+		pass "$n: no output file"
+	else
+		fail "$n: no output file" "$(ls -a | tr '\n' ' ')"
+	fi
+}
+
+# hand-made packs: 4 grains; 5 grains in a box 0.15 mm thick, thinner than a 0.2 mm grain
+mkpack() {	# FILE ZHI N
+	{
+		echo "qusgm-pack 1"
+		echo "units SI"
+		echo "box 0 0 0 1.5e-3 1e-3 $2"
+		echo "walls 7e12 0.495 0.3"
+		echo "friction 0.3"
+		echo "grains $3"
+		echo "contacts 0"
+		echo "end"
+		k=1
+		while [ $k -le "$3" ]; do
+			echo "$k $((k * 25))e-5 5e-4 7e-5 1e-4 7e10 0.2 2420"
+			k=$((k + 1))
+		done
+	} >"$1"
+}
+mkpack four.pack 1e-3 4
+mkpack thin.pack 1.5e-4 5
+expect_ok "the hand-made packs are valid packs" packinfo four.pack
+expect_fail "fewer than 5 grains" 1 '^densify: .*4 grains: densify needs at least 5' four.pack
+expect_fail "box thinner than a grain" 1 '^densify: .*thinner than grain' thin.pack
+expect_fail "--stress 0" 2 '^densify: --stress' --stress 0 loose.pack
+expect_fail "--stress -1" 2 '^densify: --stress' --stress -1 loose.pack
+expect_fail "--stress 1e12 (beyond E/100)" 2 '^densify: --stress .*small-strain' --stress 1e12 loose.pack
+expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --stress 5e3 loose.pack
+expect_fail "--tol 2" 2 '^densify: --tol' --tol 2 loose.pack
+expect_fail "--method newton" 2 "^densify: --method: 'newton'" --method newton loose.pack
+expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
+expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
+expect_fail "unknown option" 2 '^densify: unknown option' --bogus loose.pack
+expect_fail "missing input file" 1 '^densify: ' no-such.pack
+expect_fail "iteration limit" 1 '^densify: .*iteration limit.*--allow-limit' --max-iter 3 --log lim.tsv loose.pack
+if [ ! -e lim.tsv ]; then pass "iteration limit: no log file"; else fail "iteration limit: no log file" "lim.tsv left"; fi
+
+# --allow-limit keeps the pack, exits 0 and warns in one line
+densify --max-iter 3 --allow-limit -o lim.pack loose.pack >lim.out 2>lim.err
+rc=$?
+if [ "$rc" -eq 0 ] && [ -s lim.pack ] && [ ! -s lim.out ] && [ "$(wc -l <lim.err)" -eq 1 ] && grep -q 'iteration limit' lim.err; then
+	pass "--allow-limit: exit 0, the pack, one warning"
+else
+	fail "--allow-limit: exit 0, the pack, one warning" "exit $rc, stderr: $(head -c 300 lim.err)"
+fi
