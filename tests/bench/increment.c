@@ -31,7 +31,7 @@ now(void)
 int
 main(int argc, char **argv)
 {
-	static const enum qs_method methods[] = {QS_CG, QS_FIRE};
+	static const enum qs_method methods[] = {QS_CG, QS_FIRE, QS_LBFGS};
 	struct pack p;
 	double box0[6], *x, strain = 1e-4;
 	size_t m;
