@@ -35,6 +35,8 @@ TOOLS     = $(TOOL_SRC:tools/%.c=%)
 TOOL_BIN  = $(TOOLS:%=$(B)/bin/%)
 UNIT_SRC  = $(wildcard tests/unit/*.c)
 UNIT_BIN  = $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
+BENCH_SRC = $(wildcard tests/bench/*.c)
+BENCH_BIN = $(BENCH_SRC:tests/bench/%.c=$(B)/bench/%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
@@ -81,6 +83,10 @@ $(B)/tests/%: tests/unit/%.c tests/unit/unit.h $(B)/libqusgm.a lib/*.h
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -Itests/unit -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
+$(B)/bench/%: tests/bench/%.c $(B)/libqusgm.a lib/*.h
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+
 # make check: the normal build and the sanitizer build, unit tests and tool tests under both,
 # then one closing line "N passed, N failed".
 check: deps
@@ -96,6 +102,7 @@ run: all
 	@sh share/run-default.sh build/bin
 
 bench: all
+	@$(MAKE) --no-print-directory B=build $(BENCH_SRC:tests/bench/%.c=build/bench/%)
 	@sh tests/bench.sh build/bin
 
 validate: all
