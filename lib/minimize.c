@@ -11,7 +11,7 @@
 void
 qs_min_params_default(struct qs_min_params *mp)
 {
-	mp->method = QS_CG;
+	mp->method = QS_LBFGS;
 	mp->max_iter = 200000;
 	mp->tol = 1e-4;
 	mp->tol_floor = QS_RESIDUAL_FLOOR;

@@ -13,6 +13,9 @@
  *  - lbfgs: limited-memory BFGS (m stored steps) with the same capped derivative line
  *    search, trying the quasi-Newton step first and accepting |dPi/dalpha| <= 0.9 |dPi/dalpha(0)|.
  *
+ * The default is lbfgs: make bench found it the fastest to the same residual (one 1e-4
+ * increment of a 2740-grain pack: 3927 evaluations, fire 11813, cg 37866).
+ *
  * Stopping: the residual (largest per-grain |F_i| / largest contact force on i, that force
  * floored at tol_floor times the mean contact force, see qs_residual) at or below tol; or the papers' criteria when set (> 0): Pi^(k-1) - Pi^k < eps1 |Pi^(k-1)|, or
  * |grad Pi|^2 < eps2 N (E_mean R_mean^2)^2; or max_iter iterations, reported as status 1. */

@@ -1,7 +1,7 @@
 /* minopts: validation of the shared minimiser options (see minopts.h). */
 #include "minopts.h"
 
-const char *qs_method_arg = "cg";
+const char *qs_method_arg = "lbfgs";
 
 void
 qs_min_opts_check(struct qs_min_params *mp)
