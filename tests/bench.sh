@@ -7,7 +7,7 @@
 # Results go to bench/results.md (readable tables) with the machine and the commit.
 #
 # Knobs: BENCH_SIZES (e.g. "2740 10000" for a quicker run); BENCH_METHODS (densify's
-# minimisers, default "cg fire"); BENCH_REGEN=1 remakes the loose packs.  The packs are kept
+# minimisers, default "cg fire lbfgs"); BENCH_REGEN=1 remakes the loose packs.  The packs are kept
 # in bench/ (loose-N.pack.gz, dense-N-METHOD.pack.gz, the densify logs) so that a later run
 # reuses the loose ones: packgen takes about 40 minutes at 1e5 grains.
 set -u
@@ -20,7 +20,7 @@ mkdir -p "$out"
 res="$out/results.md"
 tmp="$out/run.tmp"
 sizes=${BENCH_SIZES:-"2740 10000 100000"}
-methods=${BENCH_METHODS:-"cg fire"}
+methods=${BENCH_METHODS:-"cg fire lbfgs"}
 export LC_ALL=C
 
 # info FILE KEY [FORMAT]
