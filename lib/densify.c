@@ -50,7 +50,7 @@ gap_insert(struct gaps *gp, unsigned want, double v)
  * max_growth of its radius.  Returns the number of grains grown. */
 static size_t
 grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const struct densify_params *dp,
-    struct gaps *gp)
+    double scale, struct gaps *gp)
 {
 	struct pack *p = s->p;
 	size_t i, k, grown = 0;
@@ -79,13 +79,14 @@ grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const str
 			}
 	}
 	for (i = 0; i < s->n; i++) {
-		double dr, cap = dp->max_growth * p->r[i];
+		double dr, cap = scale * dp->max_growth * p->r[i];
 		if (cnt[i] >= dp->min_coord)
 			continue;
-		/* touch the want-th gap with a small overlap (1e-6 R) so that it counts */
+		/* touch the want-th gap with a small overlap (1e-6 R) so that it counts; grow at
+		 * least 1e-3 R (scaled), or a grain caged by neighbours that push back after each
+		 * minimisation creeps for many rounds */
 		dr = gp[i].k == want ? gp[i].g[want - 1] + 1e-6 * p->r[i] : cap;
-		if (dr <= 0)
-			continue;
+		dr = fmax(dr, scale * 1e-3 * p->r[i]);
 		p->r[i] += fmin(dr, cap);
 		grown++;
 	}
@@ -143,7 +144,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	struct gaps *gp = NULL;
 	unsigned *cnt = NULL;
 	double *x = NULL, r0sum = 0, zero[3] = {0, 0, 0};
-	double e_prev = NAN, y_prev = NAN, eps_now = 0;
+	double e_prev = NAN, y_prev = NAN, eps_now = 0, scale = 1, boxsave[6], *xsave = NULL, *rsave = NULL;
 	size_t i;
 	long round;
 	int status = -1, limit_hit = 0, have_ref = p->has_refbox;
@@ -154,7 +155,9 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	x = malloc(3 * p->n * sizeof *x);
 	cnt = malloc(p->n * sizeof *cnt);
 	gp = malloc(p->n * sizeof *gp);
-	if (!x || !cnt || !gp) {
+	xsave = malloc(3 * p->n * sizeof *xsave);
+	rsave = malloc(p->n * sizeof *rsave);
+	if (!x || !cnt || !gp || !xsave || !rsave) {
 		msg_seterr("out of memory");
 		goto out;
 	}
@@ -201,17 +204,35 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 			    dp->max_rounds, st.under4, dp->min_coord, st.sigma_c);
 			goto out;
 		}
-		grown = grow_grains(&s, x, cnt, dp, gp);
-		de = st.sigma_c < dp->onset ? dp->strain_step : 0;
+		/* keep the state: a round that jumps from below the onset to far above it (the
+		 * pack jammed within one squeeze) is undone and redone with half the squeeze and
+		 * half the growth, so that the reference box lies near the onset */
+		memcpy(xsave, x, 3 * p->n * sizeof *x);
+		memcpy(rsave, p->r, p->n * sizeof *rsave);
+		memcpy(boxsave, p->box, sizeof boxsave);
+		grown = grow_grains(&s, x, cnt, dp, scale, gp);
+		de = st.sigma_c < dp->onset ? scale * dp->strain_step : 0;
 		if (grown == 0 && de == 0) {
 			/* under-coordinated grains that cannot grow (already touching): rattlers
 			 * of a stressed pack; squeeze the box a little to seat them */
-			de = 0.1 * dp->strain_step;
+			de = 0.1 * scale * dp->strain_step;
 		}
 		{
-			double d3[3] = {de, de, de};
+			double d3[3] = {de, de, de}, sig[3];
 			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &dp->min, &rep) < 0)
 				goto out;
+			qs_wall_stress(&s, sig);
+			if (st.sigma_c < dp->onset && (sig[0] + sig[1] + sig[2]) / 3 > 10 * dp->onset && scale > 1.0 / 1024) {
+				memcpy(x, xsave, 3 * p->n * sizeof *x);
+				memcpy(p->r, rsave, p->n * sizeof *rsave);
+				memcpy(p->box, boxsave, sizeof boxsave);
+				qs_radii_changed(&s);
+				scale *= 0.5;
+				if (qs_minimize(&s, x, &dp->min, &rep) < 0)
+					goto out;
+				RECORD("retry", round);
+				continue;
+			}
 		}
 		RECORD("grow", round);
 	}
@@ -234,15 +255,20 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 		eps_now = (eps[0] + eps[1] + eps[2]) / 3;
 		if (!isnan(e_prev) && eps_now != e_prev && (y - y_prev) / (eps_now - e_prev) > 0)
 			de = (yt - y) / ((y - y_prev) / (eps_now - e_prev));
+		else if (eps_now > 1e-9 && y > pow(dp->onset, 2.0 / 3.0))
+			/* first step: the line through the onset at the reference box */
+			de = (yt - y) / ((y - pow(dp->onset, 2.0 / 3.0)) / eps_now);
 		else
-			de = st.sigma_c < dp->stress ? dp->strain_step : -dp->strain_step;
+			de = (st.sigma_c < dp->stress ? 0.1 : -0.1) * dp->strain_step;
 		de = fmax(-dp->strain_step, fmin(dp->strain_step, de));
+		if (eps_now > 0 && de < -0.5 * eps_now)
+			de = -0.5 * eps_now;	/* never unload the pack back towards jamming */
 		e_prev = eps_now;
 		y_prev = y;
 		d3[0] = d3[1] = d3[2] = de;
 		/* compaction can leave a grain with fewer than min_coord contacts: grow it too */
 		if (st.under4 > 0)
-			grow_grains(&s, x, cnt, dp, gp);
+			grow_grains(&s, x, cnt, dp, 1.0, gp);
 		if (fabs(st.sigma_c / dp->stress - 1) <= dp->stress_tol)
 			d3[0] = d3[1] = d3[2] = 0;
 		if (load_increment(&s, x, d3, dp->nsub, dp->k_inc, &dp->min, &rep) < 0)
@@ -260,7 +286,7 @@ out:
 	if (last)
 		*last = st;
 	qs_free(&s);
-	free(x), free(cnt), free(gp);
+	free(x), free(cnt), free(gp), free(xsave), free(rsave);
 	return status;
 }
 

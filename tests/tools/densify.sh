@@ -47,14 +47,19 @@ if [ "$rc" -eq 0 ]; then pass "densify --stress 4e6 (stdout)"; else fail "densif
 check_dense "4 MPa" d4.pack 4e6
 # Hertz overlaps grow as (sigma/E)^(2/3): about 1 % of R at 4 MPa for glass (70 GPa)
 expect_num "4 MPa: largest overlap / R small" "$(info_value d4.pack.txt overlap_max)" "<" 0.05
-expect_num "4 MPa denser than 1 MPa" "$(info_value d4.pack.txt porosity)" "<" "$(info_value d1.pack.txt porosity)"
+# Separate runs from the loose pack may grow grains differently, so compare the same pack
+# compressed further: compaction must lower the porosity.
+densify --stress 4e6 -o d14.pack d1.pack 2>/dev/null
+packinfo d14.pack >d14.txt 2>/dev/null
+expect_num "1 MPa pack compressed to 4 MPa is denser" "$(info_value d14.txt porosity)" "<" "$(info_value d1.pack.txt porosity)"
 
-# The log: the documented header, then one row per stage: relax 0, grow 1..k, compact 1..m,
+# The log: the documented header, then one row per stage: relax 0, grow (or retry) 1..k, compact 1..m,
 # ten columns each; the last row is the pack written.
 hdr=$(printf '# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean')
 for lg in d1.tsv d4.tsv; do
 	if [ "$(head -n 1 $lg)" = "$hdr" ]; then pass "$lg: header"; else fail "$lg: header" "$(head -n 1 $lg)"; fi
 	awk -F '\t' 'NR == 1 { next }
+	     $1 == "retry" { $1 = "grow" }	# an undone growth round counts as one
 	     { n++; if (NF != 10) bad = "row " NR " has " NF " columns" }
 	     n == 1 && !($1 == "relax" && $2 == 0) { bad = "first row is not relax 0" }
 	     n > 1 && $1 == "grow" && !(prev == "relax" || prev == "grow") { bad = "grow after " prev }
