@@ -79,7 +79,7 @@ $(B)/bin/%: tools/%.c $(B)/libqusgm.a lib/*.h
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
-$(B)/tests/%: tests/unit/%.c tests/unit/unit.h $(B)/libqusgm.a lib/*.h
+$(B)/tests/%: tests/unit/%.c tests/unit/*.h $(B)/libqusgm.a lib/*.h
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -Itests/unit -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 

@@ -145,6 +145,24 @@ line_search(struct work *w, const double *x, double guess, double amax, double s
 	return c.failed ? -1 : c.last_alpha;
 }
 
+/* The line search ends on the accepted point: move x there and take its energy, gradient
+ * and forces, which the search computed.  Returns the previous energy. */
+static double
+accept_trial(struct work *w, double *x)
+{
+	double eprev = w->e, *t;
+
+	memcpy(x, w->xt, w->n3 * sizeof *x);
+	w->e = w->et;
+	t = w->g;
+	w->g = w->gt;
+	w->gt = t;
+	t = w->fmax;
+	w->fmax = w->ft;
+	w->ft = t;
+	return eprev;
+}
+
 static int
 converged(struct work *w, const struct qs_min_params *mp, double eprev, struct qs_min_report *rep, double scale2)
 {
@@ -199,18 +217,7 @@ run_cg(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_
 			return -1;
 		}
 		step = alpha;
-		/* the line search ends on the accepted point: take its gradient and forces */
-		memcpy(x, w->xt, w->n3 * sizeof *x);
-		eprev = w->e;
-		w->e = w->et;
-		{
-			double *t = w->g;
-			w->g = w->gt;
-			w->gt = t;
-			t = w->fmax;
-			w->fmax = w->ft;
-			w->ft = t;
-		}
+		eprev = accept_trial(w, x);
 		gg_new = dot(w->g, w->g, w->n3);
 		beta = (it + 1) % mp->k_sd == 0 ? 0 : gg_new / gg;
 		for (k = 0; k < w->n3; k++)
@@ -416,17 +423,7 @@ run_lbfgs(struct work *w, double *x, const struct qs_min_params *mp, struct qs_m
 			if (count < m)
 				count++;
 		}
-		memcpy(x, w->xt, n3 * sizeof *x);
-		eprev = w->e;
-		w->e = w->et;
-		{
-			double *t = w->g;
-			w->g = w->gt;
-			w->gt = t;
-			t = w->fmax;
-			w->fmax = w->ft;
-			w->ft = t;
-		}
+		eprev = accept_trial(w, x);
 	}
 out:
 	free(S), free(Y), free(rho), free(al);
