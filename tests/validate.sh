@@ -126,7 +126,7 @@ t1=$(date +%s)
 	    "loose porosity $(awk '$1 == "porosity" { printf "%.2f %%", 100 * $2 }' loose.info)," \
 	    "coordination $(awk '$1 == "coordination" { printf "%.3f", $2 }' loose.info); packgen took $(cat gen.time) s"
 	echo "- stages: \`densify --stress 1e6\` on the loose pack, then \`densify --stress S\` on the previous stage's pack"
-	echo "  (default options: cg, --tol 1e-4, --stress-tol 0.01); total $((t1 - t0)) s"
+	echo "  (default options: lbfgs, --tol 1e-4, --stress-tol 0.01); total $((t1 - t0)) s"
 	echo "- paper: G5036, Holtzman, Silin & Patzek (2009), frictionless: porosity 37.4 -> 35.1 %,"
 	echo "  coordination 6.24 -> 7.15 over sigma_c 1 -> 35 MPa (physics.md §10)"
 	echo
