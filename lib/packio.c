@@ -82,6 +82,18 @@ rd_error(struct pack_reader *rd, const char *fmt, ...)
 	return -1;
 }
 
+/* zlib's message without its "<fd:N>: " prefix, which would make the text depend on
+ * descriptor numbers. */
+static const char *
+gz_message(gzFile gz, int *err)
+{
+	const char *m = gzerror(gz, err), *c;
+
+	if (strncmp(m, "<fd:", 4) == 0 && (c = strstr(m, ">: ")))
+		return c + 3;
+	return m;
+}
+
 static int
 fill_chunk(struct pack_reader *rd)
 {
@@ -92,14 +104,14 @@ fill_chunk(struct pack_reader *rd)
 		return 0;
 	n = gzread(rd->gz, rd->chunk, 1 << 16);
 	if (n < 0) {
-		msg = gzerror(rd->gz, &err);
+		msg = gz_message(rd->gz, &err);
 		rd->line++;
 		return rd_error(rd, "corrupt or truncated input (%s)", err == Z_BUF_ERROR ?
 		    "unexpected end of compressed data" : msg);
 	}
 	if (n == 0) {
 		/* zlib reports a truncated gzip stream as end of file plus an error state. */
-		msg = gzerror(rd->gz, &err);
+		msg = gz_message(rd->gz, &err);
 		if (err != Z_OK && err != Z_STREAM_END) {
 			rd->line++;
 			return rd_error(rd, "corrupt or truncated input (%s)", msg);
