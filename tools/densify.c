@@ -48,8 +48,10 @@ on_stage(const struct densify_stage *st, void *vctx)
 {
 	struct log_ctx *c = vctx;
 
-	if (c->fp)
+	if (c->fp) {
 		densify_log_row(c->fp, st);
+		fflush(c->fp);	/* the temporary log can be followed while it runs */
+	}
 	cli_progress("%s %ld  sigma_c %.4g Pa  porosity %.4f  coordination %.3f  under4 %zu  growth %.2e  iter %ld  residual %.2e",
 	    st->stage, st->round, st->sigma_c, st->porosity, st->coordination, st->under4, st->growth,
 	    st->iterations, st->res_max);
