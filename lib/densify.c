@@ -181,7 +181,8 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 		st.res_max = rep.res_max;                                        \
 		st.res_mean = rep.res_mean;                                      \
 		st.min_status = rep.status;                                      \
-		limit_hit |= rep.status == 1;                                    \
+		/* below the onset the pack is not jammed: nothing to balance */ \
+		limit_hit |= rep.status == 1 && st.sigma_c >= dp->onset;         \
 		if (fn)                                                          \
 			fn(&st, ctx);                                            \
 	} while (0)
