@@ -182,6 +182,23 @@ converged(struct work *w, const struct qs_min_params *mp, double eprev, struct q
 	return 0;
 }
 
+/* The test every method makes at the top of an iteration: converged, or out of iterations
+ * (status 1). */
+static int
+should_stop(struct work *w, const struct qs_min_params *mp, long it, double eprev, struct qs_min_report *rep,
+    double scale2)
+{
+	rep->iter = it;
+	if (converged(w, mp, eprev, rep, scale2))
+		return 1;
+	if (it >= mp->max_iter) {
+		rep->stopped_by = "max_iter";
+		rep->status = 1;
+		return 1;
+	}
+	return 0;
+}
+
 static int
 run_cg(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_report *rep, double scale2)
 {
@@ -200,14 +217,8 @@ run_cg(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_
 	for (it = 0;; it++) {
 		double amax, alpha, gg_new, beta;
 
-		rep->iter = it;
-		if (converged(w, mp, eprev, rep, scale2))
+		if (should_stop(w, mp, it, eprev, rep, scale2))
 			break;
-		if (it >= mp->max_iter) {
-			rep->stopped_by = "max_iter";
-			rep->status = 1;
-			break;
-		}
 		if (gg == 0)
 			break;
 		amax = alpha_cap(w, w->d, mp->cap);
@@ -293,14 +304,8 @@ run_fire(struct work *w, double *x, const struct qs_min_params *mp, struct qs_mi
 	for (it = 0;; it++) {
 		double P = 0, vn, fn;
 
-		rep->iter = it;
-		if (converged(w, mp, eprev, rep, scale2))
+		if (should_stop(w, mp, it, eprev, rep, scale2))
 			break;
-		if (it >= mp->max_iter) {
-			rep->stopped_by = "max_iter";
-			rep->status = 1;
-			break;
-		}
 		P = -dot(w->g, w->v, w->n3);
 		if (P > 0) {
 			if (++npos > ndelay) {
@@ -365,14 +370,8 @@ run_lbfgs(struct work *w, double *x, const struct qs_min_params *mp, struct qs_m
 	for (it = 0;; it++) {
 		double amax, alpha, gamma = 1, sy, yy;
 
-		rep->iter = it;
-		if (converged(w, mp, eprev, rep, scale2))
+		if (should_stop(w, mp, it, eprev, rep, scale2))
 			break;
-		if (it >= mp->max_iter) {
-			rep->stopped_by = "max_iter";
-			rep->status = 1;
-			break;
-		}
 		/* d = -H g by the two-loop recursion */
 		for (k = 0; k < n3; k++)
 			w->d[k] = -w->g[k];
