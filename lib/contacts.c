@@ -203,3 +203,42 @@ contacts_find(const struct pack *p, struct geo_contacts *gc)
 		}
 	return match_history(p, gc);
 }
+
+int
+contacts_store(struct pack *p, int keep_history)
+{
+	struct geo_contacts gc;
+	struct pack_contact *old = NULL;
+	size_t k, nold = 0;
+
+	contacts_init(&gc);
+	if (contacts_find(p, &gc))
+		goto fail;
+	if (keep_history && p->nc) {
+		nold = p->nc;
+		old = malloc(nold * sizeof *old);
+		if (!old) {
+			msg_seterr("out of memory");
+			goto fail;
+		}
+		memcpy(old, p->c, nold * sizeof *old);
+	}
+	p->nc = 0;
+	for (k = 0; k < gc.n; k++) {
+		const struct geo_contact *g = &gc.c[k];
+		struct pack_contact c = {g->i, g->j, g->P, {0, 0, 0}, 0};
+		if (old && g->hist >= 0) {
+			memcpy(c.Q0, old[g->hist].Q0, sizeof c.Q0);
+			c.M0 = old[g->hist].M0;
+		}
+		if (pack_add_contact(p, &c))
+			goto fail;
+	}
+	free(old);
+	contacts_free(&gc);
+	return 0;
+fail:
+	free(old);
+	contacts_free(&gc);
+	return -1;
+}

@@ -29,6 +29,10 @@ void contacts_init(struct geo_contacts *gc);
 void contacts_free(struct geo_contacts *gc);
 /* All contacts with h > 0, grain-grain first (i < j), then grain-wall; 0 or -1. */
 int contacts_find(const struct pack *p, struct geo_contacts *gc);
+/* Replace p->c by a line per touching contact with P0 from Hertz at the current positions;
+ * Q0 and M0 are carried over from the line of the same pair when keep_history is set (lines
+ * of pairs that no longer touch are dropped), zero otherwise.  0 or -1. */
+int contacts_store(struct pack *p, int keep_history);
 /* The E* and R* of contact c. */
 void contacts_moduli(const struct pack *p, const struct geo_contact *c, double *Es, double *Rs);
 /* Inward normal of wall w and the coordinate of its plane. */

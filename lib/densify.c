@@ -113,28 +113,6 @@ stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densi
 	st->coordination = sum / s->n;
 }
 
-/* Contact lines for every touching pair: P0 from Hertz, no tangential history yet. */
-static int
-write_contacts(struct pack *p)
-{
-	struct geo_contacts gc;
-	size_t k;
-
-	contacts_init(&gc);
-	p->nc = 0;
-	if (contacts_find(p, &gc))
-		return -1;
-	for (k = 0; k < gc.n; k++) {
-		struct pack_contact c = {gc.c[k].i, gc.c[k].j, gc.c[k].P, {0, 0, 0}, 0};
-		if (pack_add_contact(p, &c)) {
-			contacts_free(&gc);
-			return -1;
-		}
-	}
-	contacts_free(&gc);
-	return 0;
-}
-
 int
 densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx, struct densify_stage *last)
 {
@@ -278,7 +256,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	}
 #undef RECORD
 	memcpy(p->x, x, 3 * p->n * sizeof *x);
-	if (write_contacts(p))
+	if (contacts_store(p, 0))
 		goto out;
 	status = limit_hit ? 1 : 0;
 	if (limit_hit)

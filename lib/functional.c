@@ -1,5 +1,6 @@
 /* functional: Hertz energy and gradient over a pack (see functional.h). */
 #include "functional.h"
+#include "friction.h"
 #include "msg.h"
 
 #include <math.h>
@@ -14,6 +15,7 @@ qs_init(struct qs_system *s, struct pack *p, double skin)
 	memset(s, 0, sizeof *s);
 	s->p = p;
 	s->n = p->n;
+	s->dim = 3 * p->n;
 	s->comp = malloc((p->n ? p->n : 1) * sizeof *s->comp);
 	if (!s->comp) {
 		msg_seterr("out of memory");
@@ -53,7 +55,7 @@ qs_energy(struct qs_system *s, const double *x, double *g, double *fmax)
 			return NAN;
 	s->evals++;
 	if (g)
-		memset(g, 0, 3 * n * sizeof *g);
+		memset(g, 0, s->dim * sizeof *g);
 	if (fmax)
 		memset(fmax, 0, n * sizeof *fmax);
 	memset(s->wall_force, 0, sizeof s->wall_force);
@@ -114,6 +116,8 @@ qs_energy(struct qs_system *s, const double *x, double *g, double *fmax)
 	}
 	s->ncontacts = nc;
 	s->sum_force = sumf;
+	if (s->fr)
+		E += fr_energy(s->fr, s, x, g);
 	return E;
 }
 
@@ -132,6 +136,10 @@ qs_residual(const struct qs_system *s, const double *g, const double *fbig, doub
 		if (!(fbig[i] > 0))
 			continue;
 		f = sqrt(g[3 * i] * g[3 * i] + g[3 * i + 1] * g[3 * i + 1] + g[3 * i + 2] * g[3 * i + 2]);
+		if (s->dim > 3 * s->n) {
+			const double *m = g + 3 * s->n + 3 * i;
+			f = fmax(f, sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]));
+		}
 		if (f / fmax(fbig[i], fl) > rmax)
 			rmax = f / fmax(fbig[i], fl);
 		sum += f;

@@ -16,9 +16,13 @@
  * normal contact force (see qs_residual); packinfo and the minimisers share it. */
 #define QS_RESIDUAL_FLOOR 1e-3
 
+struct qs_friction;	/* friction.h */
+
 struct qs_system {
 	struct pack *p;		/* radii, moduli; p->box is the current box */
 	size_t n;
+	size_t dim;		/* unknowns: 3n centres, or 6n with friction (centres, R_i Omega_i) */
+	struct qs_friction *fr;	/* the increment's frictional contacts, or NULL (frictionless) */
 	double *comp;		/* (1 - nu^2) / E per grain (1/Pa) */
 	double wall_comp;
 	double rmin, rmax, skin;
@@ -35,12 +39,12 @@ struct qs_system {
 int qs_init(struct qs_system *s, struct pack *p, double skin);
 void qs_free(struct qs_system *s);
 
-/* Pi at x; gradient into g (3n) unless NULL; per-grain largest contact force into fmax (n)
+/* Pi at x (s->dim unknowns); gradient into g (s->dim) unless NULL; per-grain largest contact force into fmax (n)
  * unless NULL.  Returns NAN when the neighbour list cannot be built (slot set). */
 double qs_energy(struct qs_system *s, const double *x, double *g, double *fmax);
 
 /* Residual of a gradient: the largest |F_i| / (largest contact force on i) over grains with
- * contacts, and the mean unbalanced-force ratio mean|F_i| / mean contact force.  A grain's
+ * contacts (with friction, the larger of |F_i| and |M_i| / R_i), and the mean unbalanced-force ratio mean|F_i| / mean contact force.  A grain's
  * largest contact force is floored at floor_rel times the mean contact force and at
  * s->force_floor (N): a grain that carries almost nothing (a rattler losing its last
  * contact) could otherwise only satisfy the ratio when that contact has fully opened, which

@@ -1,5 +1,6 @@
 /* minimize: the papers' modified CG and FIRE (see minimize.h). */
 #include "minimize.h"
+#include "friction.h"
 #include "msg.h"
 
 #include <gsl/gsl_errno.h>
@@ -63,7 +64,36 @@ dot(const double *a, const double *b, size_t n)
 	return s;
 }
 
-/* Largest alpha such that no grain moves more than cap * its radius along d. */
+/* Grain i's part of a vector of unknowns: its translation, or with friction the larger of
+ * its translation and its scaled rotation R_i Omega_i (both lengths). */
+static double
+grain_len(const struct work *w, const double *d, size_t i)
+{
+	const double *t = d + 3 * i;
+	double l = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+
+	if (w->n3 > 3 * w->s->n) {
+		const double *o = d + 3 * w->s->n + 3 * i;
+		l = fmax(l, sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
+	}
+	return l;
+}
+
+/* x += f v on grain i's unknowns (translation and, with friction, rotation). */
+static void
+grain_axpy(const struct work *w, double *x, const double *v, size_t i, double f)
+{
+	size_t k, n3 = 3 * w->s->n;
+
+	for (k = 3 * i; k < 3 * i + 3; k++)
+		x[k] += f * v[k];
+	if (w->n3 > n3)
+		for (k = n3 + 3 * i; k < n3 + 3 * i + 3; k++)
+			x[k] += f * v[k];
+}
+
+/* Largest alpha such that no grain moves (or turns its surface) more than cap * its radius
+ * along d. */
 static double
 alpha_cap(const struct work *w, const double *d, double cap)
 {
@@ -71,7 +101,7 @@ alpha_cap(const struct work *w, const double *d, double cap)
 	size_t i;
 
 	for (i = 0; i < w->s->n; i++) {
-		double l = sqrt(d[3 * i] * d[3 * i] + d[3 * i + 1] * d[3 * i + 1] + d[3 * i + 2] * d[3 * i + 2]);
+		double l = grain_len(w, d, i);
 		if (l > 0 && cap * w->s->p->r[i] / l < amax)
 			amax = cap * w->s->p->r[i] / l;
 	}
@@ -277,6 +307,8 @@ stiffness_bound(struct qs_system *s, const double *x)
 				k[i] += 2 / (s->comp[i] + s->wall_comp) * sqrt(p->r[i] * h);
 		}
 	}
+	if (s->fr)
+		fr_add_stiffness(s->fr, s, k);
 	for (i = 0; i < s->n; i++)
 		kmax = fmax(kmax, k[i]);
 	free(k);
@@ -318,13 +350,11 @@ run_fire(struct work *w, double *x, const struct qs_min_params *mp, struct qs_mi
 			alpha = alpha0;
 			/* half a step back, under the same per-grain cap as a forward step */
 			for (i = 0; i < w->s->n; i++) {
-				double *v = w->v + 3 * i, l = 0.5 * dt * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]),
-				       lim = mp->cap * w->s->p->r[i], sc = l > lim ? lim / l : 1;
-				for (k = 0; k < 3; k++) {
-					x[3 * i + k] -= sc * 0.5 * dt * v[k];
-					v[k] = 0;
-				}
+				double l = 0.5 * dt * grain_len(w, w->v, i), lim = mp->cap * w->s->p->r[i],
+				       sc = l > lim ? lim / l : 1;
+				grain_axpy(w, x, w->v, i, -sc * 0.5 * dt);
 			}
+			memset(w->v, 0, w->n3 * sizeof *w->v);
 		}
 		/* semi-implicit Euler with FIRE's mixing of the velocity towards the force */
 		for (k = 0; k < w->n3; k++)
@@ -335,10 +365,8 @@ run_fire(struct work *w, double *x, const struct qs_min_params *mp, struct qs_mi
 			for (k = 0; k < w->n3; k++)
 				w->v[k] = (1 - alpha) * w->v[k] - alpha * vn * w->g[k] / fn;
 		for (i = 0; i < w->s->n; i++) {
-			double *v = w->v + 3 * i, l = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) * dt,
-			       lim = mp->cap * w->s->p->r[i], sc = l > lim ? lim / l : 1;
-			for (k = 0; k < 3; k++)
-				x[3 * i + k] += sc * dt * v[k];
+			double l = grain_len(w, w->v, i) * dt, lim = mp->cap * w->s->p->r[i], sc = l > lim ? lim / l : 1;
+			grain_axpy(w, x, w->v, i, sc * dt);
 		}
 		eprev = w->e;
 		w->e = qs_energy(w->s, x, w->g, w->fmax);
@@ -443,7 +471,7 @@ qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, stru
 	memset(rep, 0, sizeof *rep);
 	memset(&w, 0, sizeof w);
 	w.s = s;
-	w.n3 = 3 * s->n;
+	w.n3 = s->dim;
 	w.g = malloc(w.n3 * sizeof *w.g);
 	w.fmax = malloc(s->n * sizeof *w.fmax);
 	w.d = malloc(w.n3 * sizeof *w.d);

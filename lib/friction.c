@@ -1,0 +1,303 @@
+/* friction: Mindlin-Deresiewicz tangential force and torsion over a frozen increment
+ * (see friction.h). */
+#include "friction.h"
+#include "contacts.h"
+#include "hertz.h"
+#include "msg.h"
+#include "vec3.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void
+fr_init(struct qs_friction *f, enum fr_rule rule)
+{
+	memset(f, 0, sizeof *f);
+	f->rule = rule;
+}
+
+void
+fr_free(struct qs_friction *f)
+{
+	free(f->c);
+	free(f->x0);
+	memset(f, 0, sizeof *f);
+}
+
+int
+fr_rule_parse(const char *name, enum fr_rule *rule)
+{
+	if (strcmp(name, "return-map") == 0)
+		*rule = FR_RETURN_MAP;
+	else if (strcmp(name, "paper") == 0)
+		*rule = FR_PAPER;
+	else
+		return -1;
+	return 0;
+}
+
+const char *
+fr_rule_name(enum fr_rule rule)
+{
+	return rule == FR_PAPER ? "paper" : "return-map";
+}
+
+static double
+shear_modulus(double E, double nu)
+{
+	return E / (2 * (1 + nu));
+}
+
+/* The frozen quantities of one contact at the reference configuration (physics.md §3-5). */
+static void
+setup_contact(const struct pack *p, const struct geo_contact *g, struct fr_contact *c, struct qs_friction *f)
+{
+	size_t i = g->i;
+	double Es, Rs, a, Gi = shear_modulus(p->E[i], p->nu[i]), Gj, nui = p->nu[i], nuj, mu, Ri = p->r[i];
+	double Q0[3] = {0, 0, 0}, M0 = 0, tq[3], tn, qn;
+	int wall = PACK_IS_WALL(g->j), k;
+
+	memset(c, 0, sizeof *c);
+	c->i = i;
+	c->j = g->j;
+	memcpy(c->n, g->n, sizeof c->n);
+	contacts_moduli(p, g, &Es, &Rs);
+	a = sqrt(Rs * g->h);
+	if (wall) {
+		Gj = shear_modulus(p->wall_E, p->wall_nu);
+		nuj = p->wall_nu;
+		mu = p->wall_mu;
+		for (k = 0; k < 3; k++)
+			c->li[k] = -g->n[k] * (Ri - g->h);
+	} else {
+		double Rj = p->r[g->j], d = g->d;
+		double A2 = (d - Ri + Rj) * (d + Ri - Rj) * (Ri + Rj - d) * (Ri + Rj + d) / (4 * d * d);
+		double li, lj;
+		Gj = shear_modulus(p->E[g->j], p->nu[g->j]);
+		nuj = p->nu[g->j];
+		mu = p->mu;
+		if (A2 < 0)
+			A2 = 0;
+		li = sqrt(fmax(Ri * Ri - A2, 0));
+		lj = sqrt(fmax(Rj * Rj - A2, 0));
+		for (k = 0; k < 3; k++) {
+			c->li[k] = -g->n[k] * li;
+			c->lj[k] = g->n[k] * lj;
+		}
+	}
+	c->k = 8 * a / ((2 - nui) / Gi + (2 - nuj) / Gj);
+	c->qmax = mu * g->P;
+	c->kt = 16.0 / 3.0 * a * a * a / (1 / Gi + 1 / Gj);
+	c->mmax = 3 * M_PI / 16 * a * mu * g->P;
+	if (g->hist >= 0) {
+		memcpy(Q0, p->c[g->hist].Q0, sizeof Q0);
+		M0 = p->c[g->hist].M0;
+	}
+	/* Q^p = |Q0| T Q0 / |T Q0|: the history force turned into the reference tangent plane */
+	tn = vec3_dot(Q0, c->n);
+	for (k = 0; k < 3; k++)
+		tq[k] = Q0[k] - tn * c->n[k];
+	qn = vec3_norm(tq);
+	if (qn > 0)
+		for (k = 0; k < 3; k++)
+			c->qp[k] = tq[k] * (vec3_norm(Q0) / qn);
+	qn = vec3_norm(c->qp);
+	if (qn > c->qmax || fabs(M0) > c->mmax) {
+		double ex = fmax(c->qmax > 0 ? qn / c->qmax - 1 : (qn > 0 ? INFINITY : 0),
+		    c->mmax > 0 ? fabs(M0) / c->mmax - 1 : (M0 != 0 ? INFINITY : 0));
+		if (ex > 1e-9) {
+			f->clamped++;
+			f->clamp_excess = fmax(f->clamp_excess, ex);
+		}
+		if (qn > c->qmax)
+			for (k = 0; k < 3; k++)
+				c->qp[k] *= c->qmax / qn;
+		if (fabs(M0) > c->mmax)
+			M0 = M0 > 0 ? c->mmax : -c->mmax;
+	}
+	c->mp = M0;
+	memcpy(c->Q, c->qp, sizeof c->Q);
+	c->M = c->mp;
+}
+
+int
+fr_begin(struct qs_friction *f, struct qs_system *s)
+{
+	struct pack *p = s->p;
+	struct geo_contacts gc;
+	size_t k, matched = 0;
+
+	contacts_init(&gc);
+	if (contacts_find(p, &gc))
+		return -1;
+	if (gc.n > f->cap) {
+		struct fr_contact *c = realloc(f->c, gc.n * sizeof *c);
+		if (!c) {
+			contacts_free(&gc);
+			msg_seterr("out of memory for contacts");
+			return -1;
+		}
+		f->c = c;
+		f->cap = gc.n;
+	}
+	if (f->ngrains != p->n || !f->x0) {
+		free(f->x0);
+		f->x0 = malloc((p->n ? 3 * p->n : 1) * sizeof *f->x0);
+		if (!f->x0) {
+			contacts_free(&gc);
+			msg_seterr("out of memory");
+			return -1;
+		}
+		f->ngrains = p->n;
+	}
+	memcpy(f->x0, p->x, 3 * p->n * sizeof *f->x0);
+	f->n = gc.n;
+	f->clamped = 0;
+	f->clamp_excess = 0;
+	for (k = 0; k < gc.n; k++) {
+		setup_contact(p, &gc.c[k], &f->c[k], f);
+		matched += gc.c[k].hist >= 0;
+	}
+	f->stale = p->nc - matched;
+	contacts_free(&gc);
+	s->fr = f;
+	s->dim = 6 * s->n;
+	return 0;
+}
+
+/* s^2 below the limit, its tangent 2 lim s - lim^2 above: the return map's potential,
+ * continuous with its derivative at s = lim. */
+static double
+clamp_potential(double s, double lim)
+{
+	return s <= lim ? s * s : 2 * lim * s - lim * lim;
+}
+
+double
+fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g)
+{
+	const double *r = s->p->r, *x0 = f->x0;
+	const double *w = x + 3 * s->n;
+	double E = 0;
+	size_t k;
+	int a;
+
+	for (k = 0; k < f->n; k++) {
+		struct fr_contact *c = &f->c[k];
+		size_t i = c->i, j = c->j >= 0 ? (size_t)c->j : 0;
+		int wall = PACK_IS_WALL(c->j);
+		double du[3], Oi[3], Oj[3] = {0, 0, 0}, us[3], t[3], dn, Ot, q[3], qn, m;
+
+		for (a = 0; a < 3; a++) {
+			du[a] = x[3 * i + a] - x0[3 * i + a];
+			Oi[a] = w[3 * i + a] / r[i];
+			if (!wall) {
+				du[a] -= x[3 * j + a] - x0[3 * j + a];
+				Oj[a] = w[3 * j + a] / r[j];
+			}
+		}
+		/* u_s = T du + Omega_i x R_ij - Omega_j x R_ji (walls translate along their normal) */
+		dn = vec3_dot(du, c->n);
+		vec3_cross(Oi, c->li, t);
+		for (a = 0; a < 3; a++)
+			us[a] = du[a] - dn * c->n[a] + t[a];
+		if (!wall) {
+			vec3_cross(Oj, c->lj, t);
+			for (a = 0; a < 3; a++)
+				us[a] -= t[a];
+		}
+		for (a = 0; a < 3; a++)
+			q[a] = c->qp[a] - c->k * us[a];
+		qn = vec3_norm(q);
+		if (qn <= c->qmax) {
+			memcpy(c->Q, q, sizeof q);
+			E += (qn * qn - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+		} else if (f->rule == FR_RETURN_MAP) {
+			for (a = 0; a < 3; a++)
+				c->Q[a] = c->qmax * q[a] / qn;
+			E += (clamp_potential(qn, c->qmax) - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+		} else {
+			/* F (6)-(7b): the stiffness reduced so that |Q^p - k u_s| = Q_max */
+			double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = vec3_dot(c->qp, c->qp);
+			double rad = cq * cq + c->qmax * c->qmax - pp, kr = rad > 0 ? (cq + sqrt(rad)) / un : 0;
+			for (a = 0; a < 3; a++)
+				c->Q[a] = c->qp[a] - kr * us[a];
+			qn = vec3_norm(c->Q);
+			if (qn > c->qmax)	/* only when |Q^p| > Q_max, which fr_begin rules out */
+				for (a = 0; a < 3; a++)
+					c->Q[a] *= c->qmax / qn;
+			E += -vec3_dot(c->qp, us) + 0.5 * kr * vec3_dot(us, us);
+		}
+		/* torsion: Omega_t = (Omega_i - Omega_j) . n, the same clamp in one dimension */
+		Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
+		m = c->mp - c->kt * Ot;
+		c->M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
+		E += (clamp_potential(fabs(m), c->mmax) - c->mp * c->mp) / (2 * c->kt);
+		if (g) {
+			double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i, mi[3];
+			/* dPi/du_i = -Q, dPi/dOmega_i = -(R_ij x Q) - M n, scaled by 1/R_i */
+			vec3_cross(c->li, c->Q, mi);
+			for (a = 0; a < 3; a++) {
+				gi[a] -= c->Q[a];
+				gwi[a] -= (mi[a] + c->M * c->n[a]) / r[i];
+			}
+			if (!wall) {
+				double *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j, mj[3];
+				vec3_cross(c->lj, c->Q, mj);
+				for (a = 0; a < 3; a++) {
+					gj[a] += c->Q[a];
+					gwj[a] += (mj[a] + c->M * c->n[a]) / r[j];
+				}
+			}
+		}
+	}
+	return E;
+}
+
+size_t
+fr_sliding(const struct qs_friction *f)
+{
+	size_t k, n = 0;
+
+	for (k = 0; k < f->n; k++)
+		if (f->c[k].qmax > 0 && vec3_norm(f->c[k].Q) >= f->c[k].qmax * (1 - 1e-9))
+			n++;
+	return n;
+}
+
+void
+fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double *k)
+{
+	size_t q;
+
+	for (q = 0; q < f->n; q++) {
+		const struct fr_contact *c = &f->c[q];
+		k[c->i] += c->k + c->kt / (s->p->r[c->i] * s->p->r[c->i]);
+		if (c->j >= 0)
+			k[c->j] += c->k + c->kt / (s->p->r[c->j] * s->p->r[c->j]);
+	}
+}
+
+int
+fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
+{
+	struct pack *p = s->p;
+	size_t k, n3 = 3 * s->n;
+
+	if (isnan(qs_energy(s, x, NULL, NULL)))
+		return -1;
+	/* the final forces become history lines; contacts_store keeps those still touching */
+	p->nc = 0;
+	for (k = 0; k < f->n; k++) {
+		const struct fr_contact *c = &f->c[k];
+		struct pack_contact pc = {c->i, c->j, 0, {c->Q[0], c->Q[1], c->Q[2]}, c->M};
+		if (pack_add_contact(p, &pc))
+			return -1;
+	}
+	memcpy(p->x, x, n3 * sizeof *x);
+	if (contacts_store(p, 1))
+		return -1;
+	memset(x + n3, 0, n3 * sizeof *x);
+	return 0;
+}
