@@ -25,7 +25,8 @@
  *
  * fr_commit ends an increment: the final forces become the history (P0, Q0, M0) of every
  * contact that still touches, new contacts get P0 with Q0 = M0 = 0, opened ones are dropped,
- * and the pack's positions are updated. */
+ * and the pack's positions are updated.  A contact whose normal force fell during the
+ * increment slips to its new limit there (|Q0| <= mu P0 in every committed line). */
 #ifndef QUSGM_FRICTION_H
 #define QUSGM_FRICTION_H
 
@@ -62,6 +63,12 @@ void fr_free(struct qs_friction *f);
 /* Parse "return-map" / "paper"; 0 or -1. */
 int fr_rule_parse(const char *name, enum fr_rule *rule);
 const char *fr_rule_name(enum fr_rule rule);
+
+/* Check a pack's history against its friction coefficients: every line must have
+ * |Q0| <= mu P0 and |M0| <= M_max(P0) within a relative 1e-6 (what fr_commit writes, plus
+ * the round trip through text).  Returns 0, or -1 with msg_seterr naming the first offending
+ * contact by grain ids. */
+int fr_check_history(const struct pack *p);
 
 /* Start an increment from the pack's positions p->x and contact history p->c (friction
  * coefficients p->mu, p->wall_mu).  Attaches f to s: qs_energy then works on 6N unknowns.

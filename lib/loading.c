@@ -1,7 +1,12 @@
 /* loading: strain increments with the affine guess (see loading.h). */
 #include "loading.h"
+#include "contacts.h"
+#include "measure.h"
+#include "msg.h"
+#include "table.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 void
@@ -63,4 +68,180 @@ load_strain(const double box[6], const double refbox[6], double eps[3])
 		double lref = refbox[3 + a] - refbox[a];
 		eps[a] = (lref - (box[3 + a] - box[a])) / lref;
 	}
+}
+
+void
+load_params_default(struct load_params *lp)
+{
+	memset(lp, 0, sizeof *lp);
+	lp->friction = 1;
+	lp->rule = FR_RETURN_MAP;
+	lp->nsub = 1;
+	lp->k_inc = 10;
+	lp->skin = 0.3;
+	qs_min_params_default(&lp->min);
+}
+
+int
+loader_open(struct loader *L, struct pack *p, const struct load_params *lp)
+{
+	memset(L, 0, sizeof *L);
+	L->p = p;
+	L->lp = *lp;
+	if (!p->has_refbox) {
+		msg_seterr("the pack has no reference box (run densify first)");
+		return -1;
+	}
+	if (qs_init(&L->s, p, lp->skin))
+		return -1;
+	fr_init(&L->f, lp->rule);
+	L->x = calloc(6 * (p->n ? p->n : 1), sizeof *L->x);
+	if (!L->x) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	return 0;
+}
+
+void
+loader_close(struct loader *L)
+{
+	qs_free(&L->s);
+	fr_free(&L->f);
+	free(L->x);
+	memset(L, 0, sizeof *L);
+}
+
+/* Start an increment from the pack: x = centres (and zero rotations); with friction the
+ * contact history is frozen into the functional. */
+static int
+begin(struct loader *L)
+{
+	size_t n3 = 3 * L->p->n;
+
+	memcpy(L->x, L->p->x, n3 * sizeof *L->x);
+	memset(L->x + n3, 0, n3 * sizeof *L->x);
+	if (L->lp.friction)
+		return fr_begin(&L->f, &L->s);
+	L->s.fr = NULL;
+	L->s.dim = n3;
+	return 0;
+}
+
+/* The row's measures of the pack as committed; the residual comes from the caller. */
+static int
+fill_row(struct loader *L, struct load_row *row)
+{
+	struct geo_contacts gc;
+	struct pack_measures m;
+	int a;
+
+	contacts_init(&gc);
+	if (measure_pack(L->p, &gc, &m)) {
+		contacts_free(&gc);
+		return -1;
+	}
+	contacts_free(&gc);
+	row->inc = L->inc;
+	load_strain(L->p->box, L->p->refbox, row->eps);
+	for (a = 0; a < 3; a++)
+		row->sig[a] = m.sig_wall[a];
+	memcpy(row->sig_lw, m.sig_lw, sizeof row->sig_lw);
+	row->sigma_c = m.sigma_c;
+	row->porosity = m.porosity;
+	row->coordination = m.coordination;
+	row->sliding_ratio = L->lp.friction ? (isnan(m.sliding_ratio) ? 0 : m.sliding_ratio) : 0;
+	return 0;
+}
+
+int
+loader_measure(struct loader *L, struct load_row *row)
+{
+	double *g = malloc(6 * (L->p->n ? L->p->n : 1) * sizeof *g), *fmax = malloc((L->p->n ? L->p->n : 1) * sizeof *fmax);
+
+	memset(row, 0, sizeof *row);
+	if (!g || !fmax || begin(L) || isnan(qs_energy(&L->s, L->x, g, fmax))) {
+		if (!g || !fmax)
+			msg_seterr("out of memory");
+		free(g), free(fmax);
+		return -1;
+	}
+	qs_residual(&L->s, g, fmax, L->lp.min.tol_floor, &row->res_max, &row->res_mean);
+	free(g), free(fmax);
+	return fill_row(L, row);
+}
+
+int
+loader_step(struct loader *L, const double de[3], struct load_row *row)
+{
+	struct qs_min_report rep;
+	int st;
+
+	memset(row, 0, sizeof *row);
+	if (begin(L))
+		return -1;
+	st = load_increment(&L->s, L->x, de, L->lp.nsub, L->lp.k_inc, &L->lp.min, &rep);
+	if (st < 0)
+		return -1;
+	if (L->lp.friction) {
+		if (fr_commit(&L->f, &L->s, L->x))
+			return -1;
+	} else {
+		memcpy(L->p->x, L->x, 3 * L->p->n * sizeof *L->x);
+		if (contacts_store(L->p, 0))
+			return -1;
+	}
+	L->inc++;
+	if (fill_row(L, row))
+		return -1;
+	row->iterations = rep.iter;
+	row->evals = rep.evals;
+	row->res_max = rep.res_max;
+	row->res_mean = rep.res_mean;
+	row->status = st;
+	return st;
+}
+
+static const struct table_col load_cols[] = {
+	{"inc", NULL}, {"eps_xx", NULL}, {"eps_yy", NULL}, {"eps_zz", NULL},
+	{"sig_xx", "Pa"}, {"sig_yy", "Pa"}, {"sig_zz", "Pa"},
+	{"sig_lw_xx", "Pa"}, {"sig_lw_yy", "Pa"}, {"sig_lw_zz", "Pa"},
+	{"sigma_c", "Pa"}, {"sig_lat", "Pa"}, {"porosity", NULL}, {"coordination", NULL},
+	{"sliding_ratio", NULL}, {"iterations", NULL}, {"residual", NULL}, {"res_mean", NULL},
+	{"K", "Pa"}, {"G", "Pa"},
+};
+#define LOAD_NCOLS ((int)(sizeof load_cols / sizeof load_cols[0]))
+
+void
+load_table_header(FILE *fp, int with_moduli)
+{
+	table_header(fp, load_cols, with_moduli ? LOAD_NCOLS : LOAD_NCOLS - 2);
+}
+
+void
+load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, double K, double G)
+{
+	double v[LOAD_NCOLS];
+	int a, n = 0, u = (axis + 1) % 3, w = (axis + 2) % 3;
+
+	v[n++] = (double)row->inc;
+	for (a = 0; a < 3; a++)
+		v[n++] = row->eps[a];
+	for (a = 0; a < 3; a++)
+		v[n++] = row->sig[a];
+	for (a = 0; a < 3; a++)
+		v[n++] = row->sig_lw[a];
+	v[n++] = row->sigma_c;
+	v[n++] = 0.5 * (row->sig[u] + row->sig[w]);
+	v[n++] = row->porosity;
+	v[n++] = row->coordination;
+	v[n++] = row->sliding_ratio;
+	v[n++] = (double)row->iterations;
+	v[n++] = row->res_max;
+	v[n++] = row->res_mean;
+	if (with_moduli) {
+		v[n++] = K;
+		v[n++] = G;
+	}
+	table_row(fp, v, n);
 }
