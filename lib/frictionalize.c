@@ -61,6 +61,7 @@ frictionalize_run(struct pack *p, const struct fric_params *fp, fric_row_fn fn, 
 		}
 		if (hooke_fit((const double(*)[3])dE, (const double(*)[3])dS, 1, &hk))
 			hk.K = hk.G = NAN;
+		row.seg = 1;
 		if (fn)
 			fn(&row, &hk, ctx);
 		*last = row;

@@ -203,7 +203,7 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 }
 
 static const struct table_col load_cols[] = {
-	{"inc", NULL}, {"eps_xx", NULL}, {"eps_yy", NULL}, {"eps_zz", NULL},
+	{"inc", NULL}, {"seg", NULL}, {"eps_xx", NULL}, {"eps_yy", NULL}, {"eps_zz", NULL},
 	{"sig_xx", "Pa"}, {"sig_yy", "Pa"}, {"sig_zz", "Pa"},
 	{"sig_lw_xx", "Pa"}, {"sig_lw_yy", "Pa"}, {"sig_lw_zz", "Pa"},
 	{"sigma_c", "Pa"}, {"sig_lat", "Pa"}, {"porosity", NULL}, {"coordination", NULL},
@@ -225,6 +225,7 @@ load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, 
 	int a, n = 0, u = (axis + 1) % 3, w = (axis + 2) % 3;
 
 	v[n++] = (double)row->inc;
+	v[n++] = (double)row->seg;
 	for (a = 0; a < 3; a++)
 		v[n++] = row->eps[a];
 	for (a = 0; a < 3; a++)

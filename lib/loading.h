@@ -43,6 +43,7 @@ struct load_params {
 /* The state after an increment (or at the start). */
 struct load_row {
 	long inc;
+	int seg;		/* path segment (1, 2, ...; 0 for the starting state) */
 	double eps[3];		/* strain against the reference box, compression positive */
 	double sig[3];		/* wall stresses (Pa) */
 	double sig_lw[6];	/* volume-averaged (Love-Weber) stress xx yy zz xy xz yz (Pa) */
@@ -74,7 +75,7 @@ int loader_measure(struct loader *L, struct load_row *row);
 int loader_step(struct loader *L, const double de[3], struct load_row *row);
 void loader_close(struct loader *L);
 
-/* The rows as TSV (share/doc/tables.md): inc, strains, wall stresses, Love-Weber normal
+/* The rows as TSV (share/doc/tables.md): inc, seg, strains, wall stresses, Love-Weber normal
  * stresses, sigma_c, the mean lateral stress sig_lat (of the two axes other than axis), porosity,
  * coordination, sliding_ratio, iterations, residual, res_mean; with_moduli adds K and G of
  * the increment (NaN where the increment does not determine them, and on the first row). */

@@ -3,7 +3,9 @@
  * One header line: '#' then tab-separated column names, each optionally followed by its
  * unit in brackets ("sigma_c[Pa]"); then one tab-separated row per record, numbers written
  * with num_format.  A missing value is written as "nan" only where a column is optional
- * and the man page says so.  The reader side (table_read) lives with the tools that need it. */
+ * and the man page says so.  Lines starting "##" before the header (or between tables of a
+ * stream) carry metadata (loadtest's path and equilibrium criterion) and are skipped by
+ * readers. */
 #ifndef QUSGM_TABLE_H
 #define QUSGM_TABLE_H
 
@@ -16,5 +18,21 @@ struct table_col {
 
 void table_header(FILE *fp, const struct table_col *cols, int n);
 void table_row(FILE *fp, const double *v, int n);
+
+/* A table read back: ncol named columns (units stripped), nrow rows of doubles.  Repeated
+ * identical header lines (tables concatenated with cat) and "##" lines are skipped. */
+struct table {
+	int ncol;
+	char **names;
+	size_t nrow, cap;
+	double *v;	/* row-major, nrow * ncol */
+	long *line;	/* the input line of each row, for messages */
+};
+
+/* 0, or -1 with msg_seterr("display:line: what is wrong"). */
+int table_read(FILE *fp, const char *display, struct table *t);
+/* Index of the column called name, or -1. */
+int table_find(const struct table *t, const char *name);
+void table_free(struct table *t);
 
 #endif
