@@ -104,6 +104,7 @@ curve_moduli(const struct table *t, const struct curve_cols *c, const char *disp
 		I->n = (long)m;
 		I->inc_from = c->inc >= 0 ? (long)val(t, keep[first - 1], c->inc) : (long)(first - 1);
 		I->inc_to = c->inc >= 0 ? (long)val(t, keep[q - 1], c->inc) : (long)(q - 1);
+		I->row_to = keep[q - 1];
 		I->sigma_c = 0.5 * (val(t, keep[first - 1], c->sigma_c) + val(t, keep[q - 1], c->sigma_c));
 		I->sig_lat = 0.5 * (val(t, keep[first - 1], c->sig_lat) + val(t, keep[q - 1], c->sig_lat));
 		if (hooke_fit((const double(*)[3])de, (const double(*)[3])ds, m, &I->hk)) {

@@ -19,6 +19,7 @@ struct curve_cols {
 struct curve_interval {
 	int seg;
 	long inc_from, inc_to, n;
+	size_t row_to;		/* table row of the interval's end */
 	double sigma_c, sig_lat;	/* means of the interval's two end rows */
 	struct hooke hk;
 };

@@ -1,12 +1,35 @@
 #!/bin/sh
-# make run: the default job on built-in defaults.  Generates the G2740-style loose glass
-# pack, prints its packinfo and writes a VTK export, all under out/.
+# make run: the main job on built-in defaults, the papers' whole chain on a G2740-style glass
+# pack: packgen -> densify (4 MPa, frictionless) -> frictionalize (mu 0.3) -> loadtest
+# (uniaxial strain to 20 MPa) -> moduli (K, G, lambda, E, nu per 10 increments), printed at
+# the end; every stage's output stays in out/ for inspection, with its wall time in
+# out/times.tsv, and out/moduli.png plots K and G against sigma_c when gnuplot is installed.
 set -e
 bin=${1:-build/bin}
 mkdir -p out
-echo "packgen -n 2740 --seed 1 --material glass -o out/loose.pack   (DEM compaction, about a minute)"
-"$bin/packgen" -n 2740 --seed 1 --material glass -o out/loose.pack
-echo "packinfo out/loose.pack"
-"$bin/packinfo" out/loose.pack
-"$bin/packexport" --vtk -o out/loose.vtm out/loose.pack
-echo "wrote out/loose.pack and out/loose.vtm (+ out/loose_grains.vtp, out/loose_contacts.vtp) for ParaView/OVITO"
+printf '# stage\tseconds\n' >out/times.tsv
+stage() {
+	name=$1
+	shift
+	echo "== $name: $*" >&2
+	t0=$(date +%s.%N)
+	"$@"
+	t1=$(date +%s.%N)
+	awk -v n="$name" -v a="$t0" -v b="$t1" 'BEGIN { printf "%s\t%.1f\n", n, b - a }' >>out/times.tsv
+}
+stage packgen "$bin/packgen" -n 2740 --seed 1 --material glass -o out/loose.pack.gz
+stage densify "$bin/densify" --stress 4e6 --log out/densify.tsv -o out/dense.pack.gz out/loose.pack.gz
+stage frictionalize "$bin/frictionalize" --mu 0.3 --log out/frictionalize.tsv -o out/frictional.pack.gz out/dense.pack.gz
+stage loadtest sh -c "'$bin/loadtest' --path uniaxial --to-stress 20e6 -o out/final.pack.gz out/frictional.pack.gz >out/curve.tsv"
+stage moduli "$bin/moduli" --window 10 -o out/moduli.tsv out/curve.tsv
+echo "== packinfo out/frictional.pack.gz" >&2
+"$bin/packinfo" out/frictional.pack.gz | grep -E '^(grains|porosity|coordination|under4|sigma_c|residual|sliding_ratio) '
+if command -v gnuplot >/dev/null 2>&1; then
+	gnuplot -e "in='out/moduli.tsv'; out='out/moduli.png'" share/plot/moduli.gp && echo "wrote out/moduli.png" >&2
+else
+	echo "gnuplot not installed (apt-get install gnuplot-nox): no figure" >&2
+fi
+echo "== stage times (s)"
+cat out/times.tsv
+echo "== moduli (out/moduli.tsv): sigma_c, K, G, E in MPa"
+awk -F'\t' 'NR > 1 { printf "%8.3f %9.1f %9.1f %9.1f  nu %.3f\n", $5 / 1e6, $7 / 1e6, $8 / 1e6, $10 / 1e6, $11 }' out/moduli.tsv

@@ -1,6 +1,8 @@
 /* moduli: Hooke's-law moduli of each interval of a loadtest curve (physics.md §8). */
 #include "cli.h"
 #include "curve.h"
+#include "emt.h"
+#include "material.h"
 #include "msg.h"
 #include "table.h"
 
@@ -10,11 +12,12 @@
 #include <string.h>
 
 static long window = 1;
-static const char *stress_arg = "wall";
+static const char *stress_arg = "wall", *emt_arg;
 
 static struct cli_opt opts[] = {
 	{"window", 'k', CLI_LONG, &window, "K", "increments per interval (fitted together by least squares)", NULL},
 	{"stress", 0, CLI_STRING, &stress_arg, "KIND", "wall (normal forces on the walls) or lw (volume-averaged)", NULL},
+	{"emt", 0, CLI_STRING, &emt_arg, "MATERIAL", "add effective-medium K and G from each interval's porosity, coordination and sigma_c (grains of MATERIAL)", NULL},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
@@ -28,6 +31,7 @@ static const struct table_col out_cols[] = {
 	{"seg", NULL}, {"inc_from", NULL}, {"inc_to", NULL}, {"n", NULL},
 	{"sigma_c", "Pa"}, {"sig_lat", "Pa"}, {"K", "Pa"}, {"G", "Pa"}, {"lambda", "Pa"}, {"E", "Pa"}, {"nu", NULL},
 	{"fit_rel", NULL},
+	{"porosity", NULL}, {"coordination", NULL}, {"K_emt", "Pa"}, {"G_emt_rough", "Pa"}, {"G_emt_smooth", "Pa"},
 };
 
 int
@@ -41,7 +45,8 @@ main(int argc, char **argv)
 	size_t n, k;
 	const char *display;
 	FILE *in;
-	int ncol = (int)(sizeof out_cols / sizeof out_cols[0]);
+	int ncol = (int)(sizeof out_cols / sizeof out_cols[0]), cphi = -1, cz = -1;
+	struct material mat;
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
@@ -49,7 +54,11 @@ main(int argc, char **argv)
 		cli_usage_error("--window: must be positive");
 	if (strcmp(stress_arg, "wall") && strcmp(stress_arg, "lw"))
 		cli_usage_error("--stress: must be wall or lw");
+	if (emt_arg && material_lookup(emt_arg, &mat))
+		cli_usage_error("--emt: %s", msg_geterr());
 	cli_usage_done();
+	if (!emt_arg)
+		ncol -= 5;
 
 	if (!(in = cli_in_open(st.input, &display)))
 		msg_die_err(EXIT_DATA);
@@ -60,13 +69,26 @@ main(int argc, char **argv)
 	if (curve_columns(&t, display, strcmp(stress_arg, "lw") ? "sig" : "sig_lw", &cols) ||
 	    curve_moduli(&t, &cols, display, window, &iv, &n))
 		msg_die_err(EXIT_DATA);
+	if (emt_arg && ((cphi = table_find(&t, "porosity")) < 0 || (cz = table_find(&t, "coordination")) < 0))
+		msg_die(EXIT_DATA, "%s: --emt needs the porosity and coordination columns", display);
 	if (cli_out_open(&out, st.output))
 		msg_die_err(EXIT_DATA);
 	table_header(out.fp, out_cols, ncol);
 	for (k = 0; k < n; k++) {
 		const struct curve_interval *I = &iv[k];
-		double v[12] = {I->seg, (double)I->inc_from, (double)I->inc_to, (double)I->n, I->sigma_c, I->sig_lat,
+		double v[17] = {I->seg, (double)I->inc_from, (double)I->inc_to, (double)I->n, I->sigma_c, I->sig_lat,
 		    I->hk.K, I->hk.G, I->hk.lambda, I->hk.E, I->hk.nu, I->hk.rel};
+		if (emt_arg) {
+			struct emt e;
+			/* the state at the interval's end row */
+			double phi = t.v[I->row_to * t.ncol + cphi], Z = t.v[I->row_to * t.ncol + cz];
+			emt_moduli(mat.E / (2 * (1 + mat.nu)), mat.nu, phi, Z, I->sigma_c, &e);
+			v[12] = phi;
+			v[13] = Z;
+			v[14] = e.K;
+			v[15] = e.G_rough;
+			v[16] = e.G_smooth;
+		}
 		table_row(out.fp, v, ncol);
 	}
 	if (cli_out_commit(&out))
