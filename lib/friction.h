@@ -25,8 +25,10 @@
  *
  * fr_commit ends an increment: the final forces become the history (P0, Q0, M0) of every
  * contact that still touches, new contacts get P0 with Q0 = M0 = 0, opened ones are dropped,
- * and the pack's positions are updated.  A contact whose normal force fell during the
- * increment slips to its new limit there (|Q0| <= mu P0 in every committed line). */
+ * and the pack's positions are updated.  The committed forces are the equilibrium's, exactly:
+ * a contact whose normal force fell during the increment can end it with |Q0| a little above
+ * mu P0 (the limit was frozen at the start); it slips to the new limit when the next
+ * increment starts (fr_begin's clamp), as the linearised model has it. */
 #ifndef QUSGM_FRICTION_H
 #define QUSGM_FRICTION_H
 
@@ -64,10 +66,12 @@ void fr_free(struct qs_friction *f);
 int fr_rule_parse(const char *name, enum fr_rule *rule);
 const char *fr_rule_name(enum fr_rule rule);
 
-/* Check a pack's history against its friction coefficients: every line must have
- * |Q0| <= mu P0 and |M0| <= M_max(P0) within a relative 1e-6 (what fr_commit writes, plus
- * the round trip through text).  Returns 0, or -1 with msg_seterr naming the first offending
- * contact by grain ids. */
+/* Check a pack's history against its friction coefficients.  A committed line can exceed its
+ * sliding limit mu P0 by the slip its normal force's fall in the last increment calls for
+ * (see fr_commit), which is small against the limit of an average contact; a line with
+ * |Q0| > mu (P0 + P_mean) (or |M0| above M_max(P0) + M_max(P_mean)) cannot come from a
+ * commit and is refused as corrupt.  Lines below that are repaired by fr_begin's clamp.
+ * Returns 0, or -1 with msg_seterr naming the first offending contact by grain ids. */
 int fr_check_history(const struct pack *p);
 
 /* Start an increment from the pack's positions p->x and contact history p->c (friction
