@@ -14,6 +14,7 @@ WARN      = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 STD       = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 PKGS      = gsl ccd zlib
 DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config
+DEB_PLOT  = gnuplot-nox
 
 # Build directories: build/ is the normal build, build-san/ the sanitizer build.
 B        ?= build
@@ -40,7 +41,7 @@ BENCH_BIN = $(BENCH_SRC:tests/bench/%.c=$(B)/bench/%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: all deps check check-fast run bench validate interop install uninstall clean help tools unit
+.PHONY: all deps plotdeps pipelines check check-fast run bench validate interop install uninstall clean help tools unit
 .DELETE_ON_ERROR:
 
 all: deps
@@ -87,6 +88,18 @@ $(B)/bench/%: tests/bench/%.c $(B)/libqusgm.a lib/*.h
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
+# Figures need gnuplot (Debian gnuplot-nox): installed as root, else the exact command.
+plotdeps:
+	@if ! command -v gnuplot >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "qusgm: installing $(DEB_PLOT) for figures" >&2; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y $(DEB_PLOT) >/dev/null || \
+	      echo "qusgm: apt-get install $(DEB_PLOT) failed: figures will be skipped" >&2; \
+	  else \
+	    echo "qusgm: gnuplot not found, figures will be skipped; run: sudo apt-get install $(DEB_PLOT)" >&2; \
+	  fi; \
+	fi
+
 # make check: the normal build and the sanitizer build, unit tests and tool tests under both,
 # then one closing line "N passed, N failed".
 check: deps
@@ -98,8 +111,13 @@ check: deps
 check-fast: all
 	@sh tests/run.sh build
 
-run: all
+run: all plotdeps
 	@sh share/run-default.sh build/bin
+
+# The papers' studies (pipelines/README.md): make pipelines [STUDY=fig4] [SMALL=1] [-j2]
+STUDY ?= all
+pipelines: all plotdeps
+	@$(MAKE) --no-print-directory -C pipelines BIN=$(CURDIR)/build/bin $(STUDY)
 
 bench: all
 	@$(MAKE) --no-print-directory B=build $(BENCH_SRC:tests/bench/%.c=build/bench/%)
@@ -131,7 +149,8 @@ help:
 	@echo "make            build the library and the tools ($(TOOLS))"
 	@echo "make check      build normally and with ASan+UBSan, run every test; ends 'N passed, N failed'"
 	@echo "make check-fast the tests on the normal build only"
-	@echo "make run        the default job: a G2740 glass pack, its packinfo, a VTK export (out/)"
+	@echo "make run        the default job: packgen | densify | frictionalize | loadtest | moduli on G2740 (out/)"
+	@echo "make pipelines  the papers' studies (STUDY=name, SMALL=1 for small packs; pipelines/README.md)"
 	@echo "make bench      benchmarks; results in bench/results.md"
 	@echo "make validate   long validation cases; results in validate/results.md"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
