@@ -14,6 +14,7 @@ set -u
 bin=${1:-build/bin}
 case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
 incr="$bin/../bench/increment"
+fincr="$bin/../bench/fincrement"
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/bench"
 mkdir -p "$out"
@@ -29,6 +30,8 @@ info() { awk -v k="$2" -v f="${3:-%s}" '$1 == k { printf f, $2 }' "$1"; }
 gen_rows=""
 dens_rows=""
 inc_rows=""
+fric_rows=""
+finc_rows=""
 for n in $sizes; do
 	loose="$out/loose-$n.pack.gz"
 	# packgen: make the loose pack, or reuse the one an earlier run made
@@ -87,6 +90,27 @@ $(awk -F '\t' '!/^#/ { printf "| %d | %s | %d | %d | %d | %.4f | %.1f | %.1f | %
 		inc_rows="$inc_rows
 | $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | | |"
 	fi
+
+	# frictionalize (mu 0.3) the same dense pack, then uniaxial increments with and without
+	# friction from its output
+	fric="$out/fric-$n.pack.gz"
+	if [ -s "$dense" ] && /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/frictionalize" --mu 0.3 \
+	    --log "$out/fric-$n.tsv" -o "$fric" "$dense" 2>"$tmp.err"; then
+		read -r secs kib <"$tmp.time"
+		fric_rows="$fric_rows
+$(awk -F '\t' -v n="$n" -v s="$secs" -v k="$kib" '!/^#/ && $1 > 0 { it += $17; inc = $1; sr = $16; sc = $12 }
+		    END { printf "| %d | %.1f | %.1f | %d | %.1f | %.1f | %.4f | %.3f |", n, s, k / 1024, inc, it / inc, s / inc, sr, sc / 1e6 }' "$out/fric-$n.tsv")"
+		if [ -x "$fincr" ] && "$fincr" "$fric" 5 >"$tmp.finc" 2>"$tmp.err"; then
+			finc_rows="$finc_rows
+$(awk -F '\t' '!/^#/ { printf "| %d | %s | %s | %d | %.1f | %.1f | %.4f | %.1f | %.1e | %.4f |\n", $3, $1 == "mu" ? "mu 0.3" : "none", $2, $4, $6, $7, $8, $9, $10, $11 }' "$tmp.finc")"
+		else
+			finc_rows="$finc_rows
+| $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | | | |"
+		fi
+	else
+		fric_rows="$fric_rows
+| $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | |"
+	fi
 done
 
 {
@@ -121,6 +145,22 @@ done
 	echo "| grains | method | contacts | iterations | evaluations | wall time (s) | ns per iteration per contact | ns per evaluation per contact | residual |"
 	echo "| ---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 	echo "$inc_rows" | sed '/^$/d'
+	echo
+	echo "## frictionalize (mu 0.3, uniaxial increments of 1e-4 until the sliding ratio saturates)"
+	echo
+	echo "| grains | wall time (s) | peak memory (MiB) | increments | iterations per increment | s per increment | sliding ratio | sigma_c at the end (MPa) |"
+	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+	echo "$fric_rows" | sed '/^$/d'
+	echo
+	echo "## uniaxial increments of 1e-4 from the frictionalized pack (build/bench/fincrement)"
+	echo
+	echo "Five increments along z through loadtest's loader, per minimiser, with friction (6N unknowns,"
+	echo "the pack's history) and without (3N, mu 0, from the same positions); means per increment,"
+	echo "commit of the history and the row's measures included."
+	echo
+	echo "| grains | friction | method | contacts | iterations | evaluations | s per increment | ns per evaluation per contact | largest residual | sliding ratio |"
+	echo "| ---: | :--- | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+	echo "$finc_rows" | sed '/^$/d'
 } >"$res"
 rm -f "$tmp".*
 cat "$res"

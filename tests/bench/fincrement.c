@@ -1,0 +1,100 @@
+/* fincrement: the cost of uniaxial strain increments with and without friction.
+ *
+ * usage: fincrement PACK [STEPS [STRAIN]]
+ *
+ * From the same start (the pack as read, normally frictionalize's output, whose history is
+ * developed), STEPS uniaxial compressions of STRAIN along z (defaults 5 and 1e-4) through the
+ * loader that loadtest uses, per minimiser, frictional (6N unknowns, the pack's mu) and
+ * frictionless (3N, mu 0).  One TSV row per case on stdout: mean iterations, evaluations
+ * and wall time per increment (CLOCK_MONOTONIC; neighbour lists, the commit of the history
+ * and the row's measures included), time per evaluation per contact, the largest residual.
+ * Exit 1 if a case fails or stops at its iteration limit. */
+#include "loading.h"
+#include "msg.h"
+#include "packio.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double
+now(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+int
+main(int argc, char **argv)
+{
+	static const enum qs_method methods[] = {QS_LBFGS, QS_FIRE, QS_CG};
+	struct pack p0;
+	double strain = 1e-4;
+	long steps = 5;
+	size_t m;
+	int fr, bad = 0;
+
+	msg_init(argv[0]);
+	msg_gsl_handler_install();
+	if (argc < 2 || argc > 4)
+		msg_die(EXIT_USAGE, "usage: fincrement PACK [STEPS [STRAIN]]");
+	if (argc >= 3 && ((steps = atol(argv[2])) < 1 || steps > 10000))
+		msg_die(EXIT_USAGE, "STEPS: '%s' is not a count in [1, 10000]", argv[2]);
+	if (argc == 4 && !((strain = atof(argv[3])) > 0 && strain < 0.01))
+		msg_die(EXIT_USAGE, "STRAIN: '%s' is not in (0, 0.01)", argv[3]);
+	if (pack_read_path(argv[1], &p0))
+		msg_die_err(EXIT_DATA);
+	if (!p0.has_refbox)
+		msg_die(EXIT_DATA, "%s: no reference box", argv[1]);
+	printf("# friction\tmethod\tgrains\tcontacts\tincrements\titerations\tevaluations\twall_s\tns_per_eval_contact\tresidual\tsliding_ratio\tsigma_c[Pa]\n");
+	for (fr = 1; fr >= 0; fr--)
+		for (m = 0; m < sizeof methods / sizeof methods[0]; m++) {
+			struct pack p;
+			struct loader L;
+			struct load_params lp;
+			struct load_row row;
+			double de[3] = {0, 0, strain}, t0, t1, resmax = 0;
+			long k, iters = 0, evals = 0;
+			size_t nc;
+			int st = 0;
+
+			/* a fresh copy of the start: read it again */
+			if (pack_read_path(argv[1], &p))
+				msg_die_err(EXIT_DATA);
+			if (!fr)
+				p.mu = p.wall_mu = 0;
+			load_params_default(&lp);
+			lp.friction = fr;
+			lp.min.method = methods[m];
+			if (loader_open(&L, &p, &lp))
+				msg_die_err(EXIT_DATA);
+			t0 = now();
+			for (k = 0; k < steps && st == 0; k++) {
+				st = loader_step(&L, de, &row);
+				if (st < 0)
+					msg_die_err(EXIT_DATA);
+				iters += row.iterations;
+				evals += row.evals;
+				if (row.res_max > resmax)
+					resmax = row.res_max;
+			}
+			t1 = now();
+			nc = p.nc;
+			printf("%s\t%s\t%zu\t%zu\t%ld\t%.1f\t%.1f\t%.4f\t%.1f\t%.3g\t%.4f\t%.6g\n", fr ? "mu" : "none",
+			    qs_method_name(methods[m]), p.n, nc, k, (double)iters / k, (double)evals / k, (t1 - t0) / k,
+			    nc && evals ? 1e9 * (t1 - t0) / evals / nc : 0.0, resmax, row.sliding_ratio, row.sigma_c);
+			fflush(stdout);
+			if (st == 1) {
+				fprintf(stderr, "fincrement: %s %s: iteration limit\n", fr ? "friction" : "frictionless",
+				    qs_method_name(methods[m]));
+				bad = 1;
+			}
+			loader_close(&L);
+			pack_free(&p);
+		}
+	pack_free(&p0);
+	return bad;
+}
