@@ -176,11 +176,18 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 {
 	struct qs_min_report rep;
 	int st;
+	double dbox[3];
+	int a;
 
 	memset(row, 0, sizeof *row);
 	if (begin(L))
 		return -1;
-	st = load_increment(&L->s, L->x, de, L->lp.nsub, L->lp.k_inc, &L->lp.min, &rep);
+	/* de is the change of the strain eps = (L_ref - L) / L_ref, so the box shrinks by
+	 * de L_ref, a factor 1 - de L_ref / L: equal de on the three axes is then an isotropic
+	 * strain increment exactly, whatever the box's shape relative to the reference */
+	for (a = 0; a < 3; a++)
+		dbox[a] = de[a] * pack_box_length(L->p->refbox, a) / pack_box_length(L->p->box, a);
+	st = load_increment(&L->s, L->x, dbox, L->lp.nsub, L->lp.k_inc, &L->lp.min, &rep);
 	if (st < 0)
 		return -1;
 	if (L->lp.friction) {

@@ -69,7 +69,8 @@ int loader_open(struct loader *L, struct pack *p, const struct load_params *lp);
 /* The current state of the pack, as a row with inc = the increments so far; the residual is
  * that of the pack as it stands (its history forces included).  0 or -1. */
 int loader_measure(struct loader *L, struct load_row *row);
-/* One increment de (compression positive per axis); row receives the new state.  Returns
+/* One increment de of the strain against the reference box (compression positive per axis:
+ * each box length shrinks by de times its reference length); row receives the new state.  Returns
  * -1 on error, else the minimiser's status (1: iteration limit; the pack holds the state
  * reached, committed). */
 int loader_step(struct loader *L, const double de[3], struct load_row *row);
