@@ -18,6 +18,7 @@ densify_params_default(struct densify_params *dp)
 	dp->stress_tol = 0.01;
 	dp->strain_step = 2e-3;
 	dp->max_growth = 0.05;
+	dp->grow_tol = 1e-2;
 	dp->min_coord = 4;
 	dp->max_rounds = 1000;
 	dp->nsub = 1;
@@ -202,16 +203,29 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 		}
 		{
 			double d3[3] = {de, de, de}, sig[3];
-			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &dp->min, &rep) < 0)
+			struct qs_min_params mp = dp->min;
+			int loose = st.sigma_c < dp->onset;
+
+			if (loose)
+				mp.tol = fmax(mp.tol, dp->grow_tol);
+			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &mp, &rep) < 0)
 				goto out;
 			qs_wall_stress(&s, sig);
+			if (loose && (sig[0] + sig[1] + sig[2]) / 3 >= dp->onset && mp.tol > dp->min.tol) {
+				/* jammed in this round: the full equilibrium, before any decision on it */
+				long it = rep.iter;
+				if (qs_minimize(&s, x, &dp->min, &rep) < 0)
+					goto out;
+				rep.iter += it;
+				qs_wall_stress(&s, sig);
+			}
 			if (st.sigma_c < dp->onset && (sig[0] + sig[1] + sig[2]) / 3 > 10 * dp->onset && scale > 1.0 / 1024) {
 				memcpy(x, xsave, 3 * p->n * sizeof *x);
 				memcpy(p->r, rsave, p->n * sizeof *rsave);
 				memcpy(p->box, boxsave, sizeof boxsave);
 				qs_radii_changed(&s);
 				scale *= 0.5;
-				if (qs_minimize(&s, x, &dp->min, &rep) < 0)
+				if (qs_minimize(&s, x, &mp, &rep) < 0)
 					goto out;
 				RECORD("retry", round);
 				continue;
