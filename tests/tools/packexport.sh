@@ -170,6 +170,7 @@ expect_error "unknown option" 2 "unknown option '--bogus'" packexport --xyzr --b
 expect_error "missing input file" 1 '^packexport: nonexistent.pack: ' packexport --xyzr nonexistent.pack
 printf 'qusgm-pack 1\nunits SI\nbox 0 0 0 1 1 1\n' >trunc.pack
 expect_error "truncated pack" 1 '^packexport: trunc.pack:4: ' packexport --vtk trunc.pack
-expect_error "empty input" 1 '^packexport: <stdin>:1: ' packexport --xyzr </dev/null
+: >empty.pack
+expect_error "empty input" 1 '^packexport: <stdin>:1: ' packexport --xyzr <empty.pack
 cat in.pack in.pack >two.pack
 expect_error "xyzr takes one pack" 1 '^packexport: two.pack:[0-9]+: a second pack' packexport --xyzr two.pack

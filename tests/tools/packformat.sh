@@ -126,7 +126,7 @@ for cut in 20 $((size / 2)) $((size - 4)); do
 done
 : >empty.pack
 expect_error empty-file 1 '^packinfo: empty\.pack:1: empty input' packinfo empty.pack
-expect_error empty-stdin 1 '^packinfo: <stdin>:1: empty input' packinfo </dev/null
+expect_error empty-stdin 1 '^packinfo: <stdin>:1: empty input' packinfo <empty.pack
 expect_error missing-file 1 '^packinfo: no-such\.pack: ' packinfo no-such.pack
 
 # --- usage ---

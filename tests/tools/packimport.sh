@@ -112,7 +112,7 @@ expect_error "truncated .gz header" 1 '^packimport: trunc20.gz:1: corrupt or tru
 expect_error "empty input" 1 '^packimport: empty.xyzr:1: empty input$' packimport empty.xyzr
 printf '# only\n\n' >comments.xyzr
 expect_error "comments only" 1 '^packimport: comments.xyzr:3: no spheres' packimport comments.xyzr
-expect_error "empty stdin" 1 '^packimport: <stdin>:1: empty input$' packimport </dev/null
+expect_error "empty stdin" 1 '^packimport: <stdin>:1: empty input$' packimport <empty.xyzr
 printf '0.001 0.001 0.001 0.0005\n0.001 0.0\0001 0.001 0.0005\n' >nul.xyzr
 expect_error "NUL byte" 1 '^packimport: nul.xyzr:2: binary data' packimport nul.xyzr
 expect_error "centre outside --box" 1 '^packimport: in.xyzr:4: centre y = 0.0025 is outside the box \[0, 0.0022\]$' \
