@@ -123,7 +123,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	struct gaps *gp = NULL;
 	unsigned *cnt = NULL;
 	double *x = NULL, r0sum = 0, zero[3] = {0, 0, 0};
-	double e_prev = NAN, y_prev = NAN, eps_now = 0, scale = 1, boxsave[6], *xsave = NULL, *rsave = NULL;
+	double floor_loose, e_prev = NAN, y_prev = NAN, eps_now = 0, scale = 1, boxsave[6], *xsave = NULL, *rsave = NULL;
 	size_t i;
 	long round;
 	int status = -1, limit_hit = 0, have_ref = p->has_refbox;
@@ -149,7 +149,8 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	 * jamming converge to residual stresses of 1e-3 Pa, critically slowly (58k L-BFGS
 	 * iterations in one round of a 1e4-grain pack); the equilibria at and above the onset are
 	 * judged against their own forces as before. */
-	s.force_floor = dp->onset * 4 * (r0sum / p->n) * (r0sum / p->n);
+	floor_loose = dp->onset * 4 * (r0sum / p->n) * (r0sum / p->n);
+	s.force_floor = floor_loose;
 
 #define RECORD(name, rnd)                                                        \
 	do {                                                                     \
@@ -208,12 +209,14 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 
 			if (loose)
 				mp.tol = fmax(mp.tol, dp->grow_tol);
+			s.force_floor = loose ? floor_loose : 0;
 			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &mp, &rep) < 0)
 				goto out;
 			qs_wall_stress(&s, sig);
 			if (loose && (sig[0] + sig[1] + sig[2]) / 3 >= dp->onset && mp.tol > dp->min.tol) {
 				/* jammed in this round: the full equilibrium, before any decision on it */
 				long it = rep.iter;
+				s.force_floor = 0;
 				if (qs_minimize(&s, x, &dp->min, &rep) < 0)
 					goto out;
 				rep.iter += it;
@@ -225,6 +228,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 				memcpy(p->box, boxsave, sizeof boxsave);
 				qs_radii_changed(&s);
 				scale *= 0.5;
+				s.force_floor = floor_loose;
 				if (qs_minimize(&s, x, &mp, &rep) < 0)
 					goto out;
 				RECORD("retry", round);
@@ -238,6 +242,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 		have_ref = 1;
 	}
 	p->has_refbox = 1;
+	s.force_floor = 0;
 	/* compaction to the target: secant on y = sigma_c^(2/3) against the strain */
 	for (round = 1; fabs(st.sigma_c / dp->stress - 1) > dp->stress_tol || st.under4 > 0; round++) {
 		double y = pow(st.sigma_c, 2.0 / 3.0), yt = pow(dp->stress, 2.0 / 3.0), de, d3[3];
