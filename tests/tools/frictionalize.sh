@@ -1,0 +1,192 @@
+# frictionalize as a user runs it: a small dense pack (200 grains, densify --stress 4e6) is
+# frictionalized and checked with packinfo (contact history, sliding ratio, residual), the log
+# (columns, one row per increment, saturation), determinism, --mu 0, the iteration and
+# increment limits, atomic -o, and the history checks of share/doc/friction.md (a line far
+# above mu P0 is refused, a stale line is dropped with a warning).  About a second in all.
+. "$TOP/tests/tools/lib.sh"
+
+# rel A B: |A - B| / |B|
+rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
+
+packgen -n 200 --seed 5 -o loose.pack 2>/dev/null
+expect_ok "densify makes the dense pack" densify --stress 4e6 -o dense.pack loose.pack
+packinfo dense.pack >dense.txt 2>/dev/null
+
+# --- a normal run -------------------------------------------------------------------------
+frictionalize --log f.tsv -o f.pack dense.pack >f.out 2>f.err
+rc=$?
+if [ "$rc" -eq 0 ] && [ -s f.pack ] && [ ! -s f.out ]; then
+	pass "frictionalize saturates: exit 0, the pack in -o, nothing on stdout"
+else
+	fail "frictionalize saturates: exit 0, the pack in -o, nothing on stdout" "exit $rc: $(head -c 300 f.err)"
+fi
+if packinfo f.pack >f.txt 2>f.txt.err; then pass "packinfo reads the frictional pack"; else fail "packinfo reads the frictional pack" "$(cat f.txt.err)"; fi
+expect_num "the pack has contact history" "$(info_value f.txt history_contacts)" ">" 100
+expect_num "packinfo sliding_ratio > 0" "$(info_value f.txt sliding_ratio)" ">" 0
+expect_num "the dense pack had sliding_ratio 0" "$(info_value dense.txt sliding_ratio)" "==" 0
+expect_num "packinfo reports mu 0.3 (the default --mu)" "$(info_value f.txt mu)" "==" 0.3
+if grep -q '^friction 0.3$' f.pack && grep -q '^walls .* 0.3$' f.pack; then
+	pass "friction 0.3 and wall mu 0.3 in the header"
+else
+	fail "friction 0.3 and wall mu 0.3 in the header" "$(grep -E '^(friction|walls)' f.pack | tr '\n' ' ')"
+fi
+# the commit stores the equilibrium's forces: the pack is in balance with its own history
+expect_num "packinfo residual of the written pack" "$(info_value f.txt residual)" "<=" 1e-4
+expect_num "no stale history in the written pack" "$(info_value f.txt stale_history)" "==" 0
+awk '/^end$/ { on = 1; next } on && NF == 7 && ($4 != 0 || $5 != 0 || $6 != 0) { q++ } END { exit !(q > 100) }' f.pack &&
+    pass "contact lines carry tangential forces Q0" || fail "contact lines carry tangential forces Q0" "fewer than 100 lines with Q0 != 0"
+expect_num "uniaxial loading raised sigma_c" "$(info_value f.txt sigma_c)" ">" "$(info_value dense.txt sigma_c)"
+if grep -q '^history frictionalize ' f.pack; then pass "history line"; else fail "history line" "none"; fi
+
+# --- the log -----------------------------------------------------------------------------
+hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\titerations\tresidual\tres_mean\tK[Pa]\tG[Pa]')
+if [ "$(head -n 1 f.tsv)" = "$hdr" ]; then pass "log header"; else fail "log header" "$(head -n 1 f.tsv)"; fi
+# the starting row (inc 0, seg 0, K and G nan), then increments 1..n of segment 1, 21 columns,
+# compression along z only (the default --axis), K and G positive
+awk -F '\t' 'NR == 1 { next }
+     { k = NR - 2; if (NF != 21) bad = "row " NR " has " NF " columns" }
+     $1 != k { bad = "row " NR ": inc " $1 ", wanted " k }
+     k == 0 && !($2 == 0 && $20 == "nan" && $21 == "nan" && $17 == 0) { bad = "start row: seg " $2 ", K " $20 ", G " $21 }
+     k > 0 && $2 != 1 { bad = "row " NR ": seg " $2 }
+     k > 0 && !($20 > 0 && $21 > 0 && $17 > 0) { bad = "row " NR ": K " $20 ", G " $21 ", iterations " $17 }
+     k > 0 && !($18 <= 1e-4) { bad = "row " NR ": residual " $18 }
+     k > 0 && !($5 > z && $3 == x && $4 == y) { bad = "row " NR ": not uniaxial along z" }
+     { x = $3; y = $4; z = $5 }
+     END { if (bad) { print bad; exit 1 } }' f.tsv >why && pass "log: start row, then one row per increment" || fail "log: start row, then one row per increment" "$(cat why)"
+n=$(($(wc -l <f.tsv) - 2))
+expect_num "at least --min-inc (10) increments" "$n" ">=" 10
+expect_num "below --max-inc (300) increments" "$n" "<" 300
+expect_num "strain step 1e-4 per increment" "$(awk -F '\t' 'NR == 2 { a = $5 } END { print ($5 - a) / (NR - 2) }' f.tsv)" "==" 1e-4
+# sliding develops: it ends well above its first increments and never drops by much
+awk -F '\t' 'NR > 2 { r[NR - 2] = $16 } END {
+	n = NR - 2; for (k = 2; k <= n; k++) if (r[k - 1] - r[k] > d) d = r[k - 1] - r[k]
+	if (!(r[n] > 2 * r[1] && d < 0.02)) { print "first " r[1] ", last " r[n] ", largest drop " d; exit 1 } }' f.tsv >why &&
+    pass "sliding ratio grows, nondecreasing-ish" || fail "sliding ratio grows, nondecreasing-ish" "$(cat why)"
+# saturation as documented: the ratio of the last --window (10) increments spans < --sat-tol (0.005)
+expect_num "saturated: range of the last 10 sliding ratios" \
+    "$(tail -n 10 f.tsv | awk -F '\t' 'NR == 1 { lo = hi = $16 } { if ($16 < lo) lo = $16; if ($16 > hi) hi = $16 } END { print hi - lo }')" "<" 0.005
+# ... and not before: a run that stopped earlier would have saturated earlier
+awk -F '\t' 'NR > 2 { r[NR - 2] = $16 } END {
+	n = NR - 2; for (k = 10; k < n; k++) { lo = 1; hi = 0
+		for (q = k - 9; q <= k; q++) { if (r[q] < lo) lo = r[q]; if (r[q] > hi) hi = r[q] }
+		if (hi - lo < 0.005) { print "already saturated at increment " k; exit 1 } } }' f.tsv >why &&
+    pass "stops at the first saturated increment" || fail "stops at the first saturated increment" "$(cat why)"
+last=$(tail -n 1 f.tsv)
+expect_num "log's last sliding_ratio is packinfo's" "$(echo "$last" | cut -f 16)" "==" "$(info_value f.txt sliding_ratio)"
+expect_num "log's last sigma_c is packinfo's" "$(rel "$(echo "$last" | cut -f 12)" "$(info_value f.txt sigma_c)")" "<" 1e-9
+
+# --- determinism --------------------------------------------------------------------------
+# the same command line (the history line records it) in another directory
+mkdir again && cp dense.pack again/ && (cd again && frictionalize --log f.tsv -o f.pack dense.pack 2>/dev/null)
+expect_same "same input, same pack" f.pack again/f.pack
+expect_same "same input, same log" f.tsv again/f.tsv
+cat dense.pack | frictionalize >f3.pack 2>/dev/null
+grep -v '^history frictionalize ' f.pack >f.nohist
+grep -v '^history frictionalize ' f3.pack >f3.nohist
+expect_same "stdin and stdout give the same pack as file and -o" f.nohist f3.nohist
+
+# --- --mu 0 (grain-grain friction off; walls keep --wall-mu, default 0.3) -----------------
+expect_ok "--mu 0 runs" frictionalize --mu 0 --log m0.tsv -o m0.pack dense.pack
+if grep -q '^friction 0$' m0.pack; then pass "--mu 0: friction 0 in the pack"; else fail "--mu 0: friction 0 in the pack" "$(grep '^friction' m0.pack)"; fi
+awk '/^end$/ { on = 1; next } on && NF == 7 && $2 !~ /^[xyz](lo|hi)$/ && ($4 != 0 || $5 != 0 || $6 != 0) { q++ }
+     END { exit q > 0 }' m0.pack && pass "--mu 0: no grain-grain tangential force" || fail "--mu 0: no grain-grain tangential force" "found some"
+awk '/^end$/ { on = 1; next } on && NF == 7 && $2 ~ /^[xyz](lo|hi)$/ && ($4 != 0 || $5 != 0 || $6 != 0) { q++ }
+     END { exit !(q > 0) }' m0.pack && pass "--mu 0: wall contacts keep friction (--wall-mu 0.3)" || fail "--mu 0: wall contacts keep friction (--wall-mu 0.3)" "no wall Q0"
+expect_ok "--mu 0 --wall-mu 0 runs" frictionalize --mu 0 --wall-mu 0 --log m00.tsv -o m00.pack dense.pack
+# nothing can slide: the ratio stays 0 and the run saturates at --min-inc (10)
+expect_num "--mu 0 --wall-mu 0: saturates after --min-inc increments" "$(($(wc -l <m00.tsv) - 2))" "==" 10
+expect_num "--mu 0 --wall-mu 0: sliding ratio stays 0" "$(awk -F '\t' 'NR > 1 && $16 != 0 { n++ } END { print n + 0 }' m00.tsv)" "==" 0
+awk '/^end$/ { on = 1; next } on && NF == 7 && ($4 != 0 || $5 != 0 || $6 != 0) { q++ } END { exit q > 0 }' m00.pack &&
+    pass "--mu 0 --wall-mu 0: no tangential force at all" || fail "--mu 0 --wall-mu 0: no tangential force at all" "found some"
+
+# --- help, version ------------------------------------------------------------------------
+frictionalize --help >help.out 2>help.err
+rc=$?
+if [ "$rc" -eq 0 ] && grep -q -- '--mu' help.out && grep -q -- '--sat-tol' help.out && [ ! -s help.err ]; then
+	pass "--help"
+else
+	fail "--help" "exit $rc"
+fi
+frictionalize --version >ver.out 2>ver.err
+rc=$?
+if [ "$rc" -eq 0 ] && grep -q '^frictionalize ' ver.out && [ ! -s ver.err ]; then pass "--version"; else fail "--version" "exit $rc: $(cat ver.out)"; fi
+
+# --- errors: exit status, nothing on stdout, one stderr line, no output file, no log -------
+# expect_fail NAME STATUS REGEX ARGS...: frictionalize ARGS --log nothing.tsv -o nothing.pack
+expect_fail() {
+	n=$1 st=$2 re=$3
+	shift 3
+	rm -f nothing.pack nothing.tsv
+	expect_error "$n" "$st" "$re" frictionalize "$@" --log nothing.tsv -o nothing.pack
+	if [ ! -e nothing.pack ] && [ ! -e nothing.tsv ] && ! ls -a | grep -q '^\.nothing'; then
+		pass "$n: no output file, no log"
+	else
+		fail "$n: no output file, no log" "$(ls -a | tr '\n' ' ')"
+	fi
+}
+expect_fail "--mu -1" 2 '^frictionalize: --mu' --mu -1 dense.pack
+expect_fail "--mu nan" 2 '^frictionalize: --mu' --mu nan dense.pack
+expect_fail "--wall-mu NaN" 2 '^frictionalize: --wall-mu' --wall-mu NaN dense.pack
+expect_fail "--strain-step nan" 2 '^frictionalize: --strain-step' --strain-step nan dense.pack
+expect_fail "--strain-step 0" 2 '^frictionalize: --strain-step' --strain-step 0 dense.pack
+expect_fail "--axis w" 2 '^frictionalize: --axis' --axis w dense.pack
+expect_fail "--rule bogus" 2 '^frictionalize: --rule' --rule bogus dense.pack
+expect_fail "unknown option" 2 "^frictionalize: unknown option '--bogus'" --bogus dense.pack
+expect_fail "missing input file" 1 '^frictionalize: .*no-such\.pack' no-such.pack
+expect_fail "pack without reference box" 1 '^frictionalize: loose\.pack: no reference box' loose.pack
+expect_fail "increment limit" 1 '^frictionalize: .*did not saturate in 3 increments.*--allow-limit' --max-inc 3 dense.pack
+expect_fail "iteration limit" 1 '^frictionalize: .*iteration limit.*--allow-limit' --max-iter 3 dense.pack
+# the same on stdout: a failing run writes no half pack
+expect_error "increment limit, no -o: nothing on stdout" 1 'did not saturate' frictionalize --max-inc 3 dense.pack
+
+# --allow-limit keeps the pack and the log, exits 0, warns in one line
+frictionalize --max-inc 3 --allow-limit --log lim.tsv -o lim.pack dense.pack >lim.out 2>lim.err
+rc=$?
+if [ "$rc" -eq 0 ] && [ -s lim.pack ] && [ ! -s lim.out ] && [ "$(wc -l <lim.err)" -eq 1 ] && grep -q 'did not saturate' lim.err; then
+	pass "--allow-limit: exit 0, the pack, one warning"
+else
+	fail "--allow-limit: exit 0, the pack, one warning" "exit $rc, stderr: $(head -c 300 lim.err)"
+fi
+expect_num "--allow-limit: log has the start row and 3 increments" "$(($(wc -l <lim.tsv) - 1))" "==" 4
+
+# -o is atomic: a failing run leaves an existing file (and log) as they were
+echo keep >old.pack
+echo keep >old.tsv
+frictionalize --max-inc 3 --log old.tsv -o old.pack dense.pack >/dev/null 2>&1
+if [ "$(cat old.pack)" = keep ] && [ "$(cat old.tsv)" = keep ]; then
+	pass "failed run does not clobber -o and --log files"
+else
+	fail "failed run does not clobber -o and --log files" "changed"
+fi
+if ls -a | grep -q '^\.old'; then fail "failed run leaves no temporary file" "$(ls -a | tr '\n' ' ')"; else pass "failed run leaves no temporary file"; fi
+frictionalize --mu -1 -o old.pack dense.pack >/dev/null 2>&1
+if [ "$(cat old.pack)" = keep ]; then pass "usage error does not clobber -o"; else fail "usage error does not clobber -o" "changed"; fi
+
+# --- contact history checks (share/doc/friction.md) ---------------------------------------
+# A line whose |Q0| is far above mu (P0 + P_mean) is corrupt: refused, naming the contact.
+awk '/^end$/ { on = 1; print; next }
+     on && NF == 7 && $2 !~ /^[xyz](lo|hi)$/ && !done { $4 = 1000 * $3 + 1; done = 1 } { print }' f.pack >corrupt.pack
+if [ "$(cmp corrupt.pack f.pack 2>&1 | wc -l)" -eq 1 ]; then pass "corrupted pack made"; else fail "corrupted pack made" "awk edit failed"; fi
+expect_fail "history far above mu P0 refused" 1 '^frictionalize: corrupt\.pack: contact [0-9]+ [0-9]+: .*sliding limit' corrupt.pack
+# a frictionless pack whose lines carry tangential force is refused by the same rule
+sed 's/^friction 0.3$/friction 0/' f.pack >mu0hist.pack
+expect_fail "friction 0 with tangential history refused" 1 '^frictionalize: mu0hist\.pack: contact ' mu0hist.pack
+
+# A stale history line (two grains that do not touch: the leftmost and the rightmost grain)
+# gives one warning and is dropped: the result is the pack made without it.
+awk 'NR == FNR { if (/^end$/) e = 1; else if (e && NF == 8) { if (lo == "" || $2 < xl) { lo = $1; xl = $2 } if (hi == "" || $2 > xh) { hi = $1; xh = $2 } } next }
+     /^contacts / { print "contacts", $2 + 1; next } { print }
+     END { print lo, hi, 0.05, 0, 0, 0, 0 }' dense.pack dense.pack >stale.pack
+packinfo stale.pack >stale.txt 2>/dev/null
+expect_num "the stale pack has one stale history line" "$(info_value stale.txt stale_history)" "==" 1
+frictionalize -o st.pack stale.pack >st.out 2>st.err
+rc=$?
+if [ "$rc" -eq 0 ] && [ "$(wc -l <st.err)" -eq 1 ] && grep -Eq '^frictionalize: stale\.pack: 1 history lines? .*not touch.*dropped' st.err; then
+	pass "stale history: exit 0, one warning"
+else
+	fail "stale history: exit 0, one warning" "exit $rc, stderr: $(head -c 300 st.err)"
+fi
+packinfo st.pack >st.txt 2>/dev/null
+expect_num "stale history dropped from the output" "$(info_value st.txt stale_history)" "==" 0
+grep -v '^history frictionalize ' st.pack >st.nohist
+expect_same "stale line dropped: same pack as without it" f.nohist st.nohist

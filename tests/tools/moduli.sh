@@ -1,0 +1,207 @@
+# moduli as a user runs it: on loadtest curves of a small frictional pack (200 grains) and on
+# tables written by hand from a known linear isotropic material, whose K and G it must give
+# back; --window, segments, continued tests, isotropic paths (K only), --stress lw, --emt,
+# and the errors.  A few seconds in all.
+. "$TOP/tests/tools/lib.sh"
+
+# rel A B: |A - B| / |B|
+rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
+# rows FILE: the data rows of a table (no '#' lines)
+rows() { grep -v '^#' "$1"; }
+# col FILE ROW COL: one value of a table (ROW counts data rows from 1)
+col() { rows "$1" | awk -F '\t' -v r="$2" -v c="$3" 'NR == r { print $c }'; }
+# moduli columns: 1 seg, 2 inc_from, 3 inc_to, 4 n, 5 sigma_c, 6 sig_lat, 7 K, 8 G, 9 lambda,
+# 10 E, 11 nu, 12 fit_rel (then, with --emt: 13 porosity, 14 coordination, 15 K_emt,
+# 16 G_emt_rough, 17 G_emt_smooth)
+
+packgen -n 200 --seed 5 -o loose.pack 2>/dev/null
+densify --stress 4e6 -o dense.pack loose.pack 2>/dev/null
+frictionalize -o fr.pack dense.pack 2>/dev/null
+expect_ok "loadtest makes the curve" loadtest --steps 6 fr.pack
+mv ok.out curve.tsv
+
+# --- a loadtest curve ------------------------------------------------------------------------
+expect_ok "moduli reads a loadtest curve" moduli curve.tsv
+mv ok.out m1.tsv
+hdr=$(printf '# seg\tinc_from\tinc_to\tn\tsigma_c[Pa]\tsig_lat[Pa]\tK[Pa]\tG[Pa]\tlambda[Pa]\tE[Pa]\tnu\tfit_rel')
+if [ "$(head -n 1 m1.tsv)" = "$hdr" ]; then pass "header"; else fail "header" "$(head -n 1 m1.tsv)"; fi
+expect_num "one row per increment (6)" "$(rows m1.tsv | wc -l)" "==" 6
+rows m1.tsv | awk -F '\t' '{ k = NR; if (NF != 12) bad = "row " NR ": " NF " columns"
+	if (!($1 == 1 && $2 == k - 1 && $3 == k && $4 == 1)) bad = "row " NR ": seg " $1 " inc " $2 "-" $3 " n " $4
+	if (!($7 > 1e8 && $7 < 1e11 && $8 > 1e7 && $8 < 1e11)) bad = "row " NR ": K " $7 " G " $8
+	if (!($12 >= 0 && $12 < 0.05)) bad = "row " NR ": fit_rel " $12
+	K = $7; G = $8
+	e = $9 - (K - 2 * G / 3); if (e < 0) e = -e; if (e > 1e-9 * K) bad = "row " NR ": lambda " $9
+	e = $10 - 9 * K * G / (3 * K + G); if (e < 0) e = -e; if (e > 1e-9 * $10) bad = "row " NR ": E " $10
+	e = $11 - (3 * K - 2 * G) / (2 * (3 * K + G)); if (e < 0) e = -e; if (e > 1e-9) bad = "row " NR ": nu " $11 }
+     END { if (bad) { print bad; exit 1 } }' >why &&
+    pass "rows: seg 1, inc k-1..k, K G positive, lambda E nu from K and G" || fail "rows: seg 1, inc k-1..k, K G positive, lambda E nu from K and G" "$(cat why)"
+# an interval's sigma_c and sig_lat are the means of its two end rows
+expect_num "sigma_c of interval 2-3 is the mean of rows 2 and 3" \
+    "$(rel "$(col m1.tsv 3 5)" "$(awk -v a="$(col curve.tsv 3 12)" -v b="$(col curve.tsv 4 12)" 'BEGIN { printf "%.17g", (a + b) / 2 }')")" "<" 1e-12
+expect_num "sig_lat of interval 2-3 is the mean of rows 2 and 3" \
+    "$(rel "$(col m1.tsv 3 6)" "$(awk -v a="$(col curve.tsv 3 13)" -v b="$(col curve.tsv 4 13)" 'BEGIN { printf "%.17g", (a + b) / 2 }')")" "<" 1e-12
+cat curve.tsv | moduli >m1b.tsv 2>/dev/null
+expect_same "stdin gives the same table" m1.tsv m1b.tsv
+moduli -o m1c.tsv curve.tsv 2>/dev/null
+expect_same "-o gives the same table" m1.tsv m1c.tsv
+
+# --window: 6 increments in windows of 4 are one interval of 4 and one of 2
+expect_ok "--window 4" moduli --window 4 curve.tsv
+mv ok.out w4.tsv
+if [ "$(rows w4.tsv | cut -f 1-4 | tr '\t\n' ', ')" = "1,0,4,4 1,4,6,2 " ]; then pass "--window 4: intervals 0-4 (n 4), 4-6 (n 2)"; else fail "--window 4: intervals 0-4 (n 4), 4-6 (n 2)" "$(rows w4.tsv | cut -f 1-4 | tr '\t\n' ', ')"; fi
+expect_num "--window 6: one row" "$(moduli --window 6 curve.tsv 2>/dev/null | rows /dev/stdin | wc -l)" "==" 1
+expect_num "--window 100: one row" "$(moduli -k 100 curve.tsv 2>/dev/null | rows /dev/stdin | wc -l)" "==" 1
+# segments: a window never spans two (loading 5, unloading 3, windows of 2)
+loadtest --path 'uniaxial steps=5; uniaxial step=-1e-4 steps=3' fr.pack >cycle.tsv 2>/dev/null
+expect_ok "--window 2 on a two-segment curve" moduli --window 2 cycle.tsv
+if [ "$(rows ok.out | cut -f 1-4 | tr '\t\n' ', ')" = "1,0,2,2 1,2,4,2 1,4,5,1 2,5,7,2 2,7,8,1 " ]; then
+	pass "--window 2: 3 intervals in segment 1, 2 in segment 2"
+else
+	fail "--window 2: 3 intervals in segment 1, 2 in segment 2" "$(rows ok.out | cut -f 1-4 | tr '\t\n' ', ')"
+fi
+expect_num "--window 1 on the two-segment curve: 8 rows" "$(moduli cycle.tsv 2>/dev/null | rows /dev/stdin | wc -l)" "==" 8
+
+# a continued test (loadtest -o, then loadtest on that pack): the two tables concatenated give
+# the moduli of one run (the second table's start row repeats a row and is skipped)
+loadtest --steps 3 -o half.pack fr.pack >h1.tsv 2>/dev/null
+loadtest --steps 3 half.pack >h2.tsv 2>/dev/null
+cat h1.tsv h2.tsv >h12.tsv
+expect_ok "moduli reads two concatenated tables of a continued test" moduli h12.tsv
+mv ok.out m12.tsv
+expect_same "continued test: the moduli of one run" m1.tsv m12.tsv
+
+# an isotropic path determines K only: G, lambda, E and nu are nan (README, hooke.h)
+loadtest --path isotropic --steps 3 fr.pack >iso.tsv 2>/dev/null
+expect_ok "isotropic curve" moduli iso.tsv
+rows ok.out | awk -F '\t' '!($7 > 1e8 && $7 < 1e11) { bad = "row " NR ": K " $7 }
+     $8 != "nan" || $9 != "nan" || $10 != "nan" || $11 != "nan" { bad = "row " NR ": G " $8 " lambda " $9 " E " $10 " nu " $11 }
+     END { if (NR != 3) bad = NR " rows"; if (bad) { print bad; exit 1 } }' >why &&
+    pass "isotropic: K, and nan for G lambda E nu" || fail "isotropic: K, and nan for G lambda E nu" "$(cat why)"
+
+# --stress lw: the volume-averaged columns.  The same table with the sig_ and sig_lw_ names
+# swapped, fitted on the wall columns, must give the same bytes.
+expect_ok "--stress lw" moduli --stress lw curve.tsv
+mv ok.out lw.tsv
+sed '/^# /{ s/\tsig_xx/\tTMPxx/; s/\tsig_yy/\tTMPyy/; s/\tsig_zz/\tTMPzz/
+	s/\tsig_lw_xx/\tsig_xx/; s/\tsig_lw_yy/\tsig_yy/; s/\tsig_lw_zz/\tsig_zz/
+	s/\tTMPxx/\tsig_lw_xx/; s/\tTMPyy/\tsig_lw_yy/; s/\tTMPzz/\tsig_lw_zz/ }' curve.tsv >swapped.tsv
+moduli swapped.tsv >sw.tsv 2>/dev/null
+expect_same "--stress lw fits the sig_lw_ columns" lw.tsv sw.tsv
+if ! cmp -s lw.tsv m1.tsv; then pass "--stress lw differs from the wall stresses"; else fail "--stress lw differs from the wall stresses" "same table"; fi
+
+# --emt glass: five more columns, the state at each interval's end and the effective-medium
+# moduli of emt.h computed here from E 70 GPa, nu 0.2
+expect_ok "--emt glass" moduli --emt glass curve.tsv
+mv ok.out emt.tsv
+hdr17=$(printf '%s\tporosity\tcoordination\tK_emt[Pa]\tG_emt_rough[Pa]\tG_emt_smooth[Pa]' "$hdr")
+if [ "$(head -n 1 emt.tsv)" = "$hdr17" ]; then pass "--emt: header"; else fail "--emt: header" "$(head -n 1 emt.tsv)"; fi
+rows emt.tsv | cut -f 1-12 >emt12.rows
+rows m1.tsv >m1.rows
+expect_same "--emt: the first 12 columns unchanged" m1.rows emt12.rows
+rows curve.tsv >curve.rows
+rows emt.tsv | awk -F '\t' 'NR == FNR { phi[$1] = $14; z[$1] = $15; next }
+	{ k = FNR; if (NF != 17) bad = "row " k ": " NF " columns"
+	  if ($13 != phi[$3] || $14 != z[$3]) bad = "row " k ": porosity/coordination not those of inc " $3
+	  pi = atan2(0, -1); nu = 0.2; mu = 70e9 / (2 * (1 + nu))
+	  c = $14 * $14 * (1 - $13) ^ 2 * mu * mu * $5 / (pi * pi * (1 - nu) ^ 2)
+	  K = (c / 18) ^ (1 / 3); Gr = (5 - 4 * nu) / (5 * (2 - nu)) * (1.5 * c) ^ (1 / 3)
+	  if ((($15 - K) / K) ^ 2 > 1e-18 || (($16 - Gr) / Gr) ^ 2 > 1e-18 || (($17 - 0.6 * K) / K) ^ 2 > 1e-18) bad = "row " k ": K_emt " $15 " (" K ") G_rough " $16 " (" Gr ")" }
+	END { if (FNR != 6) bad = FNR " rows"; if (bad) { print bad; exit 1 } }' curve.rows - >why &&
+    pass "--emt glass: Hertz-Mindlin K and G at the interval's sigma_c, porosity, coordination" || fail "--emt glass: Hertz-Mindlin K and G at the interval's sigma_c, porosity, coordination" "$(cat why)"
+moduli --emt quartz curve.tsv >q.tsv 2>/dev/null
+expect_num "--emt quartz: stiffer grains, larger K_emt" "$(col q.tsv 1 15)" ">" "$(col emt.tsv 1 15)"
+
+# --- hand-made tables from a known material -----------------------------------------------------
+# K = 1.234567e9, G = 0.7654321e9.  Segment 1: uniaxial strain along z, de 1e-4 per row:
+# dsig_xx = dsig_yy = (K - 2G/3) de, dsig_zz = (K + 4G/3) de.  Segment 2: a general strain
+# increment (2e-5, -3e-5, 1e-4): dsig_ll = lambda tr + 2 G de_ll.  Segment 3: isotropic 1e-4.
+K=1.234567e9
+G=0.7654321e9
+awk -v K=$K -v G=$G 'BEGIN {
+	printf "# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\n"
+	l = K - 2 * G / 3; e[1] = e[2] = 0.002; e[3] = 0.01; s[1] = s[2] = 5e6; s[3] = 8e6
+	out(0, 0)
+	for (k = 1; k <= 6; k++) step(k, 1, 0, 0, 1e-4)
+	for (k = 7; k <= 9; k++) step(k, 2, 2e-5, -3e-5, 1e-4)
+	for (k = 10; k <= 12; k++) step(k, 3, 1e-4, 1e-4, 1e-4)
+}
+function step(k, sg, a, b, c,   tr) {
+	tr = a + b + c; d[1] = a; d[2] = b; d[3] = c
+	for (i = 1; i <= 3; i++) { e[i] += d[i]; s[i] += l * tr + 2 * G * d[i] }
+	out(k, sg)
+}
+function out(k, sg) {
+	printf "%d\t%d\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\n", k, sg, e[1], e[2], e[3], s[1], s[2], s[3], (s[1] + s[2] + s[3]) / 3, (s[1] + s[2]) / 2
+}' >synth.tsv
+expect_ok "moduli reads the hand-made table" moduli synth.tsv
+mv ok.out syn1.tsv
+expect_num "hand-made, --window 1: 12 rows" "$(rows syn1.tsv | wc -l)" "==" 12
+rows syn1.tsv | awk -F '\t' -v K=$K -v G=$G '
+	function bad_rel(a, b) { return ((a - b) / b) ^ 2 > 1e-12 }	# 6 digits
+	{ l = K - 2 * G / 3; E = 9 * K * G / (3 * K + G); nu = (3 * K - 2 * G) / (2 * (3 * K + G)) }
+	$1 < 3 && (bad_rel($7, K) || bad_rel($8, G) || bad_rel($9, l) || bad_rel($10, E) || bad_rel($11, nu) || !($12 < 1e-6)) {
+		bad = "row " NR " (seg " $1 "): K " $7 " G " $8 " lambda " $9 " E " $10 " nu " $11 " fit_rel " $12 }
+	$1 == 3 && (bad_rel($7, K) || $8 != "nan") { bad = "row " NR " (isotropic): K " $7 " G " $8 }
+	END { if (bad) { print bad; exit 1 } }' >why &&
+    pass "hand-made: K and G back to 6 digits in every interval (G nan when isotropic)" || fail "hand-made: K and G back to 6 digits in every interval (G nan when isotropic)" "$(cat why)"
+expect_ok "hand-made, --window 6" moduli --window 6 synth.tsv
+mv ok.out syn6.tsv
+if [ "$(rows syn6.tsv | cut -f 1-4 | tr '\t\n' ', ')" = "1,0,6,6 2,6,9,3 3,9,12,3 " ]; then pass "hand-made, --window 6: one interval per segment"; else fail "hand-made, --window 6: one interval per segment" "$(rows syn6.tsv | cut -f 1-4 | tr '\t\n' ', ')"; fi
+expect_num "hand-made, --window 6: K of the uniaxial segment" "$(rel "$(col syn6.tsv 1 7)" $K)" "<" 1e-6
+expect_num "hand-made, --window 6: G of the uniaxial segment" "$(rel "$(col syn6.tsv 1 8)" $G)" "<" 1e-6
+expect_num "hand-made, --window 6: G of the general segment" "$(rel "$(col syn6.tsv 2 8)" $G)" "<" 1e-6
+expect_num "hand-made, --window 6: sigma_c is the mean of the end rows" "$(rel "$(col syn6.tsv 1 5)" "$(awk -v a="$(col synth.tsv 1 9)" -v b="$(col synth.tsv 7 9)" 'BEGIN { printf "%.17g", (a + b) / 2 }')")" "<" 1e-12
+# the columns are found by name: other columns, in another order, change nothing
+awk -F '\t' -v OFS='\t' '{ if (NR == 1) $1 = "inc"; x = $1; $1 = $8; $8 = x; print (NR == 1 ? "# " : "") $0 "\t" (NR == 1 ? "extra" : NR) }' synth.tsv >shuffled.tsv
+expect_ok "columns in another order" moduli shuffled.tsv
+rows ok.out >shuf.rows
+rows syn1.tsv >syn1.rows
+expect_same "columns in another order: the same moduli" syn1.rows shuf.rows
+
+# --- errors -----------------------------------------------------------------------------------
+# expect_fail NAME STATUS REGEX ARGS...: moduli ARGS -o nothing.tsv, as expect_error, and no
+# nothing.tsv nor a temporary file left
+expect_fail() {
+	n=$1 st=$2 re=$3
+	shift 3
+	rm -f nothing.tsv
+	expect_error "$n" "$st" "$re" moduli "$@" -o nothing.tsv
+	if [ ! -e nothing.tsv ] && ! ls -a | grep -q '^\.nothing'; then pass "$n: no output file"; else fail "$n: no output file" "$(ls -a | tr '\n' ' ')"; fi
+}
+cut -f 1-6,8- synth.tsv >nosigyy.tsv
+expect_fail "a missing column" 1 "^moduli: nosigyy\.tsv: no column 'sig_yy'" nosigyy.tsv
+awk 'NR == 4 { held = $0; next } { print } NR == 5 { print held }' synth.tsv >order.tsv
+expect_fail "rows out of order" 1 '^moduli: order\.tsv:5: rows out of order' order.tsv
+awk -F '\t' -v OFS='\t' 'NR == 6 { $4 = "0.00.1" } { print }' synth.tsv >malformed.tsv
+expect_fail "a malformed number" 1 "^moduli: malformed\.tsv:6: column eps_yy: '0\.00\.1' is not a number" malformed.tsv
+awk -F '\t' -v OFS='\t' 'NR == 6 { $6 = "nan" } { print }' synth.tsv >nan.tsv
+expect_fail "a nan stress" 1 '^moduli: nan\.tsv:6: .*finite' nan.tsv
+awk -F '\t' -v OFS='\t' 'NR == 6 { NF = 9 } { print }' synth.tsv >short.tsv
+expect_fail "a short row" 1 '^moduli: short\.tsv:6: ' short.tsv
+head -n 2 synth.tsv >onerow.tsv
+expect_fail "one row" 1 '^moduli: onerow\.tsv: .*at least two' onerow.tsv
+tail -n +2 synth.tsv >nohdr.tsv
+expect_fail "no header" 1 '^moduli: nohdr\.tsv:1: ' nohdr.tsv
+printf '%s' "$(cat synth.tsv)" >nonl.tsv
+expect_fail "last line without newline" 1 '^moduli: nonl\.tsv:14: ' nonl.tsv
+expect_fail "--emt without porosity column" 1 '^moduli: synth\.tsv: --emt needs the porosity' --emt glass synth.tsv
+expect_fail "missing input file" 1 '^moduli: .*no-such\.tsv' no-such.tsv
+expect_fail "--window 0" 2 '^moduli: --window' --window 0 synth.tsv
+expect_fail "--window nan" 2 '^moduli: --window' --window nan synth.tsv
+expect_fail "--stress bogus" 2 '^moduli: --stress' --stress bogus synth.tsv
+expect_fail "--emt unobtainium" 2 '^moduli: --emt' --emt unobtainium synth.tsv
+expect_fail "unknown option" 2 "^moduli: unknown option '--bogus'" --bogus synth.tsv
+# a failed run leaves an existing -o file alone
+echo keep >old.tsv
+moduli -o old.tsv order.tsv >/dev/null 2>&1
+moduli --window 0 -o old.tsv synth.tsv >/dev/null 2>&1
+if [ "$(cat old.tsv)" = keep ] && ! ls -a | grep -q '^\.old'; then pass "failed runs do not clobber -o"; else fail "failed runs do not clobber -o" "changed or temp left"; fi
+
+# --- help, version ------------------------------------------------------------------------------
+moduli --help >help.out 2>help.err
+rc=$?
+if [ "$rc" -eq 0 ] && grep -q -- '--window' help.out && grep -q -- '--emt' help.out && [ ! -s help.err ]; then pass "--help"; else fail "--help" "exit $rc"; fi
+moduli --version >ver.out 2>ver.err
+rc=$?
+if [ "$rc" -eq 0 ] && grep -q '^moduli ' ver.out && [ ! -s ver.err ]; then pass "--version"; else fail "--version" "exit $rc: $(cat ver.out)"; fi
