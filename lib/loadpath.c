@@ -72,6 +72,10 @@ parse_seg(char *text, int k, const struct path_defaults *def, struct path_seg *s
 		if (eq)
 			*eq = '\0';
 		if (strcmp(key, "hold") == 0 && !val) {
+			if (sg->kind != PATH_TRIAXIAL) {
+				msg_seterr("segment %d: hold belongs to a triaxial segment", k);
+				return -1;
+			}
 			sg->hold = 2;
 			continue;
 		}
@@ -107,7 +111,9 @@ parse_seg(char *text, int k, const struct path_defaults *def, struct path_seg *s
 			sg->hold = 1;
 			sg->hold_stress = v;
 		} else if (strcmp(key, "ratio") == 0 && sg->kind == PATH_POLYAXIAL) {
-			if (sscanf(val, "%lf:%lf:%lf", &sg->ratio[0], &sg->ratio[1], &sg->ratio[2]) != 3)
+			int used = 0;
+			if (sscanf(val, "%lf:%lf:%lf%n", &sg->ratio[0], &sg->ratio[1], &sg->ratio[2], &used) != 3 ||
+			    val[used] != '\0' || !isfinite(sg->ratio[0] + sg->ratio[1] + sg->ratio[2]))
 				goto bad;
 			have_ratio = 1;
 		} else {
@@ -273,9 +279,14 @@ path_run(struct loader *L, const struct load_path *path, const struct path_limit
 				dE[0][a] = row.eps[a] - prev.eps[a];
 				dS[0][a] = row.sig[a] - prev.sig[a];
 			}
-			if (hooke_fit((const double(*)[3])dE, (const double(*)[3])dS, 1, &hk) == 0 && hk.has_K && hk.has_G) {
-				lam = hk.lambda;
-				G = hk.G;
+			/* One increment's fit is noisy (3 stresses, 2 moduli, a contact network that
+			 * slips): the servo keeps its last estimate when a fit is not positive
+			 * definite and averages a new one with it, so that one bad increment
+			 * can neither switch the servo off nor throw the lateral walls. */
+			if (hooke_fit((const double(*)[3])dE, (const double(*)[3])dS, 1, &hk) == 0 && hk.has_K && hk.has_G &&
+			    hk.K > 0 && hk.G > 0) {
+				lam = isfinite(lam) ? 0.5 * (lam + hk.lambda) : hk.lambda;
+				G = isfinite(G) ? 0.5 * (G + hk.G) : hk.G;
 			}
 			row.seg = (int)k + 1;
 			if (fn && fn((int)k, &row, ctx))

@@ -48,7 +48,7 @@ static const struct cli_tool tool = {
 };
 
 struct out_ctx {
-	int axis;
+	const struct load_path *path;
 	long rows;
 };
 
@@ -57,8 +57,8 @@ on_row(int seg, const struct load_row *row, void *vctx)
 {
 	struct out_ctx *c = vctx;
 
-	(void)seg;
-	load_table_row(stdout, row, c->axis, 0, 0, 0);
+	/* sig_lat: the lateral axes of the row's own segment (the first one for the start row) */
+	load_table_row(stdout, row, c->path->seg[seg < 0 ? 0 : seg].axis, 0, 0, 0);
 	fflush(stdout);	/* a curve can be followed (tail -f, a pipe) while it grows */
 	c->rows++;
 	cli_progress("segment %d increment %ld  sigma_c %.4g Pa  eps %.3g %.3g %.3g  sliding %.4f  iter %ld  residual %.2e",
@@ -100,7 +100,7 @@ print_header(const struct pack *p, const struct load_path *path)
 	else
 		printf("## friction: none (mu 0)\n");
 	printf("## stress: sig_* from the normal forces on the walls, sig_lw_* volume-averaged (Love-Weber), "
-	       "sig_lat the mean of the two axes other than %c\n", axis_arg[0]);
+	       "sig_lat the mean of the two axes lateral to each segment's axis\n");
 	load_table_header(stdout, 0);
 }
 
@@ -108,7 +108,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct out_ctx oc = {2, 0};
+	struct out_ctx oc = {NULL, 0};
 	struct load_path path;
 	struct loader L;
 	struct pack p;
@@ -140,10 +140,14 @@ main(int argc, char **argv)
 		cli_usage_error("--skin: must be in (0, 2]");
 	if (lim.max_steps < 1 || !(lim.max_strain > 0 && lim.max_strain <= 0.5))
 		cli_usage_error("--max-steps must be positive and --max-strain in (0, 0.5]");
-	def.axis = oc.axis = axis_arg[0] - 'x';
+	if (!isnan(def.to_strain) && !(fabs(def.to_strain) <= 0.5))
+		cli_usage_error("--to-strain: must be in [-0.5, 0.5]");
+	cli_usage_done();	/* the path is parsed only with valid defaults */
+	def.axis = axis_arg[0] - 'x';
 	if (path_parse(path_arg, &def, &path))
 		cli_usage_error("--path: %s", msg_geterr());
 	cli_usage_done();
+	oc.path = &path;
 	lp.nsub = (int)nsub;
 
 	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
