@@ -16,18 +16,19 @@
 
 static struct fric_params fp;
 static const char *log_path, *axis_arg = "z", *rule_arg = "return-map";
-static double mu = 0.3, wall_mu = NAN;
+static double mu = NAN, wall_mu = NAN;
 static long nsub = 1;
 static int allow_limit;
 
 static struct cli_opt opts[] = {
-	{"mu", 'm', CLI_DOUBLE, &mu, "M", "grain-grain friction coefficient", NULL},
-	{"wall-mu", 0, CLI_DOUBLE, &wall_mu, "M", "grain-wall friction coefficient (default: 0.3)", NULL},
+	{"mu", 'm', CLI_DOUBLE, &mu, "M", "grain-grain friction coefficient (default: the pack's, 0.3 from packgen)", NULL},
+	{"wall-mu", 0, CLI_DOUBLE, &wall_mu, "M", "grain-wall friction coefficient (default: --mu when given, else the pack's)", NULL},
 	{"strain-step", 'd', CLI_DOUBLE, &fp.strain_step, "EPS", "uniaxial compression per increment", NULL},
 	{"axis", 'a', CLI_STRING, &axis_arg, "x|y|z", "loading axis", NULL},
 	{"log", 'l', CLI_STRING, &log_path, "FILE", "write a TSV row per increment to FILE", NULL},
-	{"window", 0, CLI_LONG, &fp.window, "K", "saturation: the sliding ratio of the last K increments ...", NULL},
-	{"sat-tol", 0, CLI_DOUBLE, &fp.sat_tol, "D", "... spans less than D (max - min)", NULL},
+	{"window", 0, CLI_LONG, &fp.window, "K", "saturation: the mean sliding ratio of the last K increments ...", NULL},
+	{"sat-tol", 0, CLI_DOUBLE, &fp.sat_tol, "D", "... differs from the mean of the K before by less than D", NULL},
+	{"window-overlap", 0, CLI_DOUBLE, &fp.window_overlap, "F", "... the window covering at least F x the mean overlap / radius in strain (0: K only)", NULL},
 	{"min-inc", 0, CLI_LONG, &fp.min_inc, "N", "at least N increments", NULL},
 	{"max-inc", 0, CLI_LONG, &fp.max_inc, "N", "at most N increments (not saturated: an error)", NULL},
 	{"rule", 0, CLI_STRING, &rule_arg, "NAME", "sliding rule: return-map (exact potential) or paper (F (6)-(7b))", NULL},
@@ -78,9 +79,7 @@ main(int argc, char **argv)
 	fric_params_default(&fp);
 	cli_parse(&tool, argc, argv, &st);
 	qs_min_opts_check(&fp.lp.min);
-	if (isnan(wall_mu))
-		wall_mu = 0.3;
-	if (!(mu >= 0 && mu <= 10) || !(wall_mu >= 0 && wall_mu <= 10))
+	if (!(isnan(mu) || (mu >= 0 && mu <= 10)) || !(isnan(wall_mu) || (wall_mu >= 0 && wall_mu <= 10)))
 		cli_usage_error("--mu and --wall-mu: must be in [0, 10]");
 	if (!(fp.strain_step > 0 && fp.strain_step <= 0.01))
 		cli_usage_error("--strain-step: must be in (0, 0.01]");
@@ -90,6 +89,10 @@ main(int argc, char **argv)
 		cli_usage_error("--rule: must be return-map or paper");
 	if (fp.window < 2 || fp.min_inc < 1 || fp.max_inc < 1 || fp.max_inc > 100000)
 		cli_usage_error("--window (>= 2), --min-inc and --max-inc (<= 100000) must be positive");
+	if (!(fp.window_overlap >= 0 && fp.window_overlap <= 100))
+		cli_usage_error("--window-overlap: must be in [0, 100]");
+	if (fp.min_inc > fp.max_inc || fp.window > fp.max_inc)
+		cli_usage_error("--window and --min-inc must not exceed --max-inc");
 	if (!(fp.sat_tol > 0 && fp.sat_tol < 1))
 		cli_usage_error("--sat-tol: must be in (0, 1)");
 	if (nsub < 1 || nsub > 1000 || fp.lp.k_inc < 1)
@@ -122,8 +125,19 @@ main(int argc, char **argv)
 			msg_warn("%s: %zu history lines name grains that do not touch: dropped",
 			    st.input ? st.input : "<stdin>", m.stale_history);
 	}
+	if (isnan(wall_mu))
+		wall_mu = isnan(mu) ? p.wall_mu : mu;
+	if (isnan(mu))
+		mu = p.mu;
 	p.mu = mu;
 	p.wall_mu = wall_mu;
+	{
+		long w = fric_window(&p, &fp);
+		if (w > fp.max_inc)
+			msg_die(EXIT_DATA, "%s: the saturation window is %ld increments (--window-overlap %g of this pack's overlaps): more than --max-inc %ld",
+			    st.input ? st.input : "<stdin>", w, fp.window_overlap, fp.max_inc);
+		msg_info(1, "mu %g, wall_mu %g; saturation window %ld increments of %g", mu, wall_mu, w, fp.strain_step);
+	}
 	if (log_path) {
 		if (cli_out_open(&logout, log_path))
 			msg_die_err(EXIT_DATA);

@@ -54,23 +54,34 @@ awk -F '\t' 'NR == 1 { next }
      { x = $3; y = $4; z = $5 }
      END { if (bad) { print bad; exit 1 } }' f.tsv >why && pass "log: start row, then one row per increment" || fail "log: start row, then one row per increment" "$(cat why)"
 n=$(($(wc -l <f.tsv) - 2))
-expect_num "at least --min-inc (10) increments" "$n" ">=" 10
-expect_num "below --max-inc (300) increments" "$n" "<" 300
+expect_num "at least two windows (20) of increments" "$n" ">=" 20
+expect_num "below --max-inc (1000) increments" "$n" "<" 1000
 expect_num "strain step 1e-4 per increment" "$(awk -F '\t' 'NR == 2 { a = $5 } END { print ($5 - a) / (NR - 2) }' f.tsv)" "==" 1e-4
 # sliding develops: it ends well above its first increments and never drops by much
 awk -F '\t' 'NR > 2 { r[NR - 2] = $16 } END {
 	n = NR - 2; for (k = 2; k <= n; k++) if (r[k - 1] - r[k] > d) d = r[k - 1] - r[k]
 	if (!(r[n] > 2 * r[1] && d < 0.02)) { print "first " r[1] ", last " r[n] ", largest drop " d; exit 1 } }' f.tsv >why &&
     pass "sliding ratio grows, nondecreasing-ish" || fail "sliding ratio grows, nondecreasing-ish" "$(cat why)"
-# saturation as documented: the ratio of the last --window (10) increments spans < --sat-tol (0.005)
-expect_num "saturated: range of the last 10 sliding ratios" \
-    "$(tail -n 10 f.tsv | awk -F '\t' 'NR == 1 { lo = hi = $16 } { if ($16 < lo) lo = $16; if ($16 > hi) hi = $16 } END { print hi - lo }')" "<" 0.005
-# ... and not before: a run that stopped earlier would have saturated earlier
-awk -F '\t' 'NR > 2 { r[NR - 2] = $16 } END {
-	n = NR - 2; for (k = 10; k < n; k++) { lo = 1; hi = 0
-		for (q = k - 9; q <= k; q++) { if (r[q] < lo) lo = r[q]; if (r[q] > hi) hi = r[q] }
-		if (hi - lo < 0.005) { print "already saturated at increment " k; exit 1 } } }' f.tsv >why &&
-    pass "stops at the first saturated increment" || fail "stops at the first saturated increment" "$(cat why)"
+# saturation as documented: with W the window that -v reports (--window 10 widened to cover
+# --window-overlap 0.25 x the mean overlap / radius in strain), the mean sliding ratio of the
+# last W increments differs from that of the W before by less than --sat-tol (0.005)
+W=$(frictionalize -v --max-inc 1000 -o /dev/null dense.pack 2>&1 | sed -n 's/.*saturation window \([0-9]*\) increments.*/\1/p')
+expect_num "saturation window at least --window" "${W:-0}" ">=" 10
+# satur K: 0 when the window means differ by less than 0.005 at increment K (rows 1..K)
+cat >sat.awk <<'AWK'
+NR > 2 { r[++n] = $16 }
+END {
+	for (k = 2 * W; k <= n; k++) {
+		m1 = m0 = 0
+		for (q = k - W + 1; q <= k; q++) { m1 += r[q]; m0 += r[q - W] }
+		d = (m1 - m0) / W; if (d < 0) d = -d
+		if (d < 0.005) { first = k; break }
+	}
+	if (first != n) { print "saturated first at increment " first ", stopped at " n; exit 1 }
+}
+AWK
+awk -F '\t' -v W="$W" -f sat.awk f.tsv >why && pass "stops at the first increment where the window means agree" ||
+    fail "stops at the first increment where the window means agree" "$(cat why)"
 last=$(tail -n 1 f.tsv)
 expect_num "log's last sliding_ratio is packinfo's" "$(echo "$last" | cut -f 16)" "==" "$(info_value f.txt sliding_ratio)"
 expect_num "log's last sigma_c is packinfo's" "$(rel "$(echo "$last" | cut -f 12)" "$(info_value f.txt sigma_c)")" "<" 1e-9
@@ -85,16 +96,18 @@ grep -v '^history frictionalize ' f.pack >f.nohist
 grep -v '^history frictionalize ' f3.pack >f3.nohist
 expect_same "stdin and stdout give the same pack as file and -o" f.nohist f3.nohist
 
-# --- --mu 0 (grain-grain friction off; walls keep --wall-mu, default 0.3) -----------------
-expect_ok "--mu 0 runs" frictionalize --mu 0 --log m0.tsv -o m0.pack dense.pack
+# --- --mu 0 (grain-grain friction off; --wall-mu follows --mu unless given) ----------------
+expect_ok "--mu 0 runs" frictionalize --mu 0 --wall-mu 0.3 --log m0.tsv -o m0.pack dense.pack
 if grep -q '^friction 0$' m0.pack; then pass "--mu 0: friction 0 in the pack"; else fail "--mu 0: friction 0 in the pack" "$(grep '^friction' m0.pack)"; fi
 awk '/^end$/ { on = 1; next } on && NF == 7 && $2 !~ /^[xyz](lo|hi)$/ && ($4 != 0 || $5 != 0 || $6 != 0) { q++ }
      END { exit q > 0 }' m0.pack && pass "--mu 0: no grain-grain tangential force" || fail "--mu 0: no grain-grain tangential force" "found some"
 awk '/^end$/ { on = 1; next } on && NF == 7 && $2 ~ /^[xyz](lo|hi)$/ && ($4 != 0 || $5 != 0 || $6 != 0) { q++ }
      END { exit !(q > 0) }' m0.pack && pass "--mu 0: wall contacts keep friction (--wall-mu 0.3)" || fail "--mu 0: wall contacts keep friction (--wall-mu 0.3)" "no wall Q0"
 expect_ok "--mu 0 --wall-mu 0 runs" frictionalize --mu 0 --wall-mu 0 --log m00.tsv -o m00.pack dense.pack
-# nothing can slide: the ratio stays 0 and the run saturates at --min-inc (10)
-expect_num "--mu 0 --wall-mu 0: saturates after --min-inc increments" "$(($(wc -l <m00.tsv) - 2))" "==" 10
+# nothing can slide: the ratio stays 0 and the run saturates after two windows
+expect_num "--mu 0 --wall-mu 0: saturates after two windows" "$(($(wc -l <m00.tsv) - 2))" "==" $((2 * W))
+expect_ok "--mu 0 alone runs" frictionalize --mu 0 -o m0b.pack dense.pack
+if grep -q '^walls .* 0$' m0b.pack; then pass "--mu 0: --wall-mu follows it"; else fail "--mu 0: --wall-mu follows it" "$(grep '^walls' m0b.pack)"; fi
 expect_num "--mu 0 --wall-mu 0: sliding ratio stays 0" "$(awk -F '\t' 'NR > 1 && $16 != 0 { n++ } END { print n + 0 }' m00.tsv)" "==" 0
 awk '/^end$/ { on = 1; next } on && NF == 7 && ($4 != 0 || $5 != 0 || $6 != 0) { q++ } END { exit q > 0 }' m00.pack &&
     pass "--mu 0 --wall-mu 0: no tangential force at all" || fail "--mu 0 --wall-mu 0: no tangential force at all" "found some"
@@ -134,13 +147,13 @@ expect_fail "--rule bogus" 2 '^frictionalize: --rule' --rule bogus dense.pack
 expect_fail "unknown option" 2 "^frictionalize: unknown option '--bogus'" --bogus dense.pack
 expect_fail "missing input file" 1 '^frictionalize: .*no-such\.pack' no-such.pack
 expect_fail "pack without reference box" 1 '^frictionalize: loose\.pack: no reference box' loose.pack
-expect_fail "increment limit" 1 '^frictionalize: .*did not saturate in 3 increments.*--allow-limit' --max-inc 3 dense.pack
+expect_fail "increment limit" 1 '^frictionalize: .*did not saturate in 3 increments.*--allow-limit' --max-inc 3 --window 2 --window-overlap 0 dense.pack
 expect_fail "iteration limit" 1 '^frictionalize: .*iteration limit.*--allow-limit' --max-iter 3 dense.pack
 # the same on stdout: a failing run writes no half pack
-expect_error "increment limit, no -o: nothing on stdout" 1 'did not saturate' frictionalize --max-inc 3 dense.pack
+expect_error "increment limit, no -o: nothing on stdout" 1 'did not saturate' frictionalize --max-inc 3 --window 2 --window-overlap 0 dense.pack
 
 # --allow-limit keeps the pack and the log, exits 0, warns in one line
-frictionalize --max-inc 3 --allow-limit --log lim.tsv -o lim.pack dense.pack >lim.out 2>lim.err
+frictionalize --max-inc 3 --window 2 --window-overlap 0 --allow-limit --log lim.tsv -o lim.pack dense.pack >lim.out 2>lim.err
 rc=$?
 if [ "$rc" -eq 0 ] && [ -s lim.pack ] && [ ! -s lim.out ] && [ "$(wc -l <lim.err)" -eq 1 ] && grep -q 'did not saturate' lim.err; then
 	pass "--allow-limit: exit 0, the pack, one warning"
@@ -152,7 +165,7 @@ expect_num "--allow-limit: log has the start row and 3 increments" "$(($(wc -l <
 # -o is atomic: a failing run leaves an existing file (and log) as they were
 echo keep >old.pack
 echo keep >old.tsv
-frictionalize --max-inc 3 --log old.tsv -o old.pack dense.pack >/dev/null 2>&1
+frictionalize --max-inc 3 --window 2 --window-overlap 0 --log old.tsv -o old.pack dense.pack >/dev/null 2>&1
 if [ "$(cat old.pack)" = keep ] && [ "$(cat old.tsv)" = keep ]; then
 	pass "failed run does not clobber -o and --log files"
 else
