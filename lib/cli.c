@@ -1,6 +1,7 @@
 /* cli: option tables, help, atomic output, progress (see cli.h). */
 #include "cli.h"
 #include "msg.h"
+#include "packio.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -10,6 +11,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -377,6 +379,31 @@ cli_out_open(struct cli_out *o, const char *path)
 		o->fp = stdout;
 		return 0;
 	}
+	{
+		/* a device or a pipe (-o /dev/null, -o /dev/stderr, a FIFO): write into it.  The
+		 * temporary file and rename would replace the device node with a regular file (as
+		 * root, /dev/null itself) */
+		struct stat sb;
+		if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+			if (S_ISDIR(sb.st_mode)) {
+				msg_seterr("%s: is a directory", path);
+				return -1;
+			}
+			o->fp = fopen(path, "w");
+			if (!o->fp) {
+				msg_seterr("%s: %s", path, strerror(errno));
+				return -1;
+			}
+			o->path = strdup(path);
+			if (!o->path) {
+				fclose(o->fp);
+				o->fp = NULL;
+				msg_seterr("out of memory");
+				return -1;
+			}
+			return 0;
+		}
+	}
 	if (strlen(path) + 16 >= sizeof tmp_pending[0]) {
 		msg_seterr("%s: path too long", path);
 		return -1;
@@ -433,6 +460,40 @@ cli_out_open(struct cli_out *o, const char *path)
 	return 0;
 }
 
+/* Compress the finished temporary file of an output named *.gz: the tables are written as
+ * text and gzipped whole at the commit, so that the rename stays the one atomic step. */
+static int
+gzip_in_place(const char *tmp)
+{
+	char buf[1 << 15], *ztmp = malloc(strlen(tmp) + 4);
+	FILE *in = fopen(tmp, "rb");
+	gzFile z = NULL;
+	size_t n;
+	int bad = 0;
+
+	if (ztmp)
+		sprintf(ztmp, "%s.z", tmp);
+	if (!ztmp || !in || !(z = gzopen(ztmp, "wb6"))) {
+		if (in)
+			fclose(in);
+		free(ztmp);
+		return -1;
+	}
+	while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+		if (gzwrite(z, buf, (unsigned)n) != (int)n)
+			bad = 1;
+	bad |= ferror(in) != 0;
+	fclose(in);
+	bad |= gzclose(z) != Z_OK;
+	if (bad || rename(ztmp, tmp) != 0) {
+		unlink(ztmp);
+		free(ztmp);
+		return -1;
+	}
+	free(ztmp);
+	return 0;
+}
+
 int
 cli_out_commit(struct cli_out *o)
 {
@@ -454,6 +515,16 @@ cli_out_commit(struct cli_out *o)
 	o->fp = NULL;
 	if (bad) {
 		msg_seterr("%s: write error: %s", o->path, strerror(errno));
+		cli_out_abort(o);
+		return -1;
+	}
+	if (!o->tmp) {	/* written straight into a device or pipe */
+		free(o->path);
+		o->path = NULL;
+		return 0;
+	}
+	if (path_is_gz(o->path) && gzip_in_place(o->tmp)) {
+		msg_seterr("%s: cannot compress: %s", o->path, strerror(errno));
 		cli_out_abort(o);
 		return -1;
 	}

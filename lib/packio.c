@@ -23,6 +23,7 @@ struct pack_reader {
 	char *buf;		/* current line */
 	size_t cap;
 	int have_pushback;	/* buf holds a line to be returned again */
+	int newline;		/* the line in buf ended with a newline */
 };
 
 struct pack_reader *
@@ -161,6 +162,7 @@ next_line(struct pack_reader *rd)
 		len += take;
 		rd->chunk_pos += take + (nl ? 1 : 0);
 		got = 1;
+		rd->newline = nl != NULL;
 		if (nl)
 			break;
 	}
@@ -173,6 +175,19 @@ next_line(struct pack_reader *rd)
 	if (strlen(rd->buf) + 1 < len)
 		return rd_error(rd, "binary data (NUL byte) in a text pack");
 	return 1;
+}
+
+int
+pack_reader_line(struct pack_reader *rd, const char **line, long *lineno, int *newline)
+{
+	int r = next_line(rd);
+
+	if (r == 1) {
+		*line = rd->buf;
+		*lineno = rd->line;
+		*newline = rd->newline;
+	}
+	return r;
 }
 
 static int
@@ -821,7 +836,7 @@ pack_write_path(const struct pack *p, const char *path)
 
 	if (cli_out_open(&o, path))
 		return -1;
-	if (pack_write_stream(p, o.fp, path_is_gz(path))) {
+	if (pack_write_stream(p, o.fp, 0)) {	/* cli_out_commit gzips a *.gz output */
 		msg_seterr("%s: write error", path ? path : "<stdout>");
 		cli_out_abort(&o);
 		return -1;

@@ -19,6 +19,10 @@ void pack_reader_close(struct pack_reader *rd);
 /* 1: a pack was read into p (initialised here); 0: clean end of input; -1: error. */
 int pack_read_next(struct pack_reader *rd, struct pack *p);
 const char *pack_reader_name(const struct pack_reader *rd);
+/* The next text line of the stream (plain or gzip), for readers of other line formats (the
+ * tables): 1 with *line (newline stripped, valid until the next call), its number and whether
+ * it ended with a newline; 0 at the end; -1 with msg_seterr (a corrupt or truncated .gz). */
+int pack_reader_line(struct pack_reader *rd, const char **line, long *lineno, int *newline);
 
 /* Read exactly one pack from path (NULL or "-" = stdin).  0 on success, -1 with the slot set. */
 int pack_read_path(const char *path, struct pack *p);

@@ -2,6 +2,7 @@
 #include "table.h"
 #include "numfmt.h"
 #include "msg.h"
+#include "packio.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -82,23 +83,35 @@ int
 table_read(FILE *fp, const char *display, struct table *t)
 {
 	char *buf = NULL, *header = NULL;
-	size_t bcap = 0;
-	ssize_t len;
+	const char *text;
+	size_t bcap = 0, len;
 	long lineno = 0;
-	int status = -1;
+	int status = -1, nl, r;
+	struct pack_reader *rd = pack_reader_open(fp, display);
 
 	memset(t, 0, sizeof *t);
-	while ((len = getline(&buf, &bcap, fp)) >= 0) {
+	if (!rd)
+		return -1;
+	/* through the pack reader: plain and gzip tables alike, a truncated .gz is an error */
+	while ((r = pack_reader_line(rd, &text, &lineno, &nl)) == 1) {
 		char *p, *end;
 		int k;
 
-		lineno++;
-		if (len > 0 && buf[len - 1] == '\n')
-			buf[--len] = '\0';
-		else {
+		if (!nl) {
 			msg_seterr("%s:%ld: the last line has no newline (truncated?)", display, lineno);
 			goto out;
 		}
+		len = strlen(text);
+		if (len + 1 > bcap) {
+			char *b = realloc(buf, 2 * (len + 1));
+			if (!b) {
+				msg_seterr("out of memory");
+				goto out;
+			}
+			buf = b;
+			bcap = 2 * (len + 1);
+		}
+		memcpy(buf, text, len + 1);
 		if (strncmp(buf, "##", 2) == 0)
 			continue;
 		if (buf[0] == '#') {
@@ -156,16 +169,15 @@ table_read(FILE *fp, const char *display, struct table *t)
 		}
 		t->line[t->nrow++] = lineno;
 	}
-	if (ferror(fp)) {
-		msg_seterr("%s: read error", display);
+	if (r < 0)
 		goto out;
-	}
 	if (!header) {
 		msg_seterr("%s: empty (no header line)", display);
 		goto out;
 	}
 	status = 0;
 out:
+	pack_reader_close(rd);
 	free(buf);
 	free(header);
 	if (status)

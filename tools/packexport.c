@@ -51,28 +51,16 @@ text_close(struct text *t)
 		msg_die(EXIT_DATA, "out of memory");
 }
 
-/* Write t to path (NULL or "-": stdout) atomically, gzip-compressed for a .gz name. */
+/* Write t to path (NULL or "-": stdout) atomically; cli_out_commit gzips a .gz name. */
 static void
 emit(const char *path, struct text *t)
 {
 	struct cli_out out;
-	int bad = 0;
+	int bad;
 
 	if (cli_out_open(&out, path))
 		msg_die_err(EXIT_DATA);
-	if (path_is_gz(path)) {
-		int fd = dup(fileno(out.fp));
-		gzFile z = fd >= 0 ? gzdopen(fd, "wb6") : NULL;
-
-		if (!z || (t->len && gzwrite(z, t->s, (unsigned)t->len) != (int)t->len))
-			bad = 1;
-		if (z)
-			bad |= gzclose(z) != Z_OK;
-		else if (fd >= 0)
-			close(fd);
-	} else if (fwrite(t->s, 1, t->len, out.fp) != t->len) {
-		bad = 1;
-	}
+	bad = fwrite(t->s, 1, t->len, out.fp) != t->len;
 	free(t->s);
 	t->s = NULL;
 	if (bad) {

@@ -72,3 +72,14 @@ if [ "$rc" -eq 1 ] && [ ! -e fail.pack ] && ! ls .fail.pack.* >/dev/null 2>&1; t
 else
 	fail "a run that fails leaves no output and no temporary file" "rc $rc, $(ls -a | tr '\n' ' ')"
 fi
+
+# -o onto something that is not a regular file is written into, never replaced by the
+# temporary file's rename: a FIFO stays a FIFO and its reader gets the pack (as root, -o
+# /dev/null used to turn /dev/null into a regular file)
+mkfifo out.fifo
+cat out.fifo >from.fifo &
+if packgen -n 20 --seed 3 -o out.fifo 2>fifo.err; then pass "-o FIFO: exit 0"; else fail "-o FIFO: exit 0" "$(cat fifo.err)"; fi
+wait
+if [ -p out.fifo ]; then pass "-o FIFO: still a FIFO"; else fail "-o FIFO: still a FIFO" "$(ls -l out.fifo)"; fi
+packgen -n 20 --seed 3 >direct.pack 2>/dev/null
+expect_same "-o FIFO: the reader got the pack" from.fifo direct.pack
