@@ -229,6 +229,11 @@ contacts_store(struct pack *p, int keep_history)
 		struct pack_contact c = {g->i, g->j, g->P, {0, 0, 0}, 0};
 		if (old && g->hist >= 0) {
 			memcpy(c.Q0, old[g->hist].Q0, sizeof c.Q0);
+			if (old[g->hist].i != g->i) {	/* the old line named the pair "j i" */
+				c.Q0[0] = -c.Q0[0];
+				c.Q0[1] = -c.Q0[1];
+				c.Q0[2] = -c.Q0[2];
+			}
 			c.M0 = old[g->hist].M0;
 		}
 		if (pack_add_contact(p, &c))

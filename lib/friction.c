@@ -93,6 +93,11 @@ setup_contact(const struct pack *p, const struct geo_contact *g, struct fr_conta
 	c->mmax = 3 * M_PI / 16 * a * mu * g->P;
 	if (g->hist >= 0) {
 		memcpy(Q0, p->c[g->hist].Q0, sizeof Q0);
+		/* a line may name the pair as "j i" (pack-format.md): its Q0 is then the force
+		 * on j, and the force on i is its opposite (M0 is the same either way) */
+		if (p->c[g->hist].i != g->i)
+			for (k = 0; k < 3; k++)
+				Q0[k] = -Q0[k];
 		M0 = p->c[g->hist].M0;
 	}
 	/* Q^p = |Q0| T Q0 / |T Q0|: the history force turned into the reference tangent plane */
