@@ -281,6 +281,11 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	memcpy(p->x, x, 3 * p->n * sizeof *x);
 	if (contacts_store(p, 0))
 		goto out;
+	/* frictionless compaction: nothing slides (a frictional pack densified again) */
+	if (pack_get_meta(p, "sliding_ratio") && pack_set_meta(p, "sliding_ratio", "0")) {
+		msg_seterr("out of memory");
+		goto out;
+	}
 	status = limit_hit ? 1 : 0;
 	if (limit_hit)
 		msg_seterr("a minimisation stopped at its iteration limit (largest residual %.3g)", st.res_max);

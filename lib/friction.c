@@ -264,6 +264,7 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 		for (a = 0; a < 3; a++)
 			q[a] = c->qp[a] - c->k * us[a];
 		qn = vec3_norm(q);
+		c->qtrial = qn;
 		if (qn <= c->qmax) {
 			memcpy(c->Q, q, sizeof q);
 			E += (qn * qn - vec3_dot(c->qp, c->qp)) / (2 * c->k);
@@ -333,6 +334,18 @@ fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double 
 	}
 }
 
+static const struct pack_contact *sort_pc;	/* qsort has no context argument */
+
+static int
+cmp_line(const void *a, const void *b)
+{
+	const struct pack_contact *x = &sort_pc[*(const size_t *)a], *y = &sort_pc[*(const size_t *)b];
+
+	if (x->i != y->i)
+		return x->i < y->i ? -1 : 1;
+	return x->j < y->j ? -1 : x->j > y->j;
+}
+
 int
 fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 {
@@ -353,5 +366,40 @@ fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 	if (contacts_store(p, 1))
 		return -1;
 	memset(x + n3, 0, n3 * sizeof *x);
+	/* the sliding count: the trial force of each reference contact against the limit of
+	 * its normal force now (the new lines, in the engine's pair order; both sorted by
+	 * pair below) */
+	f->ntouch = p->nc;
+	f->nslide = 0;
+	if (p->nc && f->n) {
+		size_t *ord = malloc(p->nc * sizeof *ord);
+		if (!ord) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		for (k = 0; k < p->nc; k++)
+			ord[k] = k;
+		sort_pc = p->c;
+		qsort(ord, p->nc, sizeof *ord, cmp_line);
+		for (k = 0; k < f->n; k++) {
+			const struct fr_contact *c = &f->c[k];
+			size_t lo = 0, hi = p->nc;
+			while (lo < hi) {
+				size_t mid = (lo + hi) / 2;
+				const struct pack_contact *m = &p->c[ord[mid]];
+				if (m->i < c->i || (m->i == c->i && m->j < c->j))
+					lo = mid + 1;
+				else
+					hi = mid;
+			}
+			if (lo < p->nc && p->c[ord[lo]].i == c->i && p->c[ord[lo]].j == c->j) {
+				const struct pack_contact *m = &p->c[ord[lo]];
+				double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu;
+				if (mu * m->P0 > 0 && c->qtrial >= mu * m->P0 * (1 - 1e-9))
+					f->nslide++;
+			}
+		}
+		free(ord);
+	}
 	return 0;
 }

@@ -45,6 +45,7 @@ struct fr_contact {
 	double k, qmax, qp[3];	/* stick stiffness, sliding limit, reference force on i */
 	double kt, mmax, mp;	/* torsion: stiffness, limit, reference couple on i about n */
 	double Q[3], M;		/* force and couple on i at the last evaluation */
+	double qtrial;		/* |Q^p - k* u_s| at the last evaluation (the elastic trial) */
 };
 
 struct qs_friction {
@@ -58,6 +59,9 @@ struct qs_friction {
 	 * largest excess |Q0| / Q_max - 1 */
 	size_t stale, clamped;
 	double clamp_excess;
+	/* from fr_commit: contacts touching at the end of the increment, and those of them
+	 * that slide by the end-of-increment test (see fr_commit) */
+	size_t ntouch, nslide;
 };
 
 void fr_init(struct qs_friction *f, enum fr_rule rule);
@@ -82,7 +86,13 @@ int fr_begin(struct qs_friction *f, struct qs_system *s);
  * each contact's Q and M.  Called by qs_energy. */
 double fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g);
 /* End the increment at x (6N): evaluate, write the history into p->c, move p->x to x, zero the
- * rotations in x.  0 or -1. */
+ * rotations in x.  Counts the sliding contacts of the increment into f->nslide: those whose
+ * elastic trial force reaches the limit of their normal force at the end, |Q^p - k* u_s| >=
+ * mu P_end.  That is the Mindlin-Deresiewicz test with the limit the contact has when the
+ * increment ends; |Q| = Q_max with the limit frozen at the start (fr_sliding) also counts a
+ * contact whose normal force rose faster than its tangential load (it sticks under the
+ * updated limit): under uniaxial compression that reported half the contacts of a pack as
+ * sliding.  0 or -1. */
 int fr_commit(struct qs_friction *f, struct qs_system *s, double *x);
 /* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
  * |Q| >= Q_max (1 - 1e-9)). */

@@ -17,7 +17,7 @@ fric_params_default(struct fric_params *fp)
 	fp->window = 10;
 	fp->min_inc = 1;	/* the two windows set the least: 2 x window */
 	fp->max_inc = 1000;
-	fp->sat_tol = 0.005;
+	fp->sat_tol = 0.05;	/* relative change of the window mean */
 	/* 13 increments of 1e-4 at 4 MPa in a glass pack (mean overlap / R about 5e-3), 75 at 74 MPa */
 	fp->window_overlap = 0.25;
 	load_params_default(&fp->lp);
@@ -53,12 +53,14 @@ frictionalize_run(struct pack *p, const struct fric_params *fp, fric_row_fn fn, 
 	struct loader L;
 	struct load_row prev, row;
 	struct hooke hk;
-	double de[3] = {0, 0, 0}, *ratio;
+	double de[3] = {0, 0, 0}, *ratio, *shear;
 	long k, window = fric_window(p, fp), min_inc = fp->min_inc;
 	int st = 2, a;
 
 	ratio = malloc((fp->max_inc + 1) * sizeof *ratio);
-	if (!ratio) {
+	shear = malloc((fp->max_inc + 1) * sizeof *shear);
+	if (!ratio || !shear) {
+		free(ratio), free(shear);
 		msg_seterr("out of memory");
 		return -1;
 	}
@@ -99,23 +101,25 @@ frictionalize_run(struct pack *p, const struct fric_params *fp, fric_row_fn fn, 
 			break;
 		}
 		ratio[k] = row.sliding_ratio;
+		shear[k] = hk.G;
 		if (k >= min_inc && k >= 2 * window) {
+			const double *v = fp->until == FRIC_UNTIL_SHEAR ? shear : ratio;
 			double m1 = 0, m0 = 0;
 			long q;
 			for (q = k - window + 1; q <= k; q++) {
-				m1 += ratio[q];
-				m0 += ratio[q - window];
+				m1 += v[q];
+				m0 += v[q - window];
 			}
-			if (fabs(m1 - m0) / window < fp->sat_tol) {
+			if (fp->until == FRIC_UNTIL_SHEAR ? m1 > m0 : fabs(m1 - m0) <= fp->sat_tol * m1) {
 				st = 0;
 				break;
 			}
 		}
 	}
 	if (st == 2)
-		msg_seterr("the sliding ratio did not saturate in %ld increments (last %.4f)", fp->max_inc,
-		    last->sliding_ratio);
-	free(ratio);
+		msg_seterr(fp->until == FRIC_UNTIL_SHEAR ? "G did not pass its minimum in %ld increments (sliding ratio %.4f)" :
+		    "the sliding ratio did not saturate in %ld increments (last %.4f)", fp->max_inc, last->sliding_ratio);
+	free(ratio), free(shear);
 	loader_close(&L);
 	return st;
 }

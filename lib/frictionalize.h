@@ -4,7 +4,8 @@
  *
  * Saturation: after at least min_inc and 2 `window` increments, the mean sliding ratio of the
  * last `window` increments differs from the mean of the `window` before them by less than
- * sat_tol; the run then stops.  Means, not the span of the values: the ratio of a small pack
+ * sat_tol times itself (relative: the level the ratio saturates at depends on mu and on the
+ * pack); the run then stops.  Means, not the span of the values: the ratio of a small pack
  * jumps by one contact in a few hundred from increment to increment, and the span of a long
  * window grows with its length even when the trend is flat.  The strain that
  * mobilises friction at a contact scales with its normal overlap (Q_max / k* is about
@@ -21,7 +22,14 @@
 #include "hooke.h"
 #include "loading.h"
 
+/* FRIC_UNTIL_SLIDING: the sliding ratio has saturated (above); FRIC_UNTIL_SHEAR: the shear
+ * modulus has passed its minimum, the mean G of the last window above that of the window
+ * before (F §3.2: phase (b) is complete "once frictional loads are well-developed, the moduli
+ * increase with sigma_c").  Both with the same windows. */
+enum fric_until { FRIC_UNTIL_SLIDING, FRIC_UNTIL_SHEAR };
+
 struct fric_params {
+	enum fric_until until;
 	int axis;		/* loading axis 0..2 */
 	double strain_step;	/* compression per increment along axis */
 	long window, min_inc, max_inc;

@@ -4,6 +4,7 @@
 #include "measure.h"
 #include "msg.h"
 #include "table.h"
+#include "vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -128,10 +129,14 @@ begin(struct loader *L)
 	return 0;
 }
 
-/* The row's measures of the pack as committed; the residual comes from the caller. */
+/* The row's measures of the pack as committed; the residual comes from the caller.  The
+ * sliding ratio here is the pack's record of it (meta sliding_ratio, written by the increment
+ * that made the pack), else the count from the history lines; loader_step replaces it with
+ * the increment's own count. */
 static int
-fill_row(struct loader *L, struct load_row *row)
+fill_row(struct loader *L, struct load_row *row, size_t *ncontacts)
 {
+	const char *rec = pack_get_meta(L->p, "sliding_ratio");
 	struct geo_contacts gc;
 	struct pack_measures m;
 	int a;
@@ -151,6 +156,13 @@ fill_row(struct loader *L, struct load_row *row)
 	row->porosity = m.porosity;
 	row->coordination = m.coordination;
 	row->sliding_ratio = L->lp.friction ? (isnan(m.sliding_ratio) ? 0 : m.sliding_ratio) : 0;
+	if (L->lp.friction && rec) {
+		char *end;
+		double v = strtod(rec, &end);
+		if (end != rec && !*end && v >= 0 && v <= 1)
+			row->sliding_ratio = v;
+	}
+	*ncontacts = m.contacts_gg + m.contacts_gw;
 	return 0;
 }
 
@@ -158,6 +170,7 @@ int
 loader_measure(struct loader *L, struct load_row *row)
 {
 	double *g = malloc(6 * (L->p->n ? L->p->n : 1) * sizeof *g), *fmax = malloc((L->p->n ? L->p->n : 1) * sizeof *fmax);
+	size_t nc;
 
 	memset(row, 0, sizeof *row);
 	if (!g || !fmax || begin(L) || isnan(qs_energy(&L->s, L->x, g, fmax))) {
@@ -168,7 +181,7 @@ loader_measure(struct loader *L, struct load_row *row)
 	}
 	qs_residual(&L->s, g, fmax, L->lp.min.tol_floor, &row->res_max, &row->res_mean);
 	free(g), free(fmax);
-	return fill_row(L, row);
+	return fill_row(L, row, &nc);
 }
 
 /* Settle a committed frictional increment.  The increment froze each contact's sliding limit
@@ -230,10 +243,12 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 {
 	struct qs_min_report rep;
 	int st;
+	size_t nsl, nc;
 	double dbox[3];
 	int a;
 
 	memset(row, 0, sizeof *row);
+	nsl = 0;
 	if (begin(L))
 		return -1;
 	/* de is the change of the strain eps = (L_ref - L) / L_ref, so the box shrinks by
@@ -247,6 +262,8 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 	if (L->lp.friction) {
 		if (fr_commit(&L->f, &L->s, L->x))
 			return -1;
+		/* the increment's sliding contacts (fr_commit), before any settling */
+		nsl = L->f.nslide;
 		if (st == 0 && (st = settle(L, &rep)) < 0)
 			return -1;
 	} else {
@@ -255,8 +272,17 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 			return -1;
 	}
 	L->inc++;
-	if (fill_row(L, row))
+	if (fill_row(L, row, &nc))
 		return -1;
+	row->sliding_ratio = nc ? (double)nsl / nc : 0;
+	{
+		char buf[32];
+		snprintf(buf, sizeof buf, "%.17g", row->sliding_ratio);
+		if (pack_set_meta(L->p, "sliding_ratio", buf)) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+	}
 	row->iterations = rep.iter;
 	row->evals = rep.evals;
 	row->res_max = rep.res_max;

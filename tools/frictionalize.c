@@ -15,7 +15,7 @@
 #include <string.h>
 
 static struct fric_params fp;
-static const char *log_path, *axis_arg = "z", *rule_arg = "return-map";
+static const char *log_path, *axis_arg = "z", *rule_arg = "return-map", *until_arg = "sliding";
 static double mu = NAN, wall_mu = NAN;
 static long nsub = 1;
 static int allow_limit;
@@ -26,8 +26,9 @@ static struct cli_opt opts[] = {
 	{"strain-step", 'd', CLI_DOUBLE, &fp.strain_step, "EPS", "uniaxial compression per increment", NULL},
 	{"axis", 'a', CLI_STRING, &axis_arg, "x|y|z", "loading axis", NULL},
 	{"log", 'l', CLI_STRING, &log_path, "FILE", "write a TSV row per increment to FILE", NULL},
-	{"window", 0, CLI_LONG, &fp.window, "K", "saturation: the mean sliding ratio of the last K increments ...", NULL},
-	{"sat-tol", 0, CLI_DOUBLE, &fp.sat_tol, "D", "... differs from the mean of the K before by less than D", NULL},
+	{"until", 0, CLI_STRING, &until_arg, "WHAT", "stop when the sliding ratio saturates (sliding) or G passes its minimum (shear)", NULL},
+	{"window", 0, CLI_LONG, &fp.window, "K", "saturation: the mean of the last K increments (sliding ratio, or G) ...", NULL},
+	{"sat-tol", 0, CLI_DOUBLE, &fp.sat_tol, "D", "... sliding: differs from the mean of the K before by less than D times itself", NULL},
 	{"window-overlap", 0, CLI_DOUBLE, &fp.window_overlap, "F", "... the window covering at least F x the mean overlap / radius in strain (0: K only)", NULL},
 	{"min-inc", 0, CLI_LONG, &fp.min_inc, "N", "at least N increments", NULL},
 	{"max-inc", 0, CLI_LONG, &fp.max_inc, "N", "at most N increments (not saturated: an error)", NULL},
@@ -89,6 +90,12 @@ main(int argc, char **argv)
 		cli_usage_error("--rule: must be return-map or paper");
 	if (fp.window < 2 || fp.min_inc < 1 || fp.max_inc < 1 || fp.max_inc > 100000)
 		cli_usage_error("--window (>= 2), --min-inc and --max-inc (<= 100000) must be positive");
+	if (strcmp(until_arg, "sliding") == 0)
+		fp.until = FRIC_UNTIL_SLIDING;
+	else if (strcmp(until_arg, "shear") == 0)
+		fp.until = FRIC_UNTIL_SHEAR;
+	else
+		cli_usage_error("--until: must be sliding or shear");
 	if (!(fp.window_overlap >= 0 && fp.window_overlap <= 100))
 		cli_usage_error("--window-overlap: must be in [0, 100]");
 	if (fp.min_inc > fp.max_inc || fp.window > fp.max_inc)

@@ -74,7 +74,15 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "residual", NULL, m->has_forces ? m->residual_max : NAN);
 	add(r, "residual_mean", NULL, m->has_forces ? m->residual_mean : NAN);
 	add(r, "residual_strict", NULL, m->has_forces ? m->residual_strict : NAN);
-	add(r, "sliding_ratio", NULL, m->sliding_ratio);
+	{
+		/* the increment that wrote the pack recorded its own count (lib/loading.c); the
+		 * lines only bound it from below */
+		const char *rec = pack_get_meta(p, "sliding_ratio");
+		char *end = NULL;
+		double v = rec ? strtod(rec, &end) : NAN;
+		add(r, "sliding_ratio", NULL, rec && end != rec && !*end ? v : m->sliding_ratio);
+		add(r, "sliding_ratio_lines", NULL, m->sliding_ratio);
+	}
 	add(r, "fabric_xx", NULL, m->fabric[0]);
 	add(r, "fabric_yy", NULL, m->fabric[1]);
 	add(r, "fabric_zz", NULL, m->fabric[2]);
