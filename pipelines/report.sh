@@ -1,0 +1,240 @@
+#!/bin/sh
+# report.sh STUDY OUT "N_G2740 N_G5036 N_Q2654": the markdown report of one study, from the
+# tables the study made (pipelines/Makefile calls it; OUT/STUDY/commands.txt holds the exact
+# commands).  Every number below is computed here from those tables; the paper's numbers are
+# quoted from its text.
+set -e
+study=$1 out=$2
+set -- $3
+n2740=$1 n5036=$2 n2654=$3
+here=$(cd "$(dirname "$0")" && pwd)
+cols="sh $here/cols.sh"
+R=$out/runs
+P=$out/packs
+bin=${BIN:-../build/bin}
+
+mpa() { awk '{ printf "%.2f", $1 / 1e6 }'; }
+gpa() { awk '{ printf "%.3f", $1 / 1e9 }'; }
+# first / last value of column C of table T
+first() { $cols "$1" "$2" | head -n 1; }
+last() { $cols "$1" "$2" | tail -n 1; }
+# interp T C S: column C of moduli table T at sigma_c = S (linear between windows), or "-"
+interp() {
+	$cols "$1" sigma_c "$2" | awk -v s="$3" '
+		NR > 1 && (ps - s) * ($1 - s) <= 0 && ps != $1 { printf "%.6g", pv + ($2 - pv) * (s - ps) / ($1 - ps); found = 1; exit }
+		{ ps = $1; pv = $2 }
+		END { if (!found) printf "-" }'
+}
+# growth exponent of column C against sigma_c over a moduli table: slope of log C on log sigma_c
+expo() {
+	$cols "$1" sigma_c "$2" | awk '$2 > 0 { x = log($1); y = log($2); n++; sx += x; sy += y; sxx += x * x; sxy += x * y }
+		END { if (n > 2) printf "%.2f", (n * sxy - sx * sy) / (n * sxx - sx * sx); else printf "-" }'
+}
+# common stress of several moduli tables: the middle of the overlap of their sigma_c ranges
+common() {
+	for t in "$@"; do $cols "$t" sigma_c | awk 'NR == 1 { lo = hi = $1 } { if ($1 < lo) lo = $1; if ($1 > hi) hi = $1 } END { print lo, hi }'; done |
+	    awk 'NR == 1 { lo = $1; hi = $2 } { if ($1 > lo) lo = $1; if ($2 < hi) hi = $2 } END { if (lo < hi) printf "%.6g", (lo + hi) / 2; else printf "-" }'
+}
+info() { "$bin/packinfo" "$1" | awk -v k="$2" '$1 == k { print $2 }'; }
+fric_summary() {	# run: phase (b) in one line
+	f=$R/$1/fric.tsv
+	ninc=$(($($cols "$f" inc | wc -l) - 1))
+	printf '| %s | %s | %s -> %s | %s | %s -> %s (max %s) |\n' "$1" "$ninc" \
+	    "$(first "$f" sigma_c | mpa)" "$(last "$f" sigma_c | mpa)" \
+	    "$($cols "$f" sliding_ratio | tail -n 10 | awk '{ s += $1 } END { printf "%.3f", s / NR }')" \
+	    "$($cols "$f" G | sed -n 2p | gpa)" "$(last "$f" G | gpa)" \
+	    "$($cols "$f" G | awk '$1 !~ /nan/ && $1 > m { m = $1 } END { print m }' | gpa)"
+}
+fric_header() {
+	echo '| run | phase (b) increments | sigma_c (MPa) | sliding ratio (mean of last 10) | G (GPa) first -> last |'
+	echo '| --- | --- | --- | --- | --- |'
+}
+test_summary() {	# run: the uniaxial test's moduli in one line
+	m=$R/$1/moduli.tsv
+	printf '| %s | %s -> %s | %s -> %s | %s -> %s | %s | %s |\n' "$1" \
+	    "$(first "$m" sigma_c | mpa)" "$(last "$m" sigma_c | mpa)" \
+	    "$(first "$m" K | gpa)" "$(last "$m" K | gpa)" "$(first "$m" G | gpa)" "$(last "$m" G | gpa)" \
+	    "$(expo "$m" K)" "$(expo "$m" G)"
+}
+test_header() {
+	echo '| run | sigma_c (MPa) | K (GPa) | G (GPa) | exponent of K | exponent of G |'
+	echo '| --- | --- | --- | --- | --- | --- |'
+}
+at_common() {	# runs...: K and G of each at the common stress
+	tabs=""
+	for r in "$@"; do tabs="$tabs $R/$r/moduli.tsv"; done
+	s=$(common $tabs)
+	if [ "$s" = - ]; then
+		echo "The runs' stress ranges do not overlap: no common stress to compare at."
+		return
+	fi
+	echo "At the common confining stress sigma_c = $(echo "$s" | mpa) MPa (middle of the overlap of the tests' ranges, linear interpolation between windows):"
+	echo
+	echo '| run | K (GPa) | G (GPa) |'
+	echo '| --- | --- | --- |'
+	for r in "$@"; do
+		printf '| %s | %s | %s |\n' "$r" "$(interp "$R/$r/moduli.tsv" K "$s" | gpa)" "$(interp "$R/$r/moduli.tsv" G "$s" | gpa)"
+	done
+}
+
+echo "# $study"
+echo
+echo "Pack sizes: G2740-style $n2740 grains, G5036-style $n5036, Q2654-style $n2654 (seed ${SEED:-1})."
+echo "Figure: \`$study.png\`; exact commands: \`commands.txt\`; remake: \`make -C pipelines $study$( [ "$out" = out-small ] && echo ' SMALL=1')\`."
+echo
+case $study in
+fig4)
+	cat <<'EOF'
+**Paper** (frictional, Fig. 4, G2740, mu = 0.3): during phase (b) the sliding ratio rises fast and
+saturates at about 0.09-0.11 while G, first high ("stiffer than typical experimental values"),
+falls; once friction is developed (sigma_c from 4 to about 9 MPa) the moduli increase with sigma_c
+in the uniaxial test.
+
+**This run**
+
+EOF
+	fric_header; fric_summary g2740-s4-mu0.3
+	echo
+	test_header; test_summary g2740-s4-mu0.3
+	;;
+fig5-6)
+	cat <<'EOF'
+**Paper** (frictional, Figs. 5-6): G2740 with sigma_c^(mu=0) = 4 and 10 MPa, mu = 0.3, phase (b)
+to 9 and 19 MPa, then uniaxial tests; 10 MPa with mu = 0.5; G5036 frictionless.  The moduli grow
+with sigma_c with an exponent falling from about 0.45 to 0.33; mu = 0.5 gives a larger G than
+0.3; the frictionless pack a much smaller G; K agrees with glass-bead experiments, and the
+effective-medium theory with no-slip contacts overestimates G.
+
+**This run**
+
+EOF
+	fric_header
+	for r in g2740-s4-mu0.3 g2740-s10-mu0.3 g2740-s10-mu0.5; do fric_summary $r; done
+	echo
+	test_header
+	for r in g2740-s4-mu0.3 g2740-s10-mu0.3 g2740-s10-mu0.5 g5036-s4-mu0; do test_summary $r; done
+	echo
+	echo '| run | last window: K / K_emt | G / G_emt_rough | G / G_emt_smooth |'
+	echo '| --- | --- | --- | --- |'
+	for r in g2740-s4-mu0.3 g2740-s10-mu0.3 g2740-s10-mu0.5 g5036-s4-mu0; do
+		$cols $R/$r/moduli.tsv K G K_emt G_emt_rough G_emt_smooth | tail -n 1 |
+		    awk -v r=$r '{ printf "| %s | %.2f | %.2f | %.2f |\n", r, $1 / $3, $2 / $4, $2 / $5 }'
+	done
+	echo
+	at_common g2740-s10-mu0.3 g2740-s10-mu0.5
+	;;
+fig7)
+	cat <<'EOF'
+**Paper** (frictional, Fig. 7): six packs with sigma_c^(mu=0) = 4, 10, 20, 41, 54 and 74 MPa,
+mu = 0.3.  At a given sigma_c, K is lower for packs densified to a higher stress (about 1 %
+between 4 and 10 MPa, about 10 % with 41 MPa); G is less sensitive.
+
+**This run** (every test to 150 MPa)
+
+EOF
+	fric_header
+	for s in 4 10 20 41 54 74; do fric_summary g2740-s$s-mu0.3-f7; done
+	echo
+	test_header
+	for s in 4 10 20 41 54 74; do test_summary g2740-s$s-mu0.3-f7; done
+	echo
+	at_common g2740-s4-mu0.3-f7 g2740-s10-mu0.3-f7 g2740-s20-mu0.3-f7 g2740-s41-mu0.3-f7 g2740-s54-mu0.3-f7 g2740-s74-mu0.3-f7
+	;;
+fig8)
+	cat <<'EOF'
+**Paper** (frictional, Fig. 8): strain steps of 5e-5, 5e-4, and 5e-4 in phase (b) followed by
+5e-5 in the test give nearly the same moduli: the results are robust to the increment.
+
+**This run** (moduli windows of 1e-3 strain: 20, 2 and 20 increments)
+
+EOF
+	fric_header
+	for r in g2740-s4-mu0.3-d5e-5 g2740-s4-mu0.3-d5e-4 g2740-s4-mu0.3-d5e-4-5e-5; do fric_summary $r; done
+	echo
+	test_header
+	for r in g2740-s4-mu0.3-d5e-5 g2740-s4-mu0.3-d5e-4 g2740-s4-mu0.3-d5e-4-5e-5; do test_summary $r; done
+	echo
+	at_common g2740-s4-mu0.3-d5e-5 g2740-s4-mu0.3-d5e-4 g2740-s4-mu0.3-d5e-4-5e-5
+	;;
+fig9)
+	cat <<'EOF'
+**Paper** (frictional, Fig. 9): mu = 0.5 gives larger moduli than mu = 0.3, G much more than K.
+
+**This run** (sigma_c^(mu=0) = 10 MPa)
+
+EOF
+	fric_header
+	for r in g2740-s10-mu0.3 g2740-s10-mu0.5; do fric_summary $r; done
+	echo
+	test_header
+	for r in g2740-s10-mu0.3 g2740-s10-mu0.5; do test_summary $r; done
+	echo
+	at_common g2740-s10-mu0.3 g2740-s10-mu0.5
+	;;
+s-fig3)
+	c=$R/q2654-s60-poly/curve.tsv
+	cat <<'EOF'
+**Paper** (frictionless, Fig. 3, Q2654 quartz): a polyaxial loading-unloading cycle between
+about 60 and 300 MPa; porosity 35.8 -> 30.5 %, coordination 7.23 -> 8.26; loading and unloading
+curves differ (hysteresis) through irreversible rearrangements of the contact network.
+
+**This run** (frictionless, strain increments in the ratio 1 : 1.5 : 2 along x : y : z, 2e-4
+along z per increment, to sigma_c = 300 MPa and back to 60 MPa)
+
+EOF
+	$cols "$c" seg sigma_c porosity coordination eps_zz sig_zz | awk -F'\t' '
+		NR == 1 { s0 = $2; p0 = $3; c0 = $4; e0 = $5; z0 = $6 }
+		$1 == 1 { pk = $2; pp = $3; pc = $4; pe = $5; nl++ }
+		$1 == 2 { nu++ }
+		{ s1 = $2; p1 = $3; c1 = $4; e1 = $5; z1 = $6 }
+		END {
+			printf "| | start | peak of loading | end of unloading |\n| --- | --- | --- | --- |\n"
+			printf "| sigma_c (MPa) | %.1f | %.1f | %.1f |\n", s0 / 1e6, pk / 1e6, s1 / 1e6
+			printf "| porosity (%%) | %.2f | %.2f | %.2f |\n", 100 * p0, 100 * pp, 100 * p1
+			printf "| coordination | %.2f | %.2f | %.2f |\n", c0, pc, c1
+			printf "| eps_zz | %.5f | %.5f | %.5f |\n", e0, pe, e1
+			printf "\n%d loading and %d unloading increments.\n", nl, nu
+		}'
+	echo
+	# hysteresis: sig_zz of loading and unloading at the same eps_zz, over the common range
+	$cols "$c" seg eps_zz sig_zz | awk -F'\t' '
+		$1 == 1 { le[++nl] = $2; ls[nl] = $3 }
+		$1 == 2 { ue[++nu] = $2; us[nu] = $3 }
+		END {
+			for (k = 1; k <= nu; k++)
+				for (j = 2; j <= nl; j++)
+					if ((le[j - 1] - ue[k]) * (le[j] - ue[k]) <= 0 && le[j] != le[j - 1]) {
+						s = ls[j - 1] + (ls[j] - ls[j - 1]) * (ue[k] - le[j - 1]) / (le[j] - le[j - 1])
+						d = s - us[k]; if (d < 0) d = -d
+						if (d > dm) { dm = d; em = ue[k]; sl = s; su = us[k] }
+						break
+					}
+			printf "Largest gap between the loading and unloading sig_zz at the same eps_zz: %.2f MPa (at eps_zz = %.5f: %.2f loading, %.2f unloading).\n", dm / 1e6, em, sl / 1e6, su / 1e6
+		}'
+	;;
+s-fig4)
+	cat <<'EOF'
+**Paper** (frictionless, Fig. 4, G5036 glass): isotropic compression from about 1 to 35 MPa with
+uniaxial probes; porosity 37.4 -> 35.1 %, coordination 6.24 -> 7.15; K agrees with acoustic
+experiments on glass beads with no adjustment of parameters, G is underestimated (no friction).
+
+**This run** (each stress: densify of the 1 MPa pack, then 3 uniaxial increments of 1e-4 fitted
+together; coordination counts a wall contact once)
+
+EOF
+	echo '| sigma_c^(mu=0) (MPa) | porosity (%) | coordination | sigma_c of the probe (MPa) | K (GPa) | G (GPa) | K_emt (GPa) | G_emt rough / smooth (GPa) |'
+	echo '| --- | --- | --- | --- | --- | --- | --- | --- |'
+	for s in 1 2 5 10 20 35; do
+		pk=$P/g5036.s$s.pack.gz
+		m=$R/g5036-s$s-probe/moduli.tsv
+		printf '| %s | %.2f | %.2f | %s | %s | %s | %s | %s / %s |\n' "$s" \
+		    "$(info "$pk" porosity | awk '{ print 100 * $1 }')" "$(info "$pk" coordination)" \
+		    "$(first "$m" sigma_c | mpa)" "$(first "$m" K | gpa)" "$(first "$m" G | gpa)" \
+		    "$(first "$m" K_emt | gpa)" "$(first "$m" G_emt_rough | gpa)" "$(first "$m" G_emt_smooth | gpa)"
+	done
+	;;
+*)
+	echo "report.sh: unknown study $study" >&2
+	exit 2
+	;;
+esac
