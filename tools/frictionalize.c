@@ -50,6 +50,7 @@ static const struct cli_tool tool = {
 struct log_ctx {
 	FILE *fp;
 	int axis;
+	size_t grains;
 };
 
 static void
@@ -61,8 +62,8 @@ on_row(const struct load_row *row, const struct hooke *hk, void *vctx)
 		load_table_row(c->fp, row, c->axis, 1, hk->K, hk->G);
 		fflush(c->fp);
 	}
-	cli_progress("increment %ld  sigma_c %.4g Pa  sliding %.4f  K %.3g  G %.3g  iter %ld  residual %.2e", row->inc,
-	    row->sigma_c, row->sliding_ratio, hk->K, hk->G, row->iterations, row->res_max);
+	cli_progress("%zu grains  increment %ld (at most %ld)  sigma_c %.4g Pa  sliding %.4f  K %.3g  G %.3g  iter %ld  residual %.2e",
+	    c->grains, row->inc, fp.max_inc, row->sigma_c, row->sliding_ratio, hk->K, hk->G, row->iterations, row->res_max);
 }
 
 int
@@ -70,7 +71,7 @@ main(int argc, char **argv)
 {
 	struct cli_state st;
 	struct cli_out logout = {0};
-	struct log_ctx lc = {NULL, 2};
+	struct log_ctx lc = {NULL, 2, 0};
 	struct load_row last;
 	struct pack p;
 	char *hist;
@@ -113,6 +114,7 @@ main(int argc, char **argv)
 
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
+	lc.grains = p.n;
 	if (p.n < 5)
 		msg_die(EXIT_DATA, "%s: %zu grains: frictionalize needs at least 5", st.input ? st.input : "<stdin>", p.n);
 	if (!p.has_refbox)

@@ -50,6 +50,9 @@ static const struct cli_tool tool = {
 struct out_ctx {
 	const struct load_path *path;
 	long rows;
+	size_t grains;
+	int seg;		/* segment of the last row, and its increments so far */
+	long seg_inc;
 };
 
 static int
@@ -61,9 +64,24 @@ on_row(int seg, const struct load_row *row, void *vctx)
 	load_table_row(stdout, row, c->path->seg[seg < 0 ? 0 : seg].axis, 0, 0, 0);
 	fflush(stdout);	/* a curve can be followed (tail -f, a pipe) while it grows */
 	c->rows++;
-	cli_progress("segment %d increment %ld  sigma_c %.4g Pa  eps %.3g %.3g %.3g  sliding %.4f  iter %ld  residual %.2e",
-	    row->seg, row->inc, row->sigma_c, row->eps[0], row->eps[1], row->eps[2], row->sliding_ratio, row->iterations,
-	    row->res_max);
+	if (seg != c->seg) {
+		c->seg = seg;
+		c->seg_inc = 0;
+	}
+	if (seg >= 0) {
+		const struct path_seg *sg = &c->path->seg[seg];
+		char goal[64] = "";
+		c->seg_inc++;
+		if (sg->steps > 0)
+			snprintf(goal, sizeof goal, " of %ld", sg->steps);
+		else if (!isnan(sg->to_stress))
+			snprintf(goal, sizeof goal, " (to sigma_c %.4g Pa)", sg->to_stress);
+		else if (!isnan(sg->to_strain))
+			snprintf(goal, sizeof goal, " (to strain %.4g)", sg->to_strain);
+		cli_progress("%zu grains  segment %d of %zu (%s)  increment %ld%s  sigma_c %.4g Pa  sliding %.4f  iter %ld  residual %.2e",
+		    c->grains, seg + 1, c->path->n, path_kind_name(sg->kind), c->seg_inc, goal, row->sigma_c,
+		    row->sliding_ratio, row->iterations, row->res_max);
+	}
 	return ferror(stdout) ? 1 : 0;
 }
 
@@ -108,7 +126,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct out_ctx oc = {NULL, 0};
+	struct out_ctx oc = {NULL, 0, 0, -1, 0};
 	struct load_path path;
 	struct loader L;
 	struct pack p;
@@ -153,6 +171,7 @@ main(int argc, char **argv)
 	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
+	oc.grains = p.n;
 	if (p.n < 5)
 		msg_die(EXIT_DATA, "%s: %zu grains: loadtest needs at least 5", in, p.n);
 	if (!p.has_refbox)
