@@ -4,9 +4,6 @@
 # error the issue lists.  Small packs (300 grains): a few seconds per run.
 . "$TOP/tests/tools/lib.sh"
 
-# rel A B: |A - B| / |B|
-rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
-
 expect_ok "packgen makes the loose pack" packgen -n 300 --seed 2 -o loose.pack
 packinfo loose.pack >loose.txt
 

@@ -5,11 +5,7 @@
 # above mu P0 is refused, a stale line is dropped with a warning).  About a second in all.
 . "$TOP/tests/tools/lib.sh"
 
-# rel A B: |A - B| / |B|
-rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
-
-packgen -n 200 --seed 5 -o loose.pack 2>/dev/null
-expect_ok "densify makes the dense pack" densify --stress 4e6 -o dense.pack loose.pack
+small_pack dense "densify makes the dense pack"
 packinfo dense.pack >dense.txt 2>/dev/null
 
 # --- a normal run -------------------------------------------------------------------------
@@ -118,29 +114,14 @@ awk '/^end$/ { on = 1; next } on && NF == 7 && ($4 != 0 || $5 != 0 || $6 != 0) {
     pass "--mu 0 --wall-mu 0: no tangential force at all" || fail "--mu 0 --wall-mu 0: no tangential force at all" "found some"
 
 # --- help, version ------------------------------------------------------------------------
-frictionalize --help >help.out 2>help.err
-rc=$?
-if [ "$rc" -eq 0 ] && grep -q -- '--mu' help.out && grep -q -- '--sat-tol' help.out && [ ! -s help.err ]; then
-	pass "--help"
-else
-	fail "--help" "exit $rc"
-fi
-frictionalize --version >ver.out 2>ver.err
-rc=$?
-if [ "$rc" -eq 0 ] && grep -q '^frictionalize ' ver.out && [ ! -s ver.err ]; then pass "--version"; else fail "--version" "exit $rc: $(cat ver.out)"; fi
+expect_help_version frictionalize --mu --sat-tol
 
 # --- errors: exit status, nothing on stdout, one stderr line, no output file, no log -------
 # expect_fail NAME STATUS REGEX ARGS...: frictionalize ARGS --log nothing.tsv -o nothing.pack
 expect_fail() {
 	n=$1 st=$2 re=$3
 	shift 3
-	rm -f nothing.pack nothing.tsv
-	expect_error "$n" "$st" "$re" frictionalize "$@" --log nothing.tsv -o nothing.pack
-	if [ ! -e nothing.pack ] && [ ! -e nothing.tsv ] && ! ls -a | grep -q '^\.nothing'; then
-		pass "$n: no output file, no log"
-	else
-		fail "$n: no output file, no log" "$(ls -a | tr '\n' ' ')"
-	fi
+	expect_refused "no output file, no log" "nothing.pack nothing.tsv" "$n" "$st" "$re" frictionalize "$@" --log nothing.tsv -o nothing.pack
 }
 expect_fail "--mu -1" 2 '^frictionalize: --mu' --mu -1 dense.pack
 expect_fail "--mu nan" 2 '^frictionalize: --mu' --mu nan dense.pack

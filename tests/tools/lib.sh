@@ -52,3 +52,61 @@ expect_num() {
 
 # info_value FILE KEY: the value of KEY in packinfo's key-value output.
 info_value() { awk -v k="$2" '$1 == k { print $2 }' "$1"; }
+
+# rel A B: |A - B| / |B|
+rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
+
+# rows FILE: the data rows of a table (no '#' lines: neither '##' lines nor the column header)
+rows() { grep -v '^#' "$1"; }
+
+# col FILE ROW COL: one value of a table (ROW counts data rows from 1)
+col() { rows "$1" | awk -F '\t' -v r="$2" -v c="$3" 'NR == r { print $c }'; }
+
+# small_pack dense|frictional [NAME]: the small pack of the loading tests, in the scratch
+# directory: loose.pack (packgen, 200 grains, seed 5), dense.pack (densify --stress 4e6 of it)
+# and, for frictional, fr.pack (frictionalize of dense.pack).  With NAME the last step is the
+# check NAME (expect_ok); the other steps run with their stderr dropped.
+small_pack() {
+	sp_kind=$1 sp_name=${2-}
+	packgen -n 200 --seed 5 -o loose.pack 2>/dev/null
+	if [ "$sp_kind" = dense ]; then
+		set -- densify --stress 4e6 -o dense.pack loose.pack
+	else
+		densify --stress 4e6 -o dense.pack loose.pack 2>/dev/null
+		set -- frictionalize -o fr.pack dense.pack
+	fi
+	if [ -n "$sp_name" ]; then expect_ok "$sp_name" "$@"; else "$@" 2>/dev/null; fi
+}
+
+# expect_help_version TOOL OPTION...: the checks "--help" (TOOL --help exits 0, nothing on
+# stderr, every OPTION named on stdout) and "--version" (TOOL --version exits 0, nothing on
+# stderr, stdout starts with "TOOL ").
+expect_help_version() {
+	hv_tool=$1
+	shift
+	"$hv_tool" --help >help.out 2>help.err
+	hv_rc=$?
+	hv_ok=$([ "$hv_rc" -eq 0 ] && [ ! -s help.err ] && echo yes)
+	for hv_opt in "$@"; do
+		grep -q -- "$hv_opt" help.out || hv_ok=
+	done
+	if [ -n "$hv_ok" ]; then pass "--help"; else fail "--help" "exit $hv_rc"; fi
+	"$hv_tool" --version >ver.out 2>ver.err
+	hv_rc=$?
+	if [ "$hv_rc" -eq 0 ] && grep -q "^$hv_tool " ver.out && [ ! -s ver.err ]; then pass "--version"; else fail "--version" "exit $hv_rc: $(cat ver.out)"; fi
+}
+
+# expect_refused CHECK OUTPUTS NAME STATUS REGEX CMD...: removes OUTPUTS (a list of files named
+# nothing.*, those CMD is told to write), runs expect_error NAME STATUS REGEX CMD..., then the
+# check "NAME: CHECK": none of OUTPUTS exists, nor a temporary file .nothing*.
+expect_refused() {
+	er_check=$1 er_outs=$2 n=$3 st=$4 re=$5
+	shift 5
+	rm -f $er_outs
+	expect_error "$n" "$st" "$re" "$@"
+	er_left=
+	for er_f in $er_outs; do
+		[ -e "$er_f" ] && er_left=yes
+	done
+	if [ -z "$er_left" ] && ! ls -a | grep -q '^\.nothing'; then pass "$n: $er_check"; else fail "$n: $er_check" "$(ls -a | tr '\n' ' ')"; fi
+}

@@ -5,18 +5,10 @@
 # --to-stress, a target out of reach, and the errors.  A few seconds in all.
 . "$TOP/tests/tools/lib.sh"
 
-# rel A B: |A - B| / |B|
-rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
-# rows FILE: the data rows of a table (no '##' lines, no column header)
-rows() { grep -v '^#' "$1"; }
-# col FILE ROW COL: one value of a table (ROW counts data rows from 1)
-col() { rows "$1" | awk -F '\t' -v r="$2" -v c="$3" 'NR == r { print $c }'; }
 # columns: 1 inc, 2 seg, 3-5 eps, 6-8 sig, 9-11 sig_lw, 12 sigma_c, 13 sig_lat, 14 porosity,
 # 15 coordination, 16 sliding_ratio, 17 iterations, 18 residual, 19 res_mean
 
-packgen -n 200 --seed 5 -o loose.pack 2>/dev/null
-densify --stress 4e6 -o dense.pack loose.pack 2>/dev/null
-expect_ok "frictionalize makes the frictional pack" frictionalize -o fr.pack dense.pack
+small_pack frictional "frictionalize makes the frictional pack"
 packinfo fr.pack >fr.txt 2>/dev/null
 s0=$(info_value fr.txt sigma_c)
 
@@ -119,18 +111,22 @@ rows iso.tsv | awk -F '\t' 'NR > 1 { for (a = 3; a <= 5; a++) { d = $a - e[a]; i
      { for (a = 3; a <= 5; a++) e[a] = $a; s = $12 } END { if (NR != 4) bad = NR " rows"; if (bad) { print bad; exit 1 } }' >why &&
     pass "isotropic: 1e-4 on every axis, sigma_c grows" || fail "isotropic: 1e-4 on every axis, sigma_c grows" "$(cat why)"
 
+# strain_steps FILE NROWS XLO XHI YLO YHI ZLO ZHI: FILE has NROWS rows, and from one row to the
+# next eps_xx changes by XLO to XHI, eps_yy by YLO to YHI, eps_zz by ZLO to ZHI; else the first
+# row that does not, on stdout, and a failing exit
+strain_steps() {
+	rows "$1" | awk -F '\t' -v nr="$2" -v xlo="$3" -v xhi="$4" -v ylo="$5" -v yhi="$6" -v zlo="$7" -v zhi="$8" 'NR > 1 { dx = $3 - x; dy = $4 - y; dz = $5 - z
+	if (dx < xlo || dx > xhi || dy < ylo || dy > yhi || dz < zlo || dz > zhi) bad = "row " NR ": " dx " " dy " " dz }
+     { x = $3; y = $4; z = $5 } END { if (NR != nr) bad = NR " rows"; if (bad) { print bad; exit 1 } }'
+}
 expect_ok "polyaxial ratio=1:2:4" loadtest --path 'polyaxial ratio=1:2:4' --steps 3 fr.pack
 mv ok.out poly.tsv
-rows poly.tsv | awk -F '\t' 'NR > 1 { dx = $3 - x; dy = $4 - y; dz = $5 - z
-	if (dx < 0.2499e-4 || dx > 0.2501e-4 || dy < 0.4999e-4 || dy > 0.5001e-4 || dz < 0.9999e-4 || dz > 1.0001e-4) bad = "row " NR ": " dx " " dy " " dz }
-     { x = $3; y = $4; z = $5 } END { if (NR != 4) bad = NR " rows"; if (bad) { print bad; exit 1 } }' >why &&
+strain_steps poly.tsv 4 0.2499e-4 0.2501e-4 0.4999e-4 0.5001e-4 0.9999e-4 1.0001e-4 >why &&
     pass "polyaxial: strain steps 0.25e-4 0.5e-4 1e-4 (the largest ratio takes the step)" || fail "polyaxial: strain steps 0.25e-4 0.5e-4 1e-4 (the largest ratio takes the step)" "$(cat why)"
 
 expect_ok "triaxial lateral=0.5" loadtest --path 'triaxial lateral=0.5' --steps 2 fr.pack
 mv ok.out tl.tsv
-rows tl.tsv | awk -F '\t' 'NR > 1 { dx = $3 - x; dy = $4 - y; dz = $5 - z
-	if (dx < 0.4999e-4 || dx > 0.5001e-4 || dy < 0.4999e-4 || dy > 0.5001e-4 || dz < 0.9999e-4 || dz > 1.0001e-4) bad = "row " NR ": " dx " " dy " " dz }
-     { x = $3; y = $4; z = $5 } END { if (NR != 3) bad = NR " rows"; if (bad) { print bad; exit 1 } }' >why &&
+strain_steps tl.tsv 3 0.4999e-4 0.5001e-4 0.4999e-4 0.5001e-4 0.9999e-4 1.0001e-4 >why &&
     pass "triaxial lateral=0.5: lateral steps half the axial" || fail "triaxial lateral=0.5: lateral steps half the axial" "$(cat why)"
 
 # Triaxial with the mean lateral stress held at its starting value by the servo (loadpath.h:
@@ -211,21 +207,14 @@ else
 fi
 
 # --- help, version ---------------------------------------------------------------------------
-loadtest --help >help.out 2>help.err
-rc=$?
-if [ "$rc" -eq 0 ] && grep -q -- '--path' help.out && grep -q -- '--to-stress' help.out && [ ! -s help.err ]; then pass "--help"; else fail "--help" "exit $rc"; fi
-loadtest --version >ver.out 2>ver.err
-rc=$?
-if [ "$rc" -eq 0 ] && grep -q '^loadtest ' ver.out && [ ! -s ver.err ]; then pass "--version"; else fail "--version" "exit $rc: $(cat ver.out)"; fi
+expect_help_version loadtest --path --to-stress
 
 # --- errors: exit status, nothing on stdout, one stderr line, no -o file --------------------
 # expect_fail NAME STATUS REGEX ARGS...: loadtest ARGS -o nothing.pack
 expect_fail() {
 	n=$1 st=$2 re=$3
 	shift 3
-	rm -f nothing.pack
-	expect_error "$n" "$st" "$re" loadtest "$@" -o nothing.pack
-	if [ ! -e nothing.pack ] && ! ls -a | grep -q '^\.nothing'; then pass "$n: no output file"; else fail "$n: no output file" "$(ls -a | tr '\n' ' ')"; fi
+	expect_refused "no output file" nothing.pack "$n" "$st" "$re" loadtest "$@" -o nothing.pack
 }
 expect_fail "path 'uniaxal'" 2 "^loadtest: --path: segment 1: unknown path 'uniaxal'" --path uniaxal --steps 3 fr.pack
 expect_fail "path 'uniaxial steps=x'" 2 "^loadtest: --path: segment 1: bad value in 'steps=x'" --path 'uniaxial steps=x' fr.pack

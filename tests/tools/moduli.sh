@@ -4,19 +4,11 @@
 # and the errors.  A few seconds in all.
 . "$TOP/tests/tools/lib.sh"
 
-# rel A B: |A - B| / |B|
-rel() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; if (b < 0) b = -b; print d / b }'; }
-# rows FILE: the data rows of a table (no '#' lines)
-rows() { grep -v '^#' "$1"; }
-# col FILE ROW COL: one value of a table (ROW counts data rows from 1)
-col() { rows "$1" | awk -F '\t' -v r="$2" -v c="$3" 'NR == r { print $c }'; }
 # moduli columns: 1 seg, 2 inc_from, 3 inc_to, 4 n, 5 sigma_c, 6 sig_lat, 7 K, 8 G, 9 lambda,
 # 10 E, 11 nu, 12 fit_rel (then, with --emt: 13 porosity, 14 coordination, 15 K_emt,
 # 16 G_emt_rough, 17 G_emt_smooth)
 
-packgen -n 200 --seed 5 -o loose.pack 2>/dev/null
-densify --stress 4e6 -o dense.pack loose.pack 2>/dev/null
-frictionalize -o fr.pack dense.pack 2>/dev/null
+small_pack frictional
 expect_ok "loadtest makes the curve" loadtest --steps 6 fr.pack
 mv ok.out curve.tsv
 
@@ -165,9 +157,7 @@ expect_same "columns in another order: the same moduli" syn1.rows shuf.rows
 expect_fail() {
 	n=$1 st=$2 re=$3
 	shift 3
-	rm -f nothing.tsv
-	expect_error "$n" "$st" "$re" moduli "$@" -o nothing.tsv
-	if [ ! -e nothing.tsv ] && ! ls -a | grep -q '^\.nothing'; then pass "$n: no output file"; else fail "$n: no output file" "$(ls -a | tr '\n' ' ')"; fi
+	expect_refused "no output file" nothing.tsv "$n" "$st" "$re" moduli "$@" -o nothing.tsv
 }
 cut -f 1-6,8- synth.tsv >nosigyy.tsv
 expect_fail "a missing column" 1 "^moduli: nosigyy\.tsv: no column 'sig_yy'" nosigyy.tsv
@@ -199,9 +189,4 @@ moduli --window 0 -o old.tsv synth.tsv >/dev/null 2>&1
 if [ "$(cat old.tsv)" = keep ] && ! ls -a | grep -q '^\.old'; then pass "failed runs do not clobber -o"; else fail "failed runs do not clobber -o" "changed or temp left"; fi
 
 # --- help, version ------------------------------------------------------------------------------
-moduli --help >help.out 2>help.err
-rc=$?
-if [ "$rc" -eq 0 ] && grep -q -- '--window' help.out && grep -q -- '--emt' help.out && [ ! -s help.err ]; then pass "--help"; else fail "--help" "exit $rc"; fi
-moduli --version >ver.out 2>ver.err
-rc=$?
-if [ "$rc" -eq 0 ] && grep -q '^moduli ' ver.out && [ ! -s ver.err ]; then pass "--version"; else fail "--version" "exit $rc: $(cat ver.out)"; fi
+expect_help_version moduli --window --emt

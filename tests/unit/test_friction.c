@@ -28,6 +28,7 @@
 #include "msg.h"
 #include "pack.h"
 #include "unit.h"
+#include "unit_hertz.h"
 #include "unit_pack.h"
 #include "vec3.h"
 
@@ -1064,13 +1065,13 @@ static void
 fd_check(struct qs_system *s, struct qs_friction *f, double *x, const char *tag)
 {
 	const struct pack *p = s->p;
-	size_t n = s->n, N = 6 * n, i, j, k, tested = 0, bad = 0, excluded = 0, scaled_fail = 0, rot_tested = 0;
+	size_t n = s->n, N = 6 * n, i, k, tested = 0, bad = 0, excluded = 0, scaled_fail = 0, rot_tested = 0;
 	size_t nsl = 0, nslt = 0, rot_fail = 0, flip_fail = 0;
 	double *g = calloc(N, sizeof *g), *gf = calloc(N, sizeof *gf), *gt = calloc(N, sizeof *gt);
 	double *trunc = calloc(2 * n, sizeof *trunc);
 	char *excl = calloc(2 * n, 1);
 	double Pi, hs = 0, sabs = 0, rsum = 0, xmax = 0, worst = 0, worst_f, Fmean, Mterms;
-	int a, w;
+	int a;
 
 	for (i = 0; i < n; i++)
 		hs += p->r[i] / n;
@@ -1093,41 +1094,7 @@ fd_check(struct qs_system *s, struct qs_friction *f, double *x, const char *tag)
 		}
 	}
 	/* Hertz: truncation, rounding, exclusion near h = 0 */
-	for (i = 0; i < n; i++) {
-		for (j = 0; j < n; j++) {
-			double dd = 0, S = p->r[i] + p->r[j], d, h, P;
-			if (j == i)
-				continue;
-			for (a = 0; a < 3; a++)
-				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);
-			d = sqrt(dd);
-			h = S - d;
-			if (fabs(h) < 50 * hs)
-				excl[i] = 1;
-			if (h <= 0)
-				continue;
-			P = hertz_force(hertz_Estar(p->E[i], p->nu[i], p->E[j], p->nu[j]), hertz_Rstar(p->r[i], p->r[j]), h);
-			trunc[i] += 0.75 * P / (h * h) + 4.5 * P / (h * d) + 3 * P / (d * d);
-			if (i < j) {
-				rsum += 4 * P * S;
-				sabs += 0.4 * P * h;
-			}
-		}
-		for (w = 0; w < NWALLS; w++) {
-			double dist, h, P;
-			a = w / 2;
-			dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
-			h = p->r[i] - dist;
-			if (fabs(h) < 50 * hs)
-				excl[i] = 1;
-			if (h <= 0)
-				continue;
-			P = hertz_force(hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu), p->r[i], h);
-			trunc[i] += 0.75 * P / (h * h);
-			rsum += 4 * P * p->r[i];
-			sabs += 0.4 * P * h;
-		}
-	}
+	unit_hertz_fd_bounds(p, x, hs, trunc, excl, &rsum, &sabs);
 	/* friction: sliding contacts' truncation, the kinks, rounding */
 	for (k = 0; k < f->n; k++) {
 		const struct fr_contact *c = &f->c[k];

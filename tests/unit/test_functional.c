@@ -16,6 +16,7 @@
 #include "loading.h"
 #include "pack.h"
 #include "unit.h"
+#include "unit_hertz.h"
 #include "unit_pack.h"
 
 #include <float.h>
@@ -71,15 +72,9 @@ ref_eval(const struct pack *p, const double *x, struct ref *rf)
 	memset(rf->wf, 0, sizeof rf->wf);
 	for (i = 0; i < n; i++) {
 		for (j = i + 1; j < n; j++) {
-			double d[3], dd = 0, sum = p->r[i] + p->r[j], dist, h, Es, Rs, P;
-			for (a = 0; a < 3; a++) {
-				d[a] = x[3 * i + a] - x[3 * j + a];
-				dd += d[a] * d[a];
-			}
-			if (dd >= sum * sum)
+			double d[3], dist, h, Es, Rs, P;
+			if (!unit_pair_overlap(p, x, i, j, d, &dist, &h))
 				continue;
-			dist = sqrt(dd);
-			h = sum - dist;
 			Es = hertz_Estar(p->E[i], p->nu[i], p->E[j], p->nu[j]);
 			Rs = hertz_Rstar(p->r[i], p->r[j]);
 			P = hertz_force(Es, Rs, h);
@@ -95,14 +90,10 @@ ref_eval(const struct pack *p, const double *x, struct ref *rf)
 			rf->ngg++;
 		}
 		for (w = 0; w < NWALLS; w++) {
-			double dist, h, Es, P;
-			a = w / 2;
-			dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
-			h = p->r[i] - dist;
+			double Es, P, h = unit_wall_contact(p, x, i, w, &Es, &P);
 			if (h <= 0)
 				continue;
-			Es = hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu);
-			P = hertz_force(Es, p->r[i], h);
+			a = w / 2;
 			rf->E += hertz_energy(Es, p->r[i], h);
 			rf->g[3 * i + a] += w % 2 ? P : -P;
 			rf->fsum[i] += P;
@@ -257,8 +248,9 @@ test_fd(gsl_rng *rng, size_t n, double scale, double phi, const char *tag)
 	struct pack p;
 	struct qs_system s;
 	struct ref rf;
-	double *x, *g, *fm, *trunc, *excl, Pi, hs, Mterms, rsum = 0, worst = 0, worst_f = 0;
-	size_t i, j, k, tested = 0, bad = 0, scaled_fail = 0, excluded = 0, contacts_per = 0;
+	double *x, *g, *fm, *trunc, Pi, hs, Mterms, rsum = 0, worst = 0, worst_f = 0;
+	char *excl;
+	size_t i, k, tested = 0, bad = 0, scaled_fail = 0, excluded = 0;
 	unsigned with_contacts = 0, with_wall = 0;
 	int a, w;
 
@@ -267,7 +259,7 @@ test_fd(gsl_rng *rng, size_t n, double scale, double phi, const char *tag)
 	g = malloc(3 * n * sizeof *g);
 	fm = malloc(n * sizeof *fm);
 	trunc = calloc(n, sizeof *trunc);
-	excl = calloc(n, sizeof *excl);
+	excl = calloc(n, 1);
 	memcpy(x, p.x, 3 * n * sizeof *x);
 	ref_alloc(&rf, n);
 	ref_eval(&p, x, &rf);
@@ -283,41 +275,9 @@ test_fd(gsl_rng *rng, size_t n, double scale, double phi, const char *tag)
 	Pi = qs_energy(&s, x, g, fm);
 	hs = 1e-5 * scale;
 	/* per grain: truncation bound and exclusion */
-	for (i = 0; i < n; i++) {
-		for (j = 0; j < n; j++) {
-			double dd = 0, S = p.r[i] + p.r[j], d, h, Es, P;
-			if (j == i)
-				continue;
-			for (a = 0; a < 3; a++)
-				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);
-			d = sqrt(dd);
-			h = S - d;
-			if (fabs(h) < 50 * hs)
-				excl[i] = 1;
-			if (h <= 0)
-				continue;
-			Es = hertz_Estar(p.E[i], p.nu[i], p.E[j], p.nu[j]);
-			P = hertz_force(Es, hertz_Rstar(p.r[i], p.r[j]), h);
-			trunc[i] += 0.75 * P / (h * h) + 4.5 * P / (h * d) + 3 * P / (d * d);
-			if (i < j)
-				rsum += 4 * P * S;
-			contacts_per++;
-		}
-		for (w = 0; w < NWALLS; w++) {
-			double dist, h, P;
-			a = w / 2;
-			dist = w % 2 ? p.box[3 + a] - x[3 * i + a] : x[3 * i + a] - p.box[a];
-			h = p.r[i] - dist;
-			if (fabs(h) < 50 * hs)
-				excl[i] = 1;
-			if (h <= 0)
-				continue;
-			P = hertz_force(hertz_Estar(p.E[i], p.nu[i], p.wall_E, p.wall_nu), p.r[i], h);
-			trunc[i] += 0.75 * P / (h * h);
-			rsum += 4 * P * p.r[i];
-		}
+	unit_hertz_fd_bounds(&p, x, hs, trunc, excl, &rsum, NULL);
+	for (i = 0; i < n; i++)
 		trunc[i] *= hs * hs / 6;
-	}
 	Mterms = (double)(rf.ngg + rf.ngw);
 	for (k = 0; k < 3 * n; k++) {
 		double save = x[k], ep, em, fd, tol, err;
@@ -349,7 +309,6 @@ test_fd(gsl_rng *rng, size_t n, double scale, double phi, const char *tag)
 	    "tolerance, %.3g of the grain's largest force)", tag, bad, worst, worst_f);
 	CHECK(scaled_fail >= 95 * tested / 100,
 	    "fd %s: a gradient scaled by 1.01 fails the same tolerance on %zu of %zu coordinates", tag, scaled_fail, tested);
-	(void)contacts_per;
 
 	/* Newton's third law: every grain-grain force enters g_i and g_j as the same number with
 	 * opposite signs, so sum_i g_i is the reaction on the walls, -sum_w F_w n_w, with n_w the

@@ -25,7 +25,7 @@
  * 4 diagonal contacts pushing it into the wall (need P_w = 2 sqrt2 P_gg), an edge grain 3, and
  * affinity gives h_w = h/2 for every wall contact, so the equilibrium is non-affine and has no
  * closed form.  The reference is Newton's method with the exact Hessian of an O(N^2) Hertz
- * energy written here (independent of lib/functional.c and lib/minimize.c), converged to
+ * energy written in unit_lattice.h (independent of lib/functional.c and lib/minimize.c), converged to
  * rounding; the same solver reproduces the SC closed form, which validates it.  Checks that
  * need no reference: sig_xx = sig_yy = sig_zz under isotropic strain (cubic symmetry), and the
  * force on a wall equals the force carried across every plane between two layers (balance of
@@ -36,6 +36,7 @@
 #include "minimize.h"
 #include "pack.h"
 #include "unit.h"
+#include "unit_lattice.h"
 
 #include <float.h>
 #include <gsl/gsl_linalg.h>
@@ -50,142 +51,7 @@
 #define EPS1 1e-3		/* isotropic strain */
 #define EPS2 1e-3		/* then uniaxial strain along z */
 
-enum { SC, FCC };
-
 static double worst_sig, worst_pos;	/* achieved errors, for the closing line */
-
-/* ---------- lattices ---------- */
-
-static void
-lattice(struct pack *p, int kind, int m, double wall_E, double wall_nu)
-{
-	double step = kind == SC ? 2 * R_ : sqrt(2.0) * R_;
-	int i, j, k, a;
-
-	pack_init(p);
-	for (k = 0; k < m; k++)
-		for (j = 0; j < m; j++)
-			for (i = 0; i < m; i++) {
-				double x[3] = {R_ + i * step, R_ + j * step, R_ + k * step};
-				if (kind == FCC && (i + j + k) % 2)
-					continue;
-				pack_add_grain(p, (long)p->n, x, R_, E_, NU, 2420);
-			}
-	for (a = 0; a < 3; a++) {
-		p->box[a] = 0;
-		p->box[3 + a] = 2 * R_ + (m - 1) * step;
-	}
-	p->wall_E = wall_E;
-	p->wall_nu = wall_nu;
-}
-
-/* ---------- O(N^2) energy, gradient, Hessian (the reference) ---------- */
-
-/* Gradient g (3n) and, unless H is NULL, the Hessian (3n x 3n); wall forces into wf. */
-static void
-ref_eval(const struct pack *p, const double *x, double *g, gsl_matrix *H, double wf[NWALLS])
-{
-	size_t n = p->n, i, j;
-	int a, b, w;
-
-	memset(g, 0, 3 * n * sizeof *g);
-	memset(wf, 0, NWALLS * sizeof *wf);
-	if (H)
-		gsl_matrix_set_zero(H);
-	for (i = 0; i < n; i++) {
-		for (j = i + 1; j < n; j++) {
-			double d[3], dd = 0, S = p->r[i] + p->r[j], dist, h, Es, Rs, P, k, nv[3];
-			for (a = 0; a < 3; a++) {
-				d[a] = x[3 * i + a] - x[3 * j + a];
-				dd += d[a] * d[a];
-			}
-			if (dd >= S * S)
-				continue;
-			dist = sqrt(dd);
-			h = S - dist;
-			Es = hertz_Estar(p->E[i], p->nu[i], p->E[j], p->nu[j]);
-			Rs = hertz_Rstar(p->r[i], p->r[j]);
-			P = hertz_force(Es, Rs, h);
-			k = hertz_stiffness(Es, Rs, h);
-			for (a = 0; a < 3; a++) {
-				nv[a] = d[a] / dist;
-				g[3 * i + a] -= P * nv[a];
-				g[3 * j + a] += P * nv[a];
-			}
-			if (H)
-				for (a = 0; a < 3; a++)
-					for (b = 0; b < 3; b++) {
-						/* d(-P n_a)/dx_ib = k n_a n_b - (P/d)(delta_ab - n_a n_b) */
-						double B = k * nv[a] * nv[b] - P / dist * ((a == b) - nv[a] * nv[b]);
-						*gsl_matrix_ptr(H, 3 * i + a, 3 * i + b) += B;
-						*gsl_matrix_ptr(H, 3 * j + a, 3 * j + b) += B;
-						*gsl_matrix_ptr(H, 3 * i + a, 3 * j + b) -= B;
-						*gsl_matrix_ptr(H, 3 * j + a, 3 * i + b) -= B;
-					}
-		}
-		for (w = 0; w < NWALLS; w++) {
-			double dist, h, Es, P;
-			a = w / 2;
-			dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
-			h = p->r[i] - dist;
-			if (h <= 0)
-				continue;
-			Es = hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu);
-			P = hertz_force(Es, p->r[i], h);
-			g[3 * i + a] += w % 2 ? P : -P;
-			wf[w] += P;
-			if (H)
-				*gsl_matrix_ptr(H, 3 * i + a, 3 * i + a) += hertz_stiffness(Es, p->r[i], h);
-		}
-	}
-}
-
-/* Newton from x (in place): x -= H^-1 g until the step stops shrinking.  Returns the last
- * step (m). */
-static double
-newton(const struct pack *p, double *x)
-{
-	size_t n3 = 3 * p->n, k;
-	gsl_matrix *H = gsl_matrix_alloc(n3, n3);
-	gsl_vector *gv = gsl_vector_alloc(n3), *dx = gsl_vector_alloc(n3);
-	gsl_permutation *perm = gsl_permutation_alloc(n3);
-	double *g = malloc(n3 * sizeof *g), wf[NWALLS], step = INFINITY, prev;
-	int it, sgn;
-
-	for (it = 0; it < 40; it++) {
-		ref_eval(p, x, g, H, wf);
-		for (k = 0; k < n3; k++)
-			gsl_vector_set(gv, k, g[k]);
-		gsl_linalg_LU_decomp(H, perm, &sgn);
-		gsl_linalg_LU_solve(H, perm, gv, dx);
-		prev = step;
-		step = 0;
-		for (k = 0; k < n3; k++) {
-			x[k] -= gsl_vector_get(dx, k);
-			step = fmax(step, fabs(gsl_vector_get(dx, k)));
-		}
-		/* quadratic convergence ends at rounding, where the step stops falling */
-		if (step < 1e-15 * R_ && step >= 0.5 * prev)
-			break;
-	}
-	gsl_matrix_free(H);
-	gsl_vector_free(gv);
-	gsl_vector_free(dx);
-	gsl_permutation_free(perm);
-	free(g);
-	return step;
-}
-
-static void
-wall_stress(const double box[6], const double wf[NWALLS], double sig[3])
-{
-	int a;
-
-	for (a = 0; a < 3; a++) {
-		int u = (a + 1) % 3, v = (a + 2) % 3;
-		sig[a] = (wf[2 * a] + wf[2 * a + 1]) / (2 * (box[3 + u] - box[u]) * (box[3 + v] - box[v]));
-	}
-}
 
 /* ---------- the SC closed form ---------- */
 
@@ -263,7 +129,7 @@ one_case(gsl_rng *rng, int kind, int m, double wall_E, double wall_nu, enum qs_m
 	size_t n, n3, k;
 	int stage, a;
 
-	lattice(&p, kind, m, wall_E, wall_nu);
+	lattice_pack(&p, kind, m, R_, E_, NU, wall_E, wall_nu);
 	n = p.n;
 	n3 = 3 * n;
 	x = malloc(n3 * sizeof *x);
@@ -296,15 +162,15 @@ one_case(gsl_rng *rng, int kind, int m, double wall_E, double wall_nu, enum qs_m
 				/* the Newton reference reproduces the closed form: it is validated here
 				 * before it is trusted for FCC; to rounding of positions, 1e-15 R */
 				memcpy(xn, x, n3 * sizeof *x);
-				stepn = newton(&p, xn);
+				stepn = lattice_newton(&p, xn, 1e-15 * R_);
 				snprintf(name, sizeof name, "%s %s: Newton reference = SC closed form", tag, stage ? "uniaxial" : "isotropic");
 				CHECK(maxdiff(xn, xr, n3) <= 1e-8 * hmin && stepn < 1e-14 * R_, "%s (%.3g of the overlap)", name,
 				    maxdiff(xn, xr, n3) / hmin);
 			}
 		} else {
-			newton(&p, xr);
-			ref_eval(&p, xr, g, NULL, wf);
-			wall_stress(p.box, wf, sigr);
+			lattice_newton(&p, xr, 1e-15 * R_);
+			lattice_ref_eval(&p, xr, g, NULL, wf);
+			lattice_wall_stress(p.box, wf, sigr);
 			/* smallest grain-grain overlap of the affine state, as the position scale: the
 			 * (1,1,0) contacts keep 2R EPS1 under the uniaxial stage */
 			hmin = 2 * R_ * EPS1;

@@ -57,7 +57,7 @@
  * scaled from the block's contacts to the cell's (each class has the same count N in a block
  * with the cube's symmetry: sigma_lattice = sigma_LW V_box 4 / (N V_cell)); C44 from an affine
  * shear.  The walled FCC block goes through the loader as well and is compared with a Newton
- * reference written here (the exact Hessian of an O(N^2) Hertz energy, as in test_lattice.c). */
+ * reference (unit_lattice.h: the exact Hessian of an O(N^2) Hertz energy, as in test_lattice.c). */
 #include "contacts.h"
 #include "hertz.h"
 #include "hooke.h"
@@ -66,6 +66,7 @@
 #include "msg.h"
 #include "pack.h"
 #include "unit.h"
+#include "unit_lattice.h"
 
 #include <gsl/gsl_linalg.h>
 #include <math.h>
@@ -79,8 +80,6 @@
 #define DE 1e-4			/* the increments */
 #define MIN_TOL 1e-11		/* the minimiser's residual (largest |F_i| / largest contact force) */
 #define TOL_SEC 1e-8		/* measured secant against the exact one (see the top) */
-
-enum { SC, FCC };
 
 /* The path: precompression from the touching lattice, then increments of each kind. */
 enum { NSTEP = 6 };
@@ -104,26 +103,9 @@ Egg(void)
 static void
 lattice(struct pack *p, int kind, int m, double wall_E, double wall_nu)
 {
-	double step = kind == SC ? 2 * R_ : sqrt(2.0) * R_;
-	int i, j, k, a;
-
-	pack_init(p);
-	for (k = 0; k < m; k++)
-		for (j = 0; j < m; j++)
-			for (i = 0; i < m; i++) {
-				double x[3] = {R_ + i * step, R_ + j * step, R_ + k * step};
-				if (kind == FCC && (i + j + k) % 2)
-					continue;
-				pack_add_grain(p, (long)p->n, x, R_, E_, NU, 2420);
-			}
-	for (a = 0; a < 3; a++) {
-		p->box[a] = 0;
-		p->box[3 + a] = 2 * R_ + (m - 1) * step;
-	}
+	lattice_pack(p, kind, m, R_, E_, NU, wall_E, wall_nu);
 	memcpy(p->refbox, p->box, sizeof p->box);
 	p->has_refbox = 1;
-	p->wall_E = wall_E;
-	p->wall_nu = wall_nu;
 	p->mu = p->wall_mu = 0;
 }
 
@@ -524,99 +506,15 @@ fcc_lattice_case(void)
 
 /* ---------- FCC between walls: the Newton reference ---------- */
 
-/* Gradient g (3n) and Hessian H of the O(N^2) Hertz energy; wall forces into wf. */
-static void
-ref_eval(const struct pack *p, const double *x, double *g, gsl_matrix *H, double wf[NWALLS])
-{
-	size_t n = p->n, i, j;
-	int a, b, w;
-
-	memset(g, 0, 3 * n * sizeof *g);
-	memset(wf, 0, NWALLS * sizeof *wf);
-	gsl_matrix_set_zero(H);
-	for (i = 0; i < n; i++) {
-		for (j = i + 1; j < n; j++) {
-			double d[3], dd = 0, S = p->r[i] + p->r[j], dist, h, Es, Rs, P, k, nv[3];
-			for (a = 0; a < 3; a++) {
-				d[a] = x[3 * i + a] - x[3 * j + a];
-				dd += d[a] * d[a];
-			}
-			if (dd >= S * S)
-				continue;
-			dist = sqrt(dd);
-			h = S - dist;
-			Es = hertz_Estar(p->E[i], p->nu[i], p->E[j], p->nu[j]);
-			Rs = hertz_Rstar(p->r[i], p->r[j]);
-			P = hertz_force(Es, Rs, h);
-			k = hertz_stiffness(Es, Rs, h);
-			for (a = 0; a < 3; a++) {
-				nv[a] = d[a] / dist;
-				g[3 * i + a] -= P * nv[a];
-				g[3 * j + a] += P * nv[a];
-			}
-			for (a = 0; a < 3; a++)
-				for (b = 0; b < 3; b++) {
-					/* d(-P n_a)/dx_ib = k n_a n_b - (P/d)(delta_ab - n_a n_b) */
-					double B = k * nv[a] * nv[b] - P / dist * ((a == b) - nv[a] * nv[b]);
-					*gsl_matrix_ptr(H, 3 * i + a, 3 * i + b) += B;
-					*gsl_matrix_ptr(H, 3 * j + a, 3 * j + b) += B;
-					*gsl_matrix_ptr(H, 3 * i + a, 3 * j + b) -= B;
-					*gsl_matrix_ptr(H, 3 * j + a, 3 * i + b) -= B;
-				}
-		}
-		for (w = 0; w < NWALLS; w++) {
-			double dist, h, Es, P;
-			a = w / 2;
-			dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
-			h = p->r[i] - dist;
-			if (h <= 0)
-				continue;
-			Es = hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu);
-			P = hertz_force(Es, p->r[i], h);
-			g[3 * i + a] += w % 2 ? P : -P;
-			wf[w] += P;
-			*gsl_matrix_ptr(H, 3 * i + a, 3 * i + a) += hertz_stiffness(Es, p->r[i], h);
-		}
-	}
-}
-
 /* Newton from x (in place) to rounding; the wall stresses of the solution into sig. */
 static void
 newton(const struct pack *p, double *x, double sig[3])
 {
-	size_t n3 = 3 * p->n, k;
-	gsl_matrix *H = gsl_matrix_alloc(n3, n3);
-	gsl_vector *gv = gsl_vector_alloc(n3), *dx = gsl_vector_alloc(n3);
-	gsl_permutation *perm = gsl_permutation_alloc(n3);
-	double *g = malloc(n3 * sizeof *g), wf[NWALLS], step = INFINITY, prev;
-	int it, sgn, a;
+	double *g = malloc(3 * p->n * sizeof *g), wf[NWALLS];
 
-	for (it = 0; it < 40; it++) {
-		ref_eval(p, x, g, H, wf);
-		for (k = 0; k < n3; k++)
-			gsl_vector_set(gv, k, g[k]);
-		gsl_linalg_LU_decomp(H, perm, &sgn);
-		gsl_linalg_LU_solve(H, perm, gv, dx);
-		prev = step;
-		step = 0;
-		for (k = 0; k < n3; k++) {
-			x[k] -= gsl_vector_get(dx, k);
-			step = fmax(step, fabs(gsl_vector_get(dx, k)));
-		}
-		/* quadratic convergence ends at rounding, where the step stops falling */
-		if (step < 1e-15 * R_ && step >= 0.5 * prev)
-			break;
-	}
-	ref_eval(p, x, g, H, wf);
-	for (a = 0; a < 3; a++) {
-		int u = (a + 1) % 3, v = (a + 2) % 3;
-		sig[a] = (wf[2 * a] + wf[2 * a + 1]) /
-		    (2 * (p->box[3 + u] - p->box[u]) * (p->box[3 + v] - p->box[v]));
-	}
-	gsl_matrix_free(H);
-	gsl_vector_free(gv);
-	gsl_vector_free(dx);
-	gsl_permutation_free(perm);
+	lattice_newton(p, x, 1e-15 * R_);
+	lattice_ref_eval(p, x, g, NULL, wf);
+	lattice_wall_stress(p->box, wf, sig);
 	free(g);
 }
 
