@@ -16,6 +16,8 @@
 static struct load_params lp;
 static struct path_defaults def = {1e-4, 0, NAN, NAN, 2};
 static struct path_limits lim = {100000, 0.05};
+#define DEFAULT_STEPS 100	/* a segment's stop when no stop is given at all */
+
 static const char *path_arg = "uniaxial", *axis_arg = "z", *rule_arg = "return-map";
 static double mu = NAN, wall_mu = NAN;
 static long nsub = 1;
@@ -24,7 +26,7 @@ static int allow_limit;
 static struct cli_opt opts[] = {
 	{"path", 'p', CLI_STRING, &path_arg, "SPEC", "loading path: uniaxial, isotropic, triaxial, polyaxial, or segments 'A; B' (see loadtest(1))", NULL},
 	{"strain-step", 'd', CLI_DOUBLE, &def.step, "D", "strain per increment (negative: unloading)", NULL},
-	{"steps", 'n', CLI_LONG, &def.steps, "N", "stop after N increments", NULL},
+	{"steps", 'n', CLI_LONG, &def.steps, "N", "stop after N increments (100 when no stop is given at all)", NULL},
 	{"to-stress", 's', CLI_DOUBLE, &def.to_stress, "PA", "stop when sigma_c reaches PA", "Pa"},
 	{"to-strain", 'e', CLI_DOUBLE, &def.to_strain, "E", "stop when the axial strain reaches E", NULL},
 	{"axis", 'a', CLI_STRING, &axis_arg, "x|y|z", "axis of uniaxial and triaxial paths", NULL},
@@ -161,6 +163,10 @@ main(int argc, char **argv)
 	if (!isnan(def.to_strain) && !(fabs(def.to_strain) <= 0.5))
 		cli_usage_error("--to-strain: must be in [-0.5, 0.5]");
 	cli_usage_done();	/* the path is parsed only with valid defaults */
+	/* no stop anywhere (a bare loadtest in a pipe): 100 increments, 1 % strain at the
+	 * default step, about 9 -> 18 MPa on the default pack after frictionalize */
+	if (def.steps == 0 && isnan(def.to_stress) && isnan(def.to_strain))
+		def.steps = DEFAULT_STEPS;
 	def.axis = axis_arg[0] - 'x';
 	if (path_parse(path_arg, &def, &path))
 		cli_usage_error("--path: %s", msg_geterr());

@@ -223,7 +223,10 @@ expect_fail "second segment bad" 2 "^loadtest: --path: segment 2: " --path 'unia
 expect_fail "polyaxial without ratio" 2 '^loadtest: --path: segment 1: .*ratio' --path polyaxial --steps 3 fr.pack
 expect_fail "hold and lateral together" 2 '^loadtest: --path: segment 1: .*exclusive' --path 'triaxial hold lateral=0.5' --steps 3 fr.pack
 expect_fail "empty path" 2 '^loadtest: --path: ' --path '' --steps 3 fr.pack
-expect_fail "no stop" 2 '^loadtest: --path: segment 1: no stop' fr.pack
+# a bare loadtest (the pipe of the README) runs 100 increments; a path without a stop in a
+# segment and with a stop option for another kind still fails to parse
+loadtest fr.pack >bare.tsv 2>/dev/null
+expect_num "bare loadtest: 100 increments and the start row" "$(grep -vc '^#' bare.tsv)" "==" 101
 expect_fail "unknown option" 2 "^loadtest: unknown option '--bogus'" --bogus --steps 3 fr.pack
 expect_fail "--strain-step nan" 2 "^loadtest: --strain-step: 'nan' is not a finite number" --strain-step nan --steps 3 fr.pack
 expect_fail "--strain-step NaN" 2 "^loadtest: --strain-step: 'NaN'" --strain-step NaN --steps 3 fr.pack
