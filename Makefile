@@ -123,8 +123,17 @@ bench: all
 	@$(MAKE) --no-print-directory B=build $(BENCH_SRC:tests/bench/%.c=build/bench/%)
 	@sh tests/bench.sh build/bin
 
-validate: all
+# Validation against the papers: densify's frictionless compaction (validate/results.md), then
+# the frictional and polyaxial studies at the papers' sizes, their reports gathered in
+# validate/studies.md (pipelines/README.md).
+VALIDATE_STUDIES = fig4 fig5-6 fig8 fig9 s-fig3
+validate: all plotdeps
 	@sh tests/validate.sh build/bin
+	@$(MAKE) --no-print-directory -C pipelines BIN=$(CURDIR)/build/bin $(VALIDATE_STUDIES)
+	@{ echo "# qusgm validation: the papers' studies"; echo; \
+	  echo "Gathered by make validate from pipelines/out/STUDY/report.md ($$(date -u '+%Y-%m-%d %H:%M UTC'), commit $$(git rev-parse --short HEAD 2>/dev/null))."; \
+	  for s in $(VALIDATE_STUDIES); do echo; sed 's/^# /## /' pipelines/out/$$s/report.md; done; } >validate/studies.md.tmp && \
+	  mv validate/studies.md.tmp validate/studies.md && echo "wrote validate/studies.md"
 
 interop: all
 	@sh tests/interop.sh build/bin
@@ -152,7 +161,7 @@ help:
 	@echo "make run        the default job: packgen | densify | frictionalize | loadtest | moduli on G2740 (out/)"
 	@echo "make pipelines  the papers' studies (STUDY=name, SMALL=1 for small packs; pipelines/README.md)"
 	@echo "make bench      benchmarks; results in bench/results.md"
-	@echo "make validate   long validation cases; results in validate/results.md"
+	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
 	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, presets"
 	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR"
