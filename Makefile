@@ -126,7 +126,7 @@ bench: all
 # Validation against the papers: densify's frictionless compaction (validate/results.md), then
 # the frictional and polyaxial studies at the papers' sizes, their reports gathered in
 # validate/studies.md (pipelines/README.md).
-VALIDATE_STUDIES = fig4 fig5-6 fig8 fig9 s-fig3
+VALIDATE_STUDIES = fig4 fig5-6 fig7 fig8 fig9 s-fig3 s-fig4
 validate: all plotdeps
 	@sh tests/validate.sh build/bin
 	@$(MAKE) --no-print-directory -C pipelines BIN=$(CURDIR)/build/bin $(VALIDATE_STUDIES)

@@ -77,10 +77,20 @@ at_common() {	# runs...: K and G of each at the common stress
 	done
 }
 
+# the seconds of the tool runs this study needs: their names from commands.txt (make -n of
+# the study's data), their times from OUT/times.tsv (timed.sh), the last time of each
+study_time() {
+	awk 'FNR == NR { t[$1] = $2; next }
+	     { for (i = 1; i < NF; i++) if ($i ~ /timed\.sh$/) { n++; s += t[$(i + 2)]; if (!($(i + 2) in t)) miss++ } }
+	     END { printf "%d tool runs, %.0f s on one core", n, s; if (miss) printf " (%d not timed)", miss }' \
+	    "$out/times.tsv" "$out/$study/commands.txt" 2>/dev/null || echo "not timed"
+}
+
 echo "# $study"
 echo
 echo "Pack sizes: G2740-style $n2740 grains, G5036-style $n5036, Q2654-style $n2654 (seed ${SEED:-1})."
 echo "Figure: \`$study.png\`; exact commands: \`commands.txt\`; remake: \`make -C pipelines $study$( [ "$out" = out-small ] && echo ' SMALL=1')\`."
+echo "Cost: $(study_time) (the sum of its stages; run alone with -j1 it takes about that long)."
 echo
 case $study in
 fig4)
@@ -129,7 +139,7 @@ fig7)
 mu = 0.3.  At a given sigma_c, K is lower for packs densified to a higher stress (about 1 %
 between 4 and 10 MPa, about 10 % with 41 MPa); G is less sensitive.
 
-**This run** (every test to 150 MPa)
+**This run** (tests to 150 MPa; the 74 MPa pack, whose phase (b) ends above that, 60 increments)
 
 EOF
 	fric_header
@@ -138,7 +148,7 @@ EOF
 	test_header
 	for s in 4 10 20 41 54 74; do test_summary g2740-s$s-mu0.3-f7; done
 	echo
-	at_common g2740-s4-mu0.3-f7 g2740-s10-mu0.3-f7 g2740-s20-mu0.3-f7 g2740-s41-mu0.3-f7 g2740-s54-mu0.3-f7 g2740-s74-mu0.3-f7
+	at_common g2740-s4-mu0.3-f7 g2740-s10-mu0.3-f7 g2740-s20-mu0.3-f7 g2740-s41-mu0.3-f7 g2740-s54-mu0.3-f7
 	;;
 fig8)
 	cat <<'EOF'
