@@ -3,7 +3,10 @@
 #  - packgen: wall time and peak memory of making the loose pack (seed 1, glass);
 #  - densify to 4 MPa: wall time, peak memory, iterations (the log's sum), per minimiser;
 #  - one isotropic strain increment of 1e-4 from the dense pack, per minimiser
-#    (build/bench/increment): iterations, evaluations, time per evaluation per contact.
+#    (build/bench/increment): iterations, evaluations, time per evaluation per contact;
+#  - frictionalize, and uniaxial increments with and without friction (build/bench/fincrement);
+#  - the cost of one evaluation of the functional on the first size's dense pack tiled up to
+#    BENCH_TILES (default "1 2 3 4": 2740 to 175360 grains; build/bench/evalscale).
 # Results go to bench/results.md (readable tables) with the machine and the commit.
 #
 # Knobs: BENCH_SIZES (e.g. "2740 10000" for a quicker run); BENCH_METHODS (densify's
@@ -15,6 +18,7 @@ bin=${1:-build/bin}
 case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
 incr="$bin/../bench/increment"
 fincr="$bin/../bench/fincrement"
+escale="$bin/../bench/evalscale"
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/bench"
 mkdir -p "$out"
@@ -113,6 +117,17 @@ $(awk -F '\t' '!/^#/ { printf "| %d | %s | %s | %d | %.1f | %.1f | %.4f | %.1f |
 	fi
 done
 
+# the functional's cost per evaluation against N, on the first size's dense pack tiled
+first=$(echo $sizes | cut -d ' ' -f 1)
+firstm=$(echo $methods | cut -d ' ' -f 1)
+scale_rows=""
+if [ -x "$escale" ] && [ -s "$out/dense-$first-$firstm.pack.gz" ] &&
+    "$escale" "$out/dense-$first-$firstm.pack.gz" ${BENCH_TILES:-1 2 3 4} >"$tmp.scale" 2>"$tmp.err"; then
+	scale_rows=$(awk -F '\t' '!/^#/ { printf "| %d | %d | %d | %.4f | %.5f | %.1f |\n", $1, $2, $3, $4, $5, $6 }' "$tmp.scale")
+else
+	scale_rows="| failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | |"
+fi
+
 {
 	echo "# qusgm benchmarks"
 	echo
@@ -161,6 +176,16 @@ done
 	echo "| grains | friction | method | contacts | iterations | evaluations | s per increment | ns per evaluation per contact | largest residual | sliding ratio |"
 	echo "| ---: | :--- | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 	echo "$finc_rows" | sed '/^$/d'
+	echo
+	echo "## one evaluation of the functional against N (build/bench/evalscale)"
+	echo
+	echo "The dense $first-grain pack tiled M x M x M times in one box; the first evaluation builds"
+	echo "the neighbour list, the next ones reuse it (energy, gradient, per-grain largest force)."
+	echo "Constant ns per evaluation per contact means a cost linear in N."
+	echo
+	echo "| copies | grains | contacts | first evaluation (s) | evaluation (s) | ns per evaluation per contact |"
+	echo "| ---: | ---: | ---: | ---: | ---: | ---: |"
+	echo "$scale_rows" | sed '/^$/d'
 } >"$res"
 rm -f "$tmp".*
 cat "$res"
