@@ -140,6 +140,8 @@ main(int argc, char **argv)
 		mu = p.mu;
 	p.mu = mu;
 	p.wall_mu = wall_mu;
+	if (mu == 0 && wall_mu == 0)
+		msg_warn("%s: friction coefficients 0 (grain-grain and wall): nothing can slide; give --mu", st.input ? st.input : "<stdin>");
 	{
 		long w = fric_window(&p, &fp);
 		if (w > fp.max_inc)

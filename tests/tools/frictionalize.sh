@@ -105,6 +105,8 @@ awk '/^end$/ { on = 1; next } on && NF == 7 && $2 !~ /^[xyz](lo|hi)$/ && ($4 != 
 awk '/^end$/ { on = 1; next } on && NF == 7 && $2 ~ /^[xyz](lo|hi)$/ && ($4 != 0 || $5 != 0 || $6 != 0) { q++ }
      END { exit !(q > 0) }' m0.pack && pass "--mu 0: wall contacts keep friction (--wall-mu 0.3)" || fail "--mu 0: wall contacts keep friction (--wall-mu 0.3)" "no wall Q0"
 expect_ok "--mu 0 --wall-mu 0 runs" frictionalize --mu 0 --wall-mu 0 --log m00.tsv -o m00.pack dense.pack
+grep -q '^frictionalize: .*nothing can slide' ok.err && pass "--mu 0 --wall-mu 0: warns that nothing can slide" ||
+    fail "--mu 0 --wall-mu 0: warns that nothing can slide" "$(cat ok.err)"
 # nothing can slide: the ratio stays 0 and the run saturates after two windows
 expect_num "--mu 0 --wall-mu 0: saturates after two windows" "$(($(wc -l <m00.tsv) - 2))" "==" $((2 * W))
 expect_ok "--mu 0 alone runs" frictionalize --mu 0 -o m0b.pack dense.pack
