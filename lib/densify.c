@@ -19,6 +19,7 @@ densify_params_default(struct densify_params *dp)
 	dp->strain_step = 2e-3;
 	dp->max_growth = 0.05;
 	dp->grow_tol = 1e-2;
+	dp->grow_max_iter = 20000;
 	dp->min_coord = 4;
 	dp->max_rounds = 1000;
 	dp->nsub = 1;
@@ -207,8 +208,11 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 			struct qs_min_params mp = dp->min;
 			int loose = st.sigma_c < dp->onset;
 
-			if (loose)
+			if (loose) {
 				mp.tol = fmax(mp.tol, dp->grow_tol);
+				if (mp.max_iter > dp->grow_max_iter)
+					mp.max_iter = dp->grow_max_iter;
+			}
 			s.force_floor = loose ? floor_loose : 0;
 			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &mp, &rep) < 0)
 				goto out;

@@ -12,7 +12,10 @@
  * the onset (an unjammed pack, nothing to balance yet) are minimised to the looser grow_tol,
  * and a round that ends at or above the onset is then minimised to the full tolerance before
  * its box can become the reference: near jamming a full-tolerance minimisation of an
- * unjammed pack slows critically (70k L-BFGS iterations in one round of a 1e4-grain pack). */
+ * unjammed pack slows critically (70k L-BFGS iterations in one round of a 1e4-grain pack),
+ * and even grow_tol can take 190k FIRE iterations in the round before jamming: such rounds
+ * also stop at grow_max_iter iterations, not an error (the next round grows and squeezes
+ * from wherever it stopped; only equilibria at and above the onset are reported). */
 #ifndef QUSGM_DENSIFY_H
 #define QUSGM_DENSIFY_H
 
@@ -26,6 +29,7 @@ struct densify_params {
 	double strain_step;	/* largest isotropic strain per step */
 	double max_growth;	/* largest relative growth of a radius per round */
 	double grow_tol;	/* residual target of rounds that start below the onset */
+	long grow_max_iter;	/* iteration limit of those rounds */
 	unsigned min_coord;
 	long max_rounds;
 	int nsub;		/* sub-increments per strain step */

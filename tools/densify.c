@@ -24,6 +24,7 @@ static struct cli_opt opts[] = {
 	{"strain-step", 0, CLI_DOUBLE, &dp.strain_step, "EPS", "largest isotropic strain per step", NULL},
 	{"max-growth", 0, CLI_DOUBLE, &dp.max_growth, "RATIO", "largest growth of a radius per round / radius", NULL},
 	{"grow-tol", 0, CLI_DOUBLE, &dp.grow_tol, "RATIO", "residual target of growth rounds below the onset (unjammed)", NULL},
+	{"grow-max-iter", 0, CLI_LONG, &dp.grow_max_iter, "N", "iteration limit of those rounds (reaching it is not an error)", NULL},
 	{"min-coord", 0, CLI_LONG, &min_coord, "N", "grains with fewer contacts (grains and walls) are expanded", NULL},
 	{"max-rounds", 0, CLI_LONG, &dp.max_rounds, "N", "limit on growth rounds and on compaction steps", NULL},
 	{"sub-increments", 0, CLI_LONG, &nsub, "N", "sub-increments per strain step (affine guess each)", NULL},
@@ -83,6 +84,8 @@ main(int argc, char **argv)
 		cli_usage_error("--stress-tol: must be in (0, 0.5)");
 	if (!(dp.strain_step > 0 && dp.strain_step <= 0.05))
 		cli_usage_error("--strain-step: must be in (0, 0.05]");
+	if (dp.grow_max_iter < 1 || dp.grow_max_iter > 100000000)
+		cli_usage_error("--grow-max-iter: must be in 1..1e8");
 	if (!(dp.grow_tol > 0 && dp.grow_tol < 1))
 		cli_usage_error("--grow-tol: must be in (0, 1)");
 	if (!(dp.max_growth > 0 && dp.max_growth <= 0.5))
