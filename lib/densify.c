@@ -218,13 +218,25 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 				goto out;
 			qs_wall_stress(&s, sig);
 			if (loose && (sig[0] + sig[1] + sig[2]) / 3 >= dp->onset && mp.tol > dp->min.tol) {
-				/* jammed in this round: the full equilibrium, before any decision on it */
-				long it = rep.iter;
+				/* jammed in this round: the full equilibrium, before any decision on it,
+				 * in chunks of grow_max_iter iterations: a pack that only looked jammed
+				 * at the loose tolerance relaxes below the onset and is grown further
+				 * at once (a 1e4-grain pack spent 200k L-BFGS iterations relaxing from
+				 * 1e4 to 6e3 Pa at residual 1.08) */
+				long it = rep.iter, left = dp->min.max_iter;
+				struct qs_min_params fm = dp->min;
 				s.force_floor = 0;
-				if (qs_minimize(&s, x, &dp->min, &rep) < 0)
-					goto out;
-				rep.iter += it;
-				qs_wall_stress(&s, sig);
+				for (;;) {
+					fm.max_iter = left < dp->grow_max_iter ? left : dp->grow_max_iter;
+					if (qs_minimize(&s, x, &fm, &rep) < 0)
+						goto out;
+					it += rep.iter;
+					left -= rep.iter;
+					qs_wall_stress(&s, sig);
+					if (rep.status != 1 || left <= 0 || (sig[0] + sig[1] + sig[2]) / 3 < dp->onset)
+						break;
+				}
+				rep.iter = it;
 			}
 			if (st.sigma_c < dp->onset && (sig[0] + sig[1] + sig[2]) / 3 > 10 * dp->onset && scale > 1.0 / 1024) {
 				memcpy(x, xsave, 3 * p->n * sizeof *x);
