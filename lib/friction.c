@@ -64,6 +64,8 @@ setup_contact(const struct pack *p, const struct geo_contact *g, struct fr_conta
 	c->j = g->j;
 	memcpy(c->n, g->n, sizeof c->n);
 	contacts_moduli(p, g, &Es, &Rs);
+	c->Es = Es;
+	c->Rs = Rs;
 	a = sqrt(Rs * g->h);
 	if (wall) {
 		Gj = shear_modulus(p->wall_E, p->wall_nu);
@@ -334,16 +336,24 @@ fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double 
 	}
 }
 
-static const struct pack_contact *sort_pc;	/* qsort has no context argument */
-
-static int
-cmp_line(const void *a, const void *b)
+/* Hertz normal force of contact c at the pack's current positions (0 when it has opened). */
+static double
+normal_force_now(const struct pack *p, const struct fr_contact *c)
 {
-	const struct pack_contact *x = &sort_pc[*(const size_t *)a], *y = &sort_pc[*(const size_t *)b];
+	const double *xi = p->x + 3 * c->i;
+	double h;
 
-	if (x->i != y->i)
-		return x->i < y->i ? -1 : 1;
-	return x->j < y->j ? -1 : x->j > y->j;
+	if (PACK_IS_WALL(c->j)) {
+		double n[3], pos;
+		int axis = PACK_WALL_INDEX(c->j) / 2;
+		contacts_wall_plane(p, PACK_WALL_INDEX(c->j), n, &pos);
+		h = p->r[c->i] - (xi[axis] - pos) * n[axis];
+	} else {
+		const double *xj = p->x + 3 * c->j;
+		double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+		h = p->r[c->i] + p->r[c->j] - vec3_norm(d);
+	}
+	return hertz_force(c->Es, c->Rs, h);
 }
 
 int
@@ -367,39 +377,13 @@ fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 		return -1;
 	memset(x + n3, 0, n3 * sizeof *x);
 	/* the sliding count: the trial force of each reference contact against the limit of
-	 * its normal force now (the new lines, in the engine's pair order; both sorted by
-	 * pair below) */
-	f->ntouch = p->nc;
+	 * its normal force now (opened contacts have none) */
 	f->nslide = 0;
-	if (p->nc && f->n) {
-		size_t *ord = malloc(p->nc * sizeof *ord);
-		if (!ord) {
-			msg_seterr("out of memory");
-			return -1;
-		}
-		for (k = 0; k < p->nc; k++)
-			ord[k] = k;
-		sort_pc = p->c;
-		qsort(ord, p->nc, sizeof *ord, cmp_line);
-		for (k = 0; k < f->n; k++) {
-			const struct fr_contact *c = &f->c[k];
-			size_t lo = 0, hi = p->nc;
-			while (lo < hi) {
-				size_t mid = (lo + hi) / 2;
-				const struct pack_contact *m = &p->c[ord[mid]];
-				if (m->i < c->i || (m->i == c->i && m->j < c->j))
-					lo = mid + 1;
-				else
-					hi = mid;
-			}
-			if (lo < p->nc && p->c[ord[lo]].i == c->i && p->c[ord[lo]].j == c->j) {
-				const struct pack_contact *m = &p->c[ord[lo]];
-				double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu;
-				if (mu * m->P0 > 0 && c->qtrial >= mu * m->P0 * (1 - 1e-9))
-					f->nslide++;
-			}
-		}
-		free(ord);
+	for (k = 0; k < f->n; k++) {
+		const struct fr_contact *c = &f->c[k];
+		double qlim = (PACK_IS_WALL(c->j) ? p->wall_mu : p->mu) * normal_force_now(p, c);
+		if (qlim > 0 && c->qtrial >= qlim * (1 - 1e-9))
+			f->nslide++;
 	}
 	return 0;
 }

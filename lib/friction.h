@@ -46,6 +46,7 @@ struct fr_contact {
 	double kt, mmax, mp;	/* torsion: stiffness, limit, reference couple on i about n */
 	double Q[3], M;		/* force and couple on i at the last evaluation */
 	double qtrial;		/* |Q^p - k* u_s| at the last evaluation (the elastic trial) */
+	double Es, Rs;		/* Hertz E* and R* of the pair (for its normal force at the commit) */
 };
 
 struct qs_friction {
@@ -59,9 +60,8 @@ struct qs_friction {
 	 * largest excess |Q0| / Q_max - 1 */
 	size_t stale, clamped;
 	double clamp_excess;
-	/* from fr_commit: contacts touching at the end of the increment, and those of them
-	 * that slide by the end-of-increment test (see fr_commit) */
-	size_t ntouch, nslide;
+	/* from fr_commit: the contacts that slide by the end-of-increment test (see fr_commit) */
+	size_t nslide;
 };
 
 void fr_init(struct qs_friction *f, enum fr_rule rule);
