@@ -136,7 +136,7 @@ begin(struct loader *L)
 static int
 fill_row(struct loader *L, struct load_row *row, size_t *ncontacts)
 {
-	const char *rec = pack_get_meta(L->p, "sliding_ratio");
+	double rec;
 	struct geo_contacts gc;
 	struct pack_measures m;
 	int a;
@@ -156,12 +156,8 @@ fill_row(struct loader *L, struct load_row *row, size_t *ncontacts)
 	row->porosity = m.porosity;
 	row->coordination = m.coordination;
 	row->sliding_ratio = L->lp.friction ? (isnan(m.sliding_ratio) ? 0 : m.sliding_ratio) : 0;
-	if (L->lp.friction && rec) {
-		char *end;
-		double v = strtod(rec, &end);
-		if (end != rec && !*end && v >= 0 && v <= 1)
-			row->sliding_ratio = v;
-	}
+	if (L->lp.friction && pack_get_meta_double(L->p, "sliding_ratio", &rec) == 0 && rec >= 0 && rec <= 1)
+		row->sliding_ratio = rec;
 	*ncontacts = m.contacts_gg + m.contacts_gw;
 	return 0;
 }

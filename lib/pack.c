@@ -2,6 +2,7 @@
 #include "pack.h"
 #include "msg.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -143,6 +144,22 @@ pack_get_meta(const struct pack *p, const char *key)
 		if (strcmp(p->meta[k].key, key) == 0)
 			return p->meta[k].value;
 	return NULL;
+}
+
+int
+pack_get_meta_double(const struct pack *p, const char *key, double *v)
+{
+	const char *s = pack_get_meta(p, key);
+	char *end;
+	double x;
+
+	if (!s)
+		return -1;
+	x = strtod(s, &end);
+	if (end == s || *end || !isfinite(x))
+		return -1;
+	*v = x;
+	return 0;
 }
 
 double

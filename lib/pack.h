@@ -70,6 +70,8 @@ int pack_add_contact(struct pack *p, const struct pack_contact *c);
 int pack_add_history(struct pack *p, const char *line);
 int pack_set_meta(struct pack *p, const char *key, const char *value);
 const char *pack_get_meta(const struct pack *p, const char *key);
+/* The meta value of key as a finite number: 0 with *v set, or -1 (absent or not a number). */
+int pack_get_meta_double(const struct pack *p, const char *key, double *v);
 
 /* Box geometry: wall w's inward normal and position along its axis. */
 double pack_box_length(const double box[6], int axis);

@@ -77,10 +77,8 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	{
 		/* the increment that wrote the pack recorded its own count (lib/loading.c); the
 		 * lines only bound it from below */
-		const char *rec = pack_get_meta(p, "sliding_ratio");
-		char *end = NULL;
-		double v = rec ? strtod(rec, &end) : NAN;
-		add(r, "sliding_ratio", NULL, rec && end != rec && !*end ? v : m->sliding_ratio);
+		double rec;
+		add(r, "sliding_ratio", NULL, pack_get_meta_double(p, "sliding_ratio", &rec) == 0 ? rec : m->sliding_ratio);
 		add(r, "sliding_ratio_lines", NULL, m->sliding_ratio);
 	}
 	add(r, "fabric_xx", NULL, m->fabric[0]);
