@@ -634,6 +634,58 @@ test_shear(enum fr_rule rule)
 	pack_free(&p);
 }
 
+/* ---------- test 5b: the sliding count of an increment ---------- */
+
+/* fr_commit counts a contact as sliding when its elastic trial force |Q^p - k* u_s| reaches
+ * the limit mu P_end of its normal force at the end of the increment.  Grain 0 is pushed
+ * along the tangent by 1.2 Q_max/k* from Q0 = 0 (trial 1.2 Q_max, beyond the frozen limit:
+ * fr_sliding counts it) and towards grain 1 by the overlap that raises P to ratio x P: with
+ * ratio 1.3 the end limit 1.3 Q_max is above the trial (it sticks under the limit it has
+ * then, nslide 0), with 1.1 below (nslide 1).  The expected count comes from the closed
+ * forms (trial k* u, Hertz P of the final centre distance); 1.1, 1.2 and 1.3 are far apart
+ * against the second-order change of the distance by the tangential push (u^2 / 2d: about
+ * 1e-4 of P). */
+static void
+test_slide_count(void)
+{
+	static const double ratio[] = {1.3, 1.1};
+	size_t m;
+
+	for (m = 0; m < sizeof ratio / sizeof ratio[0]; m++) {
+		struct pack p;
+		struct qs_system s;
+		struct qs_friction f;
+		struct ref_contact rp;
+		double x[18], g[18], t0[3], b0[3], dh, u, dc, Pend, trial;
+		int a, rc;
+
+		pair_pack(&p);
+		pair_frame(t0, b0);
+		ref_of(&p, 0, 1, PAIR_H, &rp);
+		CHECK(qs_init(&s, &p, 0.3) == 0, "slide count: qs_init");
+		fr_init(&f, FR_RETURN_MAP);
+		CHECK(begin(&f, &s, x, "slide count") == 0, "slide count: fr_begin");
+		u = 1.2 * rp.qmax / rp.k;
+		dh = PAIR_H * (pow(ratio[m], 2.0 / 3.0) - 1);
+		for (a = 0; a < 3; a++)
+			x[a] += u * t0[a] - dh * n0[a];
+		eval(&s, x, g, "slide count");
+		CHECK(fr_sliding(&f) == 1, "slide count %.1f: at the frozen limit (fr_sliding %zu)", ratio[m], fr_sliding(&f));
+		dc = vec3_norm(x);	/* grain 1 sits at the origin */
+		Pend = hertz_force(hertz_Estar(p.E[0], p.nu[0], p.E[1], p.nu[1]), hertz_Rstar(p.r[0], p.r[1]), p.r[0] + p.r[1] - dc);
+		trial = rp.k * u;
+		/* the tangential push lengthens the centre distance by u^2 / 2d, 1e-4 of P here */
+		check_rel(Pend / rp.P, ratio[m], 1e-3, "slide count %.1f: P_end / P of the pushed overlap", ratio[m]);
+		rc = commit(&f, &s, x, "slide count");
+		CHECK(rc == 0 && f.nslide == (size_t)(trial >= p.mu * Pend),
+		    "slide count %.1f: trial %.6g mu P, end limit %.6g mu P: fr_commit counts %zu sliding (expected %d)", ratio[m],
+		    trial / (p.mu * rp.P), Pend / rp.P, f.nslide, trial >= p.mu * Pend);
+		fr_free(&f);
+		qs_free(&s);
+		pack_free(&p);
+	}
+}
+
 /* ---------- test 6: history ---------- */
 
 static void
@@ -1442,6 +1494,7 @@ main(void)
 	test_loop(FR_PAPER, 1);
 	test_shear(FR_RETURN_MAP);
 	test_shear(FR_PAPER);
+	test_slide_count();
 	test_history();
 	test_fd(rng, 20, "n=20");
 	test_fd(rng, 35, "n=35");
