@@ -10,11 +10,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+double
+densify_onset_default(double stress)
+{
+	return fmin(1e5, 0.1 * stress);
+}
+
 void
 densify_params_default(struct densify_params *dp)
 {
 	dp->stress = 4e6;
-	dp->onset = 1e4;
+	dp->onset = 0;	/* densify_onset_default(stress) */
 	dp->stress_tol = 0.01;
 	dp->strain_step = 2e-3;
 	dp->max_growth = 0.05;
@@ -118,6 +124,7 @@ stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densi
 int
 densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx, struct densify_stage *last)
 {
+	struct densify_params dpl = *dp;
 	struct qs_system s;
 	struct qs_min_report rep;
 	struct densify_stage st;
@@ -129,6 +136,9 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	long round;
 	int status = -1, limit_hit = 0, have_ref = p->has_refbox;
 
+	if (!(dpl.onset > 0))
+		dpl.onset = densify_onset_default(dpl.stress);
+	dp = &dpl;
 	memset(&st, 0, sizeof st);
 	if (qs_init(&s, p, dp->skin))
 		return -1;

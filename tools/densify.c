@@ -19,7 +19,7 @@ static long min_coord = 4, nsub = 1;
 static struct cli_opt opts[] = {
 	{"stress", 'p', CLI_DOUBLE, &dp.stress, "PA", "target confining stress sigma_c = tr(sigma)/3", "Pa"},
 	{"log", 'l', CLI_STRING, &log_path, "FILE", "write a TSV row per stage to FILE", NULL},
-	{"onset", 0, CLI_DOUBLE, &dp.onset, "PA", "stress that marks the reference box for strains", "Pa"},
+	{"onset", 0, CLI_DOUBLE, &dp.onset, "PA", "stress that marks the reference box for strains; 0: 1e5, or --stress/10 if lower", "Pa"},
 	{"stress-tol", 0, CLI_DOUBLE, &dp.stress_tol, "RATIO", "relative tolerance on the final sigma_c", NULL},
 	{"strain-step", 0, CLI_DOUBLE, &dp.strain_step, "EPS", "largest isotropic strain per step", NULL},
 	{"max-growth", 0, CLI_DOUBLE, &dp.max_growth, "RATIO", "largest growth of a radius per round / radius", NULL},
@@ -78,8 +78,8 @@ main(int argc, char **argv)
 	qs_min_opts_check(&dp.min);
 	if (!(dp.stress > 0))
 		cli_usage_error("--stress: must be positive");
-	if (!(dp.onset > 0))
-		cli_usage_error("--onset: must be positive");
+	if (!(dp.onset >= 0))
+		cli_usage_error("--onset: must be positive (or 0 for the default)");
 	if (!(dp.stress_tol > 0 && dp.stress_tol < 0.5))
 		cli_usage_error("--stress-tol: must be in (0, 0.5)");
 	if (!(dp.strain_step > 0 && dp.strain_step <= 0.05))
@@ -97,6 +97,8 @@ main(int argc, char **argv)
 	if (!(dp.skin > 0 && dp.skin <= 2))
 		cli_usage_error("--skin: must be in (0, 2]");
 	cli_usage_done();
+	if (dp.onset == 0)
+		dp.onset = densify_onset_default(dp.stress);	/* the history line records the value used */
 	dp.min_coord = (unsigned)min_coord;
 	dp.nsub = (int)nsub;
 

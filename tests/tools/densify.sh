@@ -132,7 +132,7 @@ expect_fail "box thinner than a grain" 1 '^densify: .*thinner than grain' thin.p
 expect_fail "--stress 0" 2 '^densify: --stress' --stress 0 loose.pack
 expect_fail "--stress -1" 2 '^densify: --stress' --stress -1 loose.pack
 expect_fail "--stress 1e12 (beyond E/100)" 2 '^densify: --stress .*small-strain' --stress 1e12 loose.pack
-expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --stress 5e3 loose.pack
+expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --onset 1e4 --stress 5e3 loose.pack
 expect_fail "--tol 2" 2 '^densify: --tol' --tol 2 loose.pack
 expect_fail "--method newton" 2 "^densify: --method: 'newton'" --method newton loose.pack
 expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
