@@ -20,9 +20,9 @@
  *     "uniaxial to-stress=20e6; uniaxial step=-1e-4 to-stress=5e6"
  *
  * Constant lateral stress is held by a servo: each increment's lateral strain is predicted
- * from the last increment's K and G so as to bring the mean lateral stress back to its
- * target; the rows report the lateral stress reached (it lags by a fraction of an increment's
- * stress change). */
+ * from the segment's own increments so far (d sig_lat = A de_axial + B de_lat, A from the
+ * first, uniaxial increment, B learnt by damped secants) so as to bring the mean lateral stress
+ * back to its target; the rows report the lateral stress reached. */
 #ifndef QUSGM_LOADPATH_H
 #define QUSGM_LOADPATH_H
 

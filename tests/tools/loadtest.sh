@@ -130,9 +130,10 @@ strain_steps tl.tsv 3 0.4999e-4 0.5001e-4 0.4999e-4 0.5001e-4 0.9999e-4 1.0001e-
     pass "triaxial lateral=0.5: lateral steps half the axial" || fail "triaxial lateral=0.5: lateral steps half the axial" "$(cat why)"
 
 # Triaxial with the mean lateral stress held at its starting value by the servo (loadpath.h:
-# each increment's lateral strain is predicted from the last increment's moduli; the stress
-# reached lags by a fraction of an increment's stress change).  The first increment has no
-# moduli yet and is uniaxial.
+# each increment's lateral strain is predicted from a model learnt along the segment; the
+# stress reached is off by a fraction of an increment's stress change, and the damped secant
+# closes in: the last row within a quarter of it, measured 1 %).  The first increment is
+# uniaxial.
 expect_ok "triaxial hold" loadtest --path 'triaxial hold' --steps 8 fr.pack
 mv ok.out th.tsv
 grep -q '^## path: triaxial .* hold=-1 steps=8$' th.tsv && pass "triaxial hold: ## path line" || fail "triaxial hold: ## path line" "$(grep '^## path' th.tsv)"
@@ -147,8 +148,8 @@ rows th.tsv | awk -F '\t' 'NR > 2 && $3 == x { bad = bad " " $1 } { x = $3 } END
     fail "triaxial hold: the servo moves the lateral walls in every increment after the first" "$(cat why)"
 expect_num "triaxial hold: largest |sig_lat - start| after the first increment, within one increment's axial stress change ($dsz Pa)" \
     "$(rows th.tsv | awk -F '\t' -v t="$target" 'NR > 2 { d = $13 - t; if (d < 0) d = -d; if (d > m) m = d } END { print m + 0 }')" "<" "$dsz"
-expect_num "triaxial hold: the last row's sig_lat within it" \
-    "$(awk -v a="$(col th.tsv 9 13)" -v t="$target" 'BEGIN { d = a - t; print d < 0 ? -d : d }')" "<" "$dsz"
+expect_num "triaxial hold: the last row's sig_lat within a quarter of it" \
+    "$(awk -v a="$(col th.tsv 9 13)" -v t="$target" 'BEGIN { d = a - t; print d < 0 ? -d : d }')" "<" "$(awk -v d="$dsz" 'BEGIN { print d / 4 }')"
 # hold=PA, 3 % below the starting lateral stress: after the first (uniaxial) increment the
 # rows stay, on average, much closer to PA than the start was (the start, if PA were ignored)
 pa=$(awk -v t="$target" 'BEGIN { printf "%.0f", t * 0.97 }')
