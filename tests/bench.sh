@@ -10,9 +10,13 @@
 # Results go to bench/results.md (readable tables) with the machine and the commit.
 #
 # Knobs: BENCH_SIZES (e.g. "2740 10000" for a quicker run); BENCH_METHODS (densify's
-# minimisers, default "cg fire lbfgs"); BENCH_REGEN=1 remakes the loose packs.  The packs are kept
-# in bench/ (loose-N.pack.gz, dense-N-METHOD.pack.gz, the densify logs) so that a later run
-# reuses the loose ones: packgen takes about 40 minutes at 1e5 grains.
+# minimisers, default "cg fire lbfgs"); BENCH_FRIC_MAX (largest size that is frictionalized,
+# default 10000: about an hour at 1e5 grains); BENCH_REGEN=1 remakes the loose packs.  The
+# packs are kept in bench/ (loose-N.pack.gz, dense-N-METHOD.pack.gz, the densify logs) so
+# that a later run reuses the loose ones: packgen takes about an hour at 1e5 grains.
+# Each size's rows are kept too (bench/rows-N.*, with the date and commit of the run that
+# made them), and results.md gathers every size measured so far, so that sizes can be run
+# separately (BENCH_SIZES=100000 BENCH_METHODS=lbfgs on one core while the others run).
 set -u
 bin=${1:-build/bin}
 case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
@@ -31,18 +35,23 @@ export LC_ALL=C
 # info FILE KEY [FORMAT]
 info() { awk -v k="$2" -v f="${3:-%s}" '$1 == k { printf f, $2 }' "$1"; }
 
-gen_rows=""
-dens_rows=""
-inc_rows=""
-fric_rows=""
-finc_rows=""
+# save N: the rows of size N, for this and later runs' results.md
+save() {
+	for t in gen dens inc fric finc; do
+		eval "printf '%s\n' \"\$${t}_rows\"" | sed '/^$/d' >"$out/rows-$1.$t"
+	done
+	echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)" >"$out/rows-$1.stamp"
+}
+
 for n in $sizes; do
+	gen_rows="" dens_rows="" inc_rows="" fric_rows="" finc_rows=""
 	loose="$out/loose-$n.pack.gz"
 	# packgen: make the loose pack, or reuse the one an earlier run made
 	if [ "${BENCH_REGEN:-0}" = 1 ] || [ ! -s "$loose" ] || [ ! -s "$out/loose-$n.time" ]; then
 		if ! /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/packgen" -n "$n" --seed 1 -o "$loose" 2>"$tmp.err"; then
 			gen_rows="$gen_rows
 | $n | failed: $(tail -n 1 "$tmp.err") | | | | | | |"
+			save "$n"
 			continue
 		fi
 		mv "$tmp.time" "$out/loose-$n.time"
@@ -81,8 +90,10 @@ $(awk -v n="$n" -v m="$m" -v s="$secs" -v k="$kib" -v it="$iters" -v g="$grow" -
 		        n, m, s, k / 1024, it, g, c, nc, it ? 1e9 * s / it / nc : 0, sc / 1e6, p, z, r }')"
 	done
 
-	# one strain increment from the dense pack of the first method
+	# one strain increment from the dense pack of the default minimiser (lbfgs), or of the
+	# first method run
 	m=$(echo $methods | cut -d ' ' -f 1)
+	case " $methods " in *" lbfgs "*) m=lbfgs ;; esac
 	dense="$out/dense-$n-$m.pack.gz"
 	if [ ! -x "$incr" ]; then
 		inc_rows="$inc_rows
@@ -98,7 +109,10 @@ $(awk -F '\t' '!/^#/ { printf "| %d | %s | %d | %d | %d | %.4f | %.1f | %.1f | %
 	# frictionalize (mu 0.3) the same dense pack, then uniaxial increments with and without
 	# friction from its output
 	fric="$out/fric-$n.pack.gz"
-	if [ -s "$dense" ] && /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/frictionalize" --mu 0.3 \
+	if [ "$n" -gt "${BENCH_FRIC_MAX:-10000}" ]; then
+		fric_rows="| $n | skipped (BENCH_FRIC_MAX ${BENCH_FRIC_MAX:-10000}) | | | | | | |"
+		finc_rows="| $n | skipped | | | | | | | | |"
+	elif [ -s "$dense" ] && /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/frictionalize" --mu 0.3 \
 	    --log "$out/fric-$n.tsv" -o "$fric" "$dense" 2>"$tmp.err"; then
 		read -r secs kib <"$tmp.time"
 		fric_rows="$fric_rows
@@ -115,18 +129,29 @@ $(awk -F '\t' '!/^#/ { printf "| %d | %s | %s | %d | %.1f | %.1f | %.4f | %.1f |
 		fric_rows="$fric_rows
 | $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | |"
 	fi
+	save "$n"
 done
 
-# the functional's cost per evaluation against N, on the first size's dense pack tiled
+# the functional's cost per evaluation against N, on the first size's dense pack tiled (only
+# from a first size up to 1e4 grains: 4^3 tiles of 1e5 would be 6.4 million; otherwise the
+# rows of an earlier run are kept)
 first=$(echo $sizes | cut -d ' ' -f 1)
 firstm=$(echo $methods | cut -d ' ' -f 1)
-scale_rows=""
-if [ -x "$escale" ] && [ -s "$out/dense-$first-$firstm.pack.gz" ] &&
-    "$escale" "$out/dense-$first-$firstm.pack.gz" ${BENCH_TILES:-1 2 3 4} >"$tmp.scale" 2>"$tmp.err"; then
-	scale_rows=$(awk -F '\t' '!/^#/ { printf "| %d | %d | %d | %.4f | %.5f | %.1f |\n", $1, $2, $3, $4, $5, $6 }' "$tmp.scale")
-else
-	scale_rows="| failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | |"
+case " $methods " in *" lbfgs "*) firstm=lbfgs ;; esac
+if [ "$first" -le 10000 ]; then
+	if [ -x "$escale" ] && [ -s "$out/dense-$first-$firstm.pack.gz" ] &&
+	    "$escale" "$out/dense-$first-$firstm.pack.gz" ${BENCH_TILES:-1 2 3 4} >"$tmp.scale" 2>"$tmp.err"; then
+		awk -F '\t' '!/^#/ { printf "| %d | %d | %d | %.4f | %.5f | %.1f |\n", $1, $2, $3, $4, $5, $6 }' "$tmp.scale" >"$out/rows-scale"
+	else
+		echo "| failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | |" >"$out/rows-scale"
+	fi
+	echo "$first" >"$out/rows-scale.size"
 fi
+first=$(cat "$out/rows-scale.size" 2>/dev/null || echo "$first")
+
+# every size measured so far, this run's and earlier runs', in order of size
+all=$(for f in "$out"/rows-*.stamp; do [ -f "$f" ] && basename "$f" .stamp | sed 's/^rows-//'; done | sort -n)
+rows() { for k in $all; do cat "$out/rows-$k.$1" 2>/dev/null; done; }
 
 {
 	echo "# qusgm benchmarks"
@@ -135,12 +160,14 @@ fi
 	echo "- commit: $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 	echo "- machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//')"
 	echo "- every program runs on one core"
+	echo "- sizes measured (date and commit of the run that made the rows):"
+	for k in $all; do echo "  - $k grains: $(cat "$out/rows-$k.stamp")"; done
 	echo
 	echo "## packgen (DEM compaction to a loose pack, seed 1, glass)"
 	echo
 	echo "| grains | wall time (s) | peak memory (MiB) | memory per grain (KiB) | porosity | coordination | largest overlap/R | pack made |"
 	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | :--- |"
-	echo "$gen_rows" | sed '/^$/d'
+	rows gen
 	echo
 	echo "## densify to 4 MPa (from the packgen pack; --tol 1e-4; the default --onset, 1e5 Pa)"
 	echo
@@ -149,23 +176,23 @@ fi
 	echo
 	echo "| grains | method | wall time (s) | peak memory (MiB) | iterations | stages grow / compact | contacts | ns per iteration per contact | sigma_c (MPa) | porosity | coordination | residual |"
 	echo "| ---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-	echo "$dens_rows" | sed '/^$/d'
+	rows dens
 	echo
 	echo "## one isotropic strain increment of 1e-4 from the dense pack (build/bench/increment)"
 	echo
-	echo "From densify's $(echo $methods | cut -d ' ' -f 1) pack at 4 MPa; one sub-increment with the affine guess, minimised to the"
+	echo "From densify's lbfgs pack at 4 MPa (the default minimiser's); one sub-increment with the affine guess, minimised to the"
 	echo "residual 1e-4 (largest per-grain |F_i| / largest contact force on i); wall time includes"
 	echo "the neighbour lists.  An evaluation is one pass of energy and gradient."
 	echo
 	echo "| grains | method | contacts | iterations | evaluations | wall time (s) | ns per iteration per contact | ns per evaluation per contact | residual |"
 	echo "| ---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-	echo "$inc_rows" | sed '/^$/d'
+	rows inc
 	echo
 	echo "## frictionalize (mu 0.3, uniaxial increments of 1e-4 until the sliding ratio saturates)"
 	echo
 	echo "| grains | wall time (s) | peak memory (MiB) | increments | iterations per increment | s per increment | sliding ratio | sigma_c at the end (MPa) |"
 	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-	echo "$fric_rows" | sed '/^$/d'
+	rows fric
 	echo
 	echo "## uniaxial increments of 1e-4 from the frictionalized pack (build/bench/fincrement)"
 	echo
@@ -175,7 +202,7 @@ fi
 	echo
 	echo "| grains | friction | method | contacts | iterations | evaluations | s per increment | ns per evaluation per contact | largest residual | sliding ratio |"
 	echo "| ---: | :--- | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-	echo "$finc_rows" | sed '/^$/d'
+	rows finc
 	echo
 	echo "## one evaluation of the functional against N (build/bench/evalscale)"
 	echo
@@ -185,7 +212,7 @@ fi
 	echo
 	echo "| copies | grains | contacts | first evaluation (s) | evaluation (s) | ns per evaluation per contact |"
 	echo "| ---: | ---: | ---: | ---: | ---: | ---: |"
-	echo "$scale_rows" | sed '/^$/d'
+	cat "$out/rows-scale" 2>/dev/null
 } >"$res"
 rm -f "$tmp".*
 cat "$res"
