@@ -27,7 +27,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/bench"
 mkdir -p "$out"
 res="$out/results.md"
-tmp="$out/run.tmp"
+tmp="$out/run.tmp.$$"	# per run: sizes can run side by side
 sizes=${BENCH_SIZES:-"2740 10000 100000"}
 methods=${BENCH_METHODS:-"cg fire lbfgs"}
 export LC_ALL=C
