@@ -71,6 +71,20 @@ last=$(tail -n 1 d4.tsv | cut -f 3)
 expect_num "log's last sigma_c is packinfo's" "$(rel "$last" "$(info_value d4.pack.txt sigma_c)")" "<" 1e-9
 last=$(tail -n 1 d1.tsv | cut -f 6)
 expect_num "log's last under4 is 0" "$last" == 0
+# Phase (a) ends on a growth round taken to the full --tol (1e-4) at or above the onset
+# (1e5 Pa by default; a tenth of --stress below 1 MPa), with no grain under 4 contacts; the
+# history line records the onset used.
+for lg in d1.tsv d4.tsv; do
+	set -- $(awk -F '\t' '$1 == "grow" { s = $3; u = $6; r = $9 } END { print s + 0, u + 0, r + 0 }' $lg)
+	expect_num "$lg: the last growth round carries the onset" "$1" ">=" 1e5
+	expect_num "$lg: the last growth round has no grain under 4" "$2" == 0
+	expect_num "$lg: the last growth round is at the full --tol" "$3" "<=" 1e-4
+done
+grep -q '^history densify .*--onset=100000' d4.pack && pass "history records --onset=100000" ||
+    fail "history records --onset=100000" "$(grep '^history densify' d4.pack)"
+densify --stress 5e5 -o half.pack loose.pack 2>/dev/null
+grep -q '^history densify .*--onset=50000 ' half.pack && pass "--stress 5e5: the onset is a tenth of it" ||
+    fail "--stress 5e5: the onset is a tenth of it" "$(grep '^history densify' half.pack)"
 
 # Determinism: the same command gives the same bytes; stdin and -o give the same pack as a
 # file operand and stdout, apart from the history line that records the command line.
