@@ -103,14 +103,23 @@ grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const str
 	return grown;
 }
 
+/* sigma_c = tr(sigma)/3 from the wall forces */
+static double
+wall_sigma_c(const struct qs_system *s)
+{
+	double sig[3];
+
+	qs_wall_stress(s, sig);
+	return (sig[0] + sig[1] + sig[2]) / 3;
+}
+
 static void
 stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densify_stage *st)
 {
-	double sig[3], sum = 0;
+	double sum = 0;
 	size_t i;
 
-	qs_wall_stress(s, sig);
-	st->sigma_c = (sig[0] + sig[1] + sig[2]) / 3;
+	st->sigma_c = wall_sigma_c(s);
 	st->porosity = 1 - pack_grain_volume(s->p) / pack_box_volume(s->p->box);
 	qs_coordination(s, x, cnt);
 	st->under4 = 0;
@@ -187,7 +196,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 		goto out;
 	RECORD("relax", 0);
 	for (round = 1;; round++) {
-		double de, sig[3];
+		double de, sc;
 		size_t grown;
 
 		/* the reference box: where the stress reached the onset and stayed there (a pack
@@ -233,8 +242,8 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &mp, &rep) < 0)
 				goto out;
 			full = mp.tol <= dp->min.tol;
-			qs_wall_stress(&s, sig);
-			if (st.sigma_c < dp->onset && (sig[0] + sig[1] + sig[2]) / 3 > 10 * dp->onset && scale > 1.0 / 1024) {
+			sc = wall_sigma_c(&s);
+			if (st.sigma_c < dp->onset && sc > 10 * dp->onset && scale > 1.0 / 1024) {
 				memcpy(x, xsave, 3 * p->n * sizeof *x);
 				memcpy(p->r, rsave, p->n * sizeof *rsave);
 				memcpy(p->box, boxsave, sizeof boxsave);
@@ -247,7 +256,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 				RECORD("retry", round);
 				continue;
 			}
-			if ((sig[0] + sig[1] + sig[2]) / 3 >= dp->onset && !full) {
+			if (sc >= dp->onset && !full) {
 				size_t under = 0;
 
 				qs_coordination(&s, x, cnt);
@@ -268,8 +277,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 							goto out;
 						it += rep.iter;
 						left -= rep.iter;
-						qs_wall_stress(&s, sig);
-						if (rep.status != 1 || left <= 0 || (sig[0] + sig[1] + sig[2]) / 3 < dp->onset)
+						if (rep.status != 1 || left <= 0 || wall_sigma_c(&s) < dp->onset)
 							break;
 					}
 					rep.iter = it;

@@ -1,6 +1,5 @@
 /* loadpath: parsing and walking loading paths (see loadpath.h). */
 #include "loadpath.h"
-#include "hooke.h"
 #include "msg.h"
 
 #include <ctype.h>
