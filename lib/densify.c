@@ -26,6 +26,7 @@ densify_params_default(struct densify_params *dp)
 	dp->max_growth = 0.05;
 	dp->grow_tol = 1e-2;
 	dp->grow_max_iter = 20000;
+	dp->release_after = 5000;
 	dp->min_coord = 4;
 	dp->max_rounds = 1000;
 	dp->nsub = 1;
@@ -128,6 +129,39 @@ stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densi
 		st->under4 += cnt[i] < 4;
 	}
 	st->coordination = sum / s->n;
+}
+
+/* A strain step de (NULL: none) and its equilibrium, up to mp->max_iter iterations in all,
+ * in chunks of release_after iterations with the unbraced grains released between them (see
+ * densify.h).  Returns as load_increment. */
+static int
+minimize_releasing(struct qs_system *s, double *x, const double *de, const struct densify_params *dp,
+    const struct qs_min_params *mp, struct qs_min_report *rep)
+{
+	struct qs_min_params cm = *mp;
+	long it = 0, evals = 0, left = mp->max_iter, moved = 0;
+	int st;
+
+	for (;;) {
+		if (dp->release_after > 0 && left > dp->release_after)
+			cm.max_iter = dp->release_after;
+		else
+			cm.max_iter = left;
+		st = de ? load_increment(s, x, de, dp->nsub, dp->k_inc, &cm, rep) : qs_minimize(s, x, &cm, rep);
+		de = NULL;
+		it += rep->iter;
+		evals += rep->evals;
+		left -= rep->iter;
+		if (st != 1 || left <= 0)
+			break;
+		if ((moved = qs_release_unbraced(s, x)) < 0) {
+			st = -1;
+			break;
+		}
+	}
+	rep->iter = it;
+	rep->evals = evals;
+	return st;
 }
 
 int
@@ -239,7 +273,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 			if (mp.max_iter > dp->grow_max_iter)
 				mp.max_iter = dp->grow_max_iter;
 			s.force_floor = st.sigma_c < dp->onset ? floor_loose : 0;
-			if (load_increment(&s, x, de > 0 ? d3 : zero, dp->nsub, dp->k_inc, &mp, &rep) < 0)
+			if (minimize_releasing(&s, x, de > 0 ? d3 : zero, dp, &mp, &rep) < 0)
 				goto out;
 			full = mp.tol <= dp->min.tol;
 			sc = wall_sigma_c(&s);
@@ -273,7 +307,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 					s.force_floor = 0;
 					for (;;) {
 						fm.max_iter = left < dp->grow_max_iter ? left : dp->grow_max_iter;
-						if (qs_minimize(&s, x, &fm, &rep) < 0)
+						if (minimize_releasing(&s, x, NULL, dp, &fm, &rep) < 0)
 							goto out;
 						it += rep.iter;
 						left -= rep.iter;
@@ -323,7 +357,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 			grow_grains(&s, x, cnt, dp, 1.0, gp);
 		if (fabs(st.sigma_c / dp->stress - 1) <= dp->stress_tol)
 			d3[0] = d3[1] = d3[2] = 0;
-		if (load_increment(&s, x, d3, dp->nsub, dp->k_inc, &dp->min, &rep) < 0)
+		if (minimize_releasing(&s, x, d3, dp, &dp->min, &rep) < 0)
 			goto out;
 		RECORD("compact", round);
 	}

@@ -203,3 +203,137 @@ qs_radii_changed(struct qs_system *s)
 	nlist_free(&s->nl);
 	nlist_init(&s->nl);
 }
+
+/* c <= 3 unit normals nc (rows) and overlaps h: the u of least length with nc[k].u = h[k],
+ * u = sum lambda_k nc[k] with G lambda = h (G the Gram matrix).  0, or -1 when the normals
+ * are nearly dependent (det G below 1e-2: two normals within about 6 degrees of each other
+ * or of opposite directions). */
+static int
+release_move(unsigned c, const double nc[3][3], const double h[3], double u[3])
+{
+	double G[3][3], lam[3] = {0, 0, 0}, det;
+	unsigned a, b;
+
+	for (a = 0; a < c; a++)
+		for (b = 0; b < c; b++)
+			G[a][b] = nc[a][0] * nc[b][0] + nc[a][1] * nc[b][1] + nc[a][2] * nc[b][2];
+	if (c == 1) {
+		lam[0] = h[0];
+	} else if (c == 2) {
+		det = G[0][0] * G[1][1] - G[0][1] * G[1][0];
+		if (det < 1e-2)
+			return -1;
+		lam[0] = (G[1][1] * h[0] - G[0][1] * h[1]) / det;
+		lam[1] = (G[0][0] * h[1] - G[1][0] * h[0]) / det;
+	} else {
+		double C[3][3];
+		for (a = 0; a < 3; a++)
+			for (b = 0; b < 3; b++)
+				C[a][b] = G[(b + 1) % 3][(a + 1) % 3] * G[(b + 2) % 3][(a + 2) % 3] -
+				    G[(b + 1) % 3][(a + 2) % 3] * G[(b + 2) % 3][(a + 1) % 3];
+		det = G[0][0] * C[0][0] + G[0][1] * C[1][0] + G[0][2] * C[2][0];
+		if (det < 1e-2)
+			return -1;
+		for (a = 0; a < 3; a++)
+			lam[a] = (C[a][0] * h[0] + C[a][1] * h[1] + C[a][2] * h[2]) / det;
+	}
+	for (b = 0; b < 3; b++)
+		u[b] = lam[0] * nc[0][b] + (c > 1 ? lam[1] * nc[1][b] : 0) + (c > 2 ? lam[2] * nc[2][b] : 0);
+	return 0;
+}
+
+long
+qs_release_unbraced(struct qs_system *s, double *x)
+{
+	const double *r = s->p->r, *box = s->p->box;
+	size_t i, k, n = s->n, *first = NULL, *nbr = NULL, *fill = NULL;
+	long moved = 0;
+
+	if (s->fr || n == 0)
+		return 0;
+	/* a fresh list at x: every pair within the skin is listed, so a move shorter than a
+	 * quarter of it cannot meet an unlisted grain */
+	nlist_free(&s->nl);
+	nlist_init(&s->nl);
+	if (isnan(qs_energy(s, x, NULL, NULL)))
+		return -1;
+	first = calloc(n + 1, sizeof *first);
+	fill = calloc(n, sizeof *fill);
+	nbr = malloc((2 * s->nl.npairs + 1) * sizeof *nbr);
+	if (!first || !fill || !nbr) {
+		msg_seterr("out of memory");
+		moved = -1;
+		goto out;
+	}
+	/* both directions of the half list, rows in ascending order (deterministic) */
+	for (i = 0; i < n; i++)
+		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
+			first[i + 1]++;
+			first[s->nl.nbr[k] + 1]++;
+		}
+	for (i = 0; i < n; i++)
+		first[i + 1] += first[i];
+	for (i = 0; i < n; i++)
+		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
+			size_t j = s->nl.nbr[k];
+			nbr[first[i] + fill[i]++] = j;
+			nbr[first[j] + fill[j]++] = i;
+		}
+	for (i = 0; i < n; i++) {
+		double nc[3][3], h[3], u[3], uu;
+		unsigned c = 0;
+		int w, ok = 1;
+
+		for (k = first[i]; k < first[i + 1] && c <= 3; k++) {
+			size_t j = nbr[k];
+			double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
+			double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+			if (dist >= r[i] + r[j])
+				continue;
+			if (c < 3 && dist > 0) {
+				nc[c][0] = d[0] / dist, nc[c][1] = d[1] / dist, nc[c][2] = d[2] / dist;
+				h[c] = r[i] + r[j] - dist;
+			}
+			c++;
+		}
+		for (w = 0; w < NWALLS && c <= 3; w++) {
+			int a = w / 2;
+			double dist = w % 2 ? box[3 + a] - x[3 * i + a] : x[3 * i + a] - box[a];
+			if (dist >= r[i])
+				continue;
+			if (c < 3) {
+				nc[c][0] = nc[c][1] = nc[c][2] = 0;
+				nc[c][a] = w % 2 ? -1 : 1;
+				h[c] = r[i] - dist;
+			}
+			c++;
+		}
+		if (c == 0 || c > 3 || release_move(c, (const double(*)[3])nc, h, u))
+			continue;
+		uu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+		if (!(uu <= 0.25 * s->skin))
+			continue;
+		/* a hair beyond touching: rounding must not leave an overlap of 1e-16 that counts
+		 * as a contact */
+		u[0] *= 1 + 1e-8, u[1] *= 1 + 1e-8, u[2] *= 1 + 1e-8;
+		/* u.n_c = h_c opens each contact to first order and |d + u| >= |d| + h_c exactly
+		 * (u is longer than its projection); what remains is not to touch anything new */
+		for (k = first[i]; k < first[i + 1] && ok; k++) {
+			size_t j = nbr[k];
+			double d[3] = {x[3 * i] + u[0] - x[3 * j], x[3 * i + 1] + u[1] - x[3 * j + 1],
+			    x[3 * i + 2] + u[2] - x[3 * j + 2]};
+			ok = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= (r[i] + r[j]) * (r[i] + r[j]);
+		}
+		for (w = 0; w < NWALLS && ok; w++) {
+			int a = w / 2;
+			ok = (w % 2 ? box[3 + a] - x[3 * i + a] - u[a] : x[3 * i + a] + u[a] - box[a]) >= r[i];
+		}
+		if (!ok)
+			continue;
+		x[3 * i] += u[0], x[3 * i + 1] += u[1], x[3 * i + 2] += u[2];
+		moved++;
+	}
+out:
+	free(first), free(fill), free(nbr);
+	return moved;
+}

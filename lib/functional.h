@@ -52,6 +52,19 @@ double qs_energy(struct qs_system *s, const double *x, double *g, double *fmax);
 void qs_residual(const struct qs_system *s, const double *g, const double *fmax, double floor_rel,
     double *res_max, double *res_mean);
 
+/* Release the grains that frictionless equilibrium cannot hold: a grain with 1, 2 or 3
+ * contacts (grains and walls) whose normals are linearly independent balances only when
+ * every one of those contacts carries zero force, i.e. once they have opened.  The
+ * minimiser gets there only asymptotically, because a Hertz contact's stiffness vanishes as
+ * h^(1/2); this moves each such grain, in index order, by the smallest displacement u with
+ * u.n_c = h_c for each of its contacts c (overlap h_c, normal n_c pointing at the grain), so
+ * that they all just touch.  A move is skipped when it would open a new overlap, when the
+ * normals are nearly dependent (a grain squeezed between two opposite contacts can be in
+ * equilibrium) or when it is longer than a quarter of the Verlet skin.  Frictionless
+ * systems only (with friction a grain's state carries tangential history): returns the
+ * number of grains moved, 0 with friction, -1 on error (message set). */
+long qs_release_unbraced(struct qs_system *s, double *x);
+
 /* Wall stresses of the last evaluation: normal force on the two walls of each axis,
  * averaged, over the current wall area (Pa, compression positive). */
 void qs_wall_stress(const struct qs_system *s, double sig[3]);

@@ -25,6 +25,7 @@ static struct cli_opt opts[] = {
 	{"max-growth", 0, CLI_DOUBLE, &dp.max_growth, "RATIO", "largest growth of a radius per round / radius", NULL},
 	{"grow-tol", 0, CLI_DOUBLE, &dp.grow_tol, "RATIO", "residual target of growth rounds below the onset (unjammed)", NULL},
 	{"grow-max-iter", 0, CLI_LONG, &dp.grow_max_iter, "N", "iteration limit of those rounds (reaching it is not an error)", NULL},
+	{"release-after", 0, CLI_LONG, &dp.release_after, "N", "iterations between releases of grains with 1-3 contacts; 0: never", NULL},
 	{"min-coord", 0, CLI_LONG, &min_coord, "N", "grains with fewer contacts (grains and walls) are expanded", NULL},
 	{"max-rounds", 0, CLI_LONG, &dp.max_rounds, "N", "limit on growth rounds and on compaction steps", NULL},
 	{"sub-increments", 0, CLI_LONG, &nsub, "N", "sub-increments per strain step (affine guess each)", NULL},
@@ -86,6 +87,8 @@ main(int argc, char **argv)
 		cli_usage_error("--strain-step: must be in (0, 0.05]");
 	if (dp.grow_max_iter < 1 || dp.grow_max_iter > 100000000)
 		cli_usage_error("--grow-max-iter: must be in 1..1e8");
+	if (dp.release_after < 0 || dp.release_after > 100000000)
+		cli_usage_error("--release-after: must be in 0..1e8");
 	if (!(dp.grow_tol > 0 && dp.grow_tol < 1))
 		cli_usage_error("--grow-tol: must be in (0, 1)");
 	if (!(dp.max_growth > 0 && dp.max_growth <= 0.5))

@@ -10,7 +10,11 @@
  *    the reaction on the walls;
  *  - the contacts found through the Verlet list equal an O(N^2) search, before and after
  *    moves small, near the skin, adversarial (a pair just outside the list driven into
- *    contact), large, and after box changes and radius growth. */
+ *    contact), large, and after box changes and radius growth;
+ *  - qs_release_unbraced: on built geometry, grains with one, two or three contacts move by
+ *    the closed-form u (u.n_c = h_c for each contact) and touch nothing after, a grain with
+ *    four contacts stays, and so does one squeezed between opposite walls; on random packs
+ *    every moved grain ends without contacts and Pi falls. */
 #include "functional.h"
 #include "hertz.h"
 #include "loading.h"
@@ -513,6 +517,152 @@ test_nlist(gsl_rng *rng)
 	pack_free(&p);
 }
 
+
+/* ---------- release of unbraced grains ---------- */
+
+static void
+release_grain(struct pack *p, const double c[3], double R)
+{
+	pack_add_grain(p, (long)p->n, c, R, 7e10, 0.2, 2500);
+}
+
+/* Built geometry in a 1 mm cube, radii 0.1 mm, overlaps of a few um:
+ *  0: on the xlo wall (1 um), the yhi wall (2 um) and grain 6 (3 um) along
+ *     d = (0.36, -0.48, 0.8): three normals (1,0,0), (0,-1,0), -d, not orthogonal, so
+ *     u = (1, -2, -5.4) um solves u.n_c = h_c (the 3x3 Gram solve);
+ *  1: on the ylo wall (2 um) and against grain 2 along x (1 um): u = (-1, 2, 0) um;
+ *  2: on the ylo wall, with grains 1, 3, 4, 5: five contacts, then four once 1 has gone:
+ *     it stays;
+ *  3, 4, 5: one contact each, with 2, along (0.8, 0.6, 0), (0, 0.6, 0.8), (0, 0.6, -0.8), overlaps
+ *     1.5, 0.5, 2.5 um: each moves by its overlap along its normal (they do not touch each other:
+ *     their normals are 69 degrees or more apart);
+ *  6: grain 0's partner: its one contact has opened when its turn comes, so it stays.
+ * u is exact to rounding, and scaled by 1 + 1e-8 so that the contacts open: 1e-12 m.
+ * Then a grain in a box 2 um narrower than its diameter (two opposite wall contacts): it can
+ * be balanced and must stay. */
+static void
+test_release(gsl_rng *rng)
+{
+	struct pack p;
+	struct qs_system s;
+	struct ref rf;
+	double L = 1e-3, R = 1e-4, um = 1e-6, *x, x0[21], E0, E1;
+	double dir[3][3] = {{0.8, 0.6, 0}, {0, 0.6, 0.8}, {0, 0.6, -0.8}}, ov[3] = {1.5 * um, 0.5 * um, 2.5 * um};
+	double d6[3] = {0.36, -0.48, 0.8}, uexp[7][3] = {{1 * um, -2 * um, -5.4 * um}, {-1 * um, 2 * um, 0}, {0, 0, 0}};
+	size_t i, n, nmoved;
+	long moved;
+	int a, k, ok;
+
+	pack_init(&p);
+	{
+		double c0[3] = {R - 1 * um, L - R + 2 * um, 0.5 * L}, c6[3];
+		double c2[3] = {0.5 * L, R - 2 * um, 0.5 * L};
+		double c1[3] = {0.5 * L - 2 * R + 1 * um, R - 2 * um, 0.5 * L};
+		release_grain(&p, c0, R);
+		release_grain(&p, c1, R);
+		release_grain(&p, c2, R);
+		for (k = 0; k < 3; k++) {
+			double c[3];
+			for (a = 0; a < 3; a++) {
+				c[a] = c2[a] + (2 * R - ov[k]) * dir[k][a];
+				uexp[3 + k][a] = ov[k] * dir[k][a];
+			}
+			release_grain(&p, c, R);
+		}
+		for (a = 0; a < 3; a++) {
+			c6[a] = c0[a] + (2 * R - 3 * um) * d6[a];
+			uexp[6][a] = 0;
+		}
+		release_grain(&p, c6, R);
+	}
+	for (a = 0; a < 3; a++) {
+		p.box[a] = 0;
+		p.box[3 + a] = L;
+	}
+	p.wall_E = 7e10;
+	p.wall_nu = 0.2;
+	n = p.n;
+	x = malloc(3 * n * sizeof *x);
+	memcpy(x, p.x, 3 * n * sizeof *x);
+	memcpy(x0, x, sizeof x0);
+	ref_alloc(&rf, n);
+	ref_eval(&p, x, &rf);
+	CHECK(rf.cnt[0] == 3 && rf.cnt[1] == 2 && rf.cnt[2] == 5 && rf.cnt[3] == 1 && rf.cnt[4] == 1 && rf.cnt[5] == 1 &&
+	        rf.cnt[6] == 1,
+	    "release: built contacts 3 2 5 1 1 1 1 (%u %u %u %u %u %u %u)", rf.cnt[0], rf.cnt[1], rf.cnt[2], rf.cnt[3],
+	    rf.cnt[4], rf.cnt[5], rf.cnt[6]);
+	CHECK(qs_init(&s, &p, 0.3) == 0, "release: qs_init");
+	moved = qs_release_unbraced(&s, x);
+	CHECK(moved == 5, "release: 5 grains moved (%ld)", moved);
+	ok = 1;
+	for (i = 0; i < n; i++)
+		for (a = 0; a < 3; a++) {
+			double u = x[3 * i + a] - x0[3 * i + a];
+			if (!(fabs(u - uexp[i][a]) <= 1e-6 * um)) {
+				ok = 0;
+				printf("# release: grain %zu axis %d: u %.17g, expected %.17g\n", i, a, u, uexp[i][a]);
+			}
+		}
+	CHECK(ok, "release: each move is the closed form (two walls and an oblique grain; a wall and a grain at right angles; one contact; none for four contacts or an opened one) within 1e-12 m");
+	ref_eval(&p, x, &rf);
+	CHECK(rf.cnt[0] + rf.cnt[1] + rf.cnt[3] + rf.cnt[4] + rf.cnt[5] + rf.cnt[6] == 0 && rf.cnt[2] == 1,
+	    "release: the moved grains touch nothing; grain 2 keeps its wall (%u %u %u %u %u %u)", rf.cnt[0],
+	    rf.cnt[1], rf.cnt[2], rf.cnt[3], rf.cnt[4], rf.cnt[5]);
+	qs_free(&s);
+	pack_free(&p);
+
+	/* squeezed between the xlo and xhi walls: balanced by two opposite contacts */
+	pack_init(&p);
+	{
+		double c[3] = {R - um, 0.5 * L, 0.5 * L};
+		release_grain(&p, c, R);
+	}
+	for (a = 0; a < 3; a++) {
+		p.box[a] = 0;
+		p.box[3 + a] = L;
+	}
+	p.box[3] = 2 * R - 2 * um;
+	p.wall_E = 7e10;
+	p.wall_nu = 0.2;
+	memcpy(x, p.x, 3 * sizeof *x);
+	CHECK(qs_init(&s, &p, 0.3) == 0, "release: qs_init (squeezed)");
+	moved = qs_release_unbraced(&s, x);
+	CHECK(moved == 0 && memcmp(x, p.x, 3 * sizeof *x) == 0, "release: a grain between opposite walls stays (%ld moved)", moved);
+	qs_free(&s);
+	pack_free(&p);
+	ref_free(&rf);
+	free(x);
+
+	/* random overlapping packs: every moved grain ends without contacts; Pi falls */
+	for (k = 0; k < 3; k++) {
+		random_pack(&p, rng, 300, 1e-4, 0.62, 0.04);
+		n = p.n;
+		x = malloc(3 * n * sizeof *x);
+		memcpy(x, p.x, 3 * n * sizeof *x);
+		ref_alloc(&rf, n);
+		ref_eval(&p, x, &rf);
+		E0 = rf.E;
+		CHECK(qs_init(&s, &p, 0.3) == 0, "release: qs_init (random)");
+		moved = qs_release_unbraced(&s, x);
+		ref_eval(&p, x, &rf);
+		E1 = rf.E;
+		ok = 1;
+		nmoved = 0;
+		for (i = 0; i < n; i++)
+			if (memcmp(x + 3 * i, p.x + 3 * i, 3 * sizeof *x)) {
+				nmoved++;
+				ok &= rf.cnt[i] == 0;
+			}
+		CHECK(moved > 0 && (size_t)moved == nmoved && ok && E1 < E0,
+		    "release: random pack %d: %ld moved (%zu changed), all now without contacts: %s; Pi %.6g -> %.6g", k,
+		    moved, nmoved, ok ? "yes" : "no", E0, E1);
+		qs_free(&s);
+		ref_free(&rf);
+		free(x);
+		pack_free(&p);
+	}
+}
+
 int
 main(void)
 {
@@ -524,6 +674,7 @@ main(void)
 	test_fd(rng, 300, 1e-4, 0.62, "0.1 mm, n=300");
 	test_fd(rng, 120, 1e-3, 0.64, "1 mm, n=120");
 	test_nlist(rng);
+	test_release(rng);
 	gsl_rng_free(rng);
 	return unit_summary();
 }
