@@ -23,7 +23,9 @@
  * have opened, are moved to where they just touch (qs_release_unbraced).  The minimiser
  * opens such a contact only asymptotically (the Hertz stiffness vanishes as h^(1/2)): a
  * 1e5-grain pack's second compaction step stood at a largest residual near 1 after 99k
- * L-BFGS iterations, held by hundreds of grains with one contact left. */
+ * L-BFGS iterations, held by hundreds of grains with one contact left.  With a release every
+ * 5000 iterations the 1e4-grain benchmark pack reached 4 MPa in 102 s against 206 s
+ * (65947 iterations against 124451); every 2000, 168 s. */
 #ifndef QUSGM_DENSIFY_H
 #define QUSGM_DENSIFY_H
 
