@@ -290,7 +290,11 @@ qs_release_unbraced(struct qs_system *s, double *x)
 			double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 			if (dist >= r[i] + r[j])
 				continue;
-			if (c < 3 && dist > 0) {
+			if (!(dist > 0)) {
+				c = 4;	/* coincident centres: no normal; leave it to the minimiser */
+				break;
+			}
+			if (c < 3) {
 				nc[c][0] = d[0] / dist, nc[c][1] = d[1] / dist, nc[c][2] = d[2] / dist;
 				h[c] = r[i] + r[j] - dist;
 			}
