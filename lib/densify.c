@@ -81,11 +81,8 @@ grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const str
 				gap_insert(&gp[j], want, gap);
 		}
 		if (cnt[i] < dp->min_coord)
-			for (w = 0; w < NWALLS; w++) {
-				int a = w / 2;
-				double dist = w % 2 ? p->box[3 + a] - x[3 * i + a] : x[3 * i + a] - p->box[a];
-				gap_insert(&gp[i], want, dist - p->r[i]);
-			}
+			for (w = 0; w < NWALLS; w++)
+				gap_insert(&gp[i], want, pack_wall_distance(p->box, x + 3 * i, w) - p->r[i]);
 	}
 	for (i = 0; i < s->n; i++) {
 		double dr, cap = scale * dp->max_growth * p->r[i];
@@ -139,7 +136,7 @@ minimize_releasing(struct qs_system *s, double *x, const double *de, const struc
     const struct qs_min_params *mp, struct qs_min_report *rep)
 {
 	struct qs_min_params cm = *mp;
-	long it = 0, evals = 0, left = mp->max_iter, moved = 0;
+	long it = 0, evals = 0, left = mp->max_iter;
 	int st;
 
 	for (;;) {
@@ -154,7 +151,7 @@ minimize_releasing(struct qs_system *s, double *x, const double *de, const struc
 		left -= rep->iter;
 		if (st != 1 || left <= 0)
 			break;
-		if ((moved = qs_release_unbraced(s, x)) < 0) {
+		if (qs_release_unbraced(s, x) < 0) {
 			st = -1;
 			break;
 		}

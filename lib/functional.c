@@ -98,7 +98,7 @@ qs_energy(struct qs_system *s, const double *x, double *g, double *fmax)
 		}
 		for (w = 0; w < NWALLS; w++) {
 			int a = w / 2;
-			double dist = w % 2 ? box[3 + a] - xi[a] : xi[a] - box[a], h = ri - dist, Es, P;
+			double dist = pack_wall_distance(box, xi, w), h = ri - dist, Es, P;
 
 			if (h <= 0)
 				continue;
@@ -181,8 +181,7 @@ qs_coordination(const struct qs_system *s, const double *x, unsigned *counts)
 			}
 		}
 		for (w = 0; w < NWALLS; w++) {
-			int a = w / 2;
-			double dist = w % 2 ? box[3 + a] - x[3 * i + a] : x[3 * i + a] - box[a];
+			double dist = pack_wall_distance(box, x + 3 * i, w);
 			if (dist < r[i])
 				counts[i]++;
 		}
@@ -280,7 +279,7 @@ qs_release_unbraced(struct qs_system *s, double *x)
 			nbr[first[j] + fill[j]++] = i;
 		}
 	for (i = 0; i < n; i++) {
-		double nc[3][3], h[3], u[3], uu;
+		double nc[3][3], h[3], u[3], xn[3], uu;
 		unsigned c = 0;
 		int w, ok = 1;
 
@@ -302,7 +301,7 @@ qs_release_unbraced(struct qs_system *s, double *x)
 		}
 		for (w = 0; w < NWALLS && c <= 3; w++) {
 			int a = w / 2;
-			double dist = w % 2 ? box[3 + a] - x[3 * i + a] : x[3 * i + a] - box[a];
+			double dist = pack_wall_distance(box, x + 3 * i, w);
 			if (dist >= r[i])
 				continue;
 			if (c < 3) {
@@ -320,12 +319,12 @@ qs_release_unbraced(struct qs_system *s, double *x)
 		/* a hair beyond touching: rounding must not leave an overlap of 1e-16 that counts
 		 * as a contact */
 		u[0] *= 1 + 1e-8, u[1] *= 1 + 1e-8, u[2] *= 1 + 1e-8;
+		xn[0] = x[3 * i] + u[0], xn[1] = x[3 * i + 1] + u[1], xn[2] = x[3 * i + 2] + u[2];
 		/* u.n_c = h_c opens each contact to first order and |d + u| >= |d| + h_c exactly
 		 * (u is longer than its projection); what remains is not to touch anything new */
 		for (k = first[i]; k < first[i + 1] && ok; k++) {
 			size_t j = nbr[k];
-			double d[3] = {x[3 * i] + u[0] - x[3 * j], x[3 * i + 1] + u[1] - x[3 * j + 1],
-			    x[3 * i + 2] + u[2] - x[3 * j + 2]};
+			double d[3] = {xn[0] - x[3 * j], xn[1] - x[3 * j + 1], xn[2] - x[3 * j + 2]};
 			ok = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= (r[i] + r[j]) * (r[i] + r[j]);
 		}
 		for (w = 0; w < NWALLS && ok; w++) {
@@ -334,7 +333,7 @@ qs_release_unbraced(struct qs_system *s, double *x)
 		}
 		if (!ok)
 			continue;
-		x[3 * i] += u[0], x[3 * i + 1] += u[1], x[3 * i + 2] += u[2];
+		memcpy(x + 3 * i, xn, sizeof xn);
 		moved++;
 	}
 out:

@@ -23,6 +23,16 @@ enum { WALL_XLO, WALL_XHI, WALL_YLO, WALL_YHI, WALL_ZLO, WALL_ZHI, NWALLS };
 
 extern const char *const pack_wall_names[NWALLS];
 
+/* Distance from a grain centre xi to wall w of box (lo[3], hi[3]), positive inside: the
+ * grain touches the wall when it is below the radius. */
+static inline double
+pack_wall_distance(const double box[6], const double *xi, int w)
+{
+	int a = w / 2;
+
+	return w % 2 ? box[3 + a] - xi[a] : xi[a] - box[a];
+}
+
 struct pack_contact {
 	size_t i;	/* grain index */
 	long j;		/* grain index, or PACK_WALL(w) */
