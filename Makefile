@@ -29,8 +29,9 @@ endif
 ALL_CFLAGS = $(STD) $(WARN) $(OPT) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAGS)
 ALL_LIBS   = $(PKG_LIBS) -lm
 
-LIB_SRC   = $(wildcard lib/*.c)
+LIB_SRC   = $(wildcard lib/*/*.c)
 LIB_OBJ   = $(LIB_SRC:lib/%.c=$(B)/lib/%.o)
+LIB_HDR   = $(wildcard lib/*/*.h)
 TOOL_SRC  = $(wildcard tools/*.c)
 TOOLS     = $(TOOL_SRC:tools/%.c=%)
 TOOL_BIN  = $(TOOLS:%=$(B)/bin/%)
@@ -68,7 +69,7 @@ deps:
 	  fi; \
 	fi
 
-$(B)/lib/%.o: lib/%.c lib/*.h
+$(B)/lib/%.o: lib/%.c $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
 
@@ -76,15 +77,15 @@ $(B)/libqusgm.a: $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-$(B)/bin/%: tools/%.c $(B)/libqusgm.a lib/*.h
+$(B)/bin/%: tools/%.c $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
-$(B)/tests/%: tests/unit/%.c tests/unit/*.h $(B)/libqusgm.a lib/*.h
+$(B)/tests/%: tests/unit/%.c tests/unit/*.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -Itests/unit -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
-$(B)/bench/%: tests/bench/%.c $(B)/libqusgm.a lib/*.h
+$(B)/bench/%: tests/bench/%.c $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 

@@ -1,10 +1,10 @@
 /* densify: frictionless isotropic compaction of a loose pack to a confining stress. */
-#include "cli.h"
-#include "densify.h"
-#include "minopts.h"
-#include "msg.h"
-#include "numfmt.h"
-#include "packio.h"
+#include "base/cli.h"
+#include "qs/densify.h"
+#include "qs/minopts.h"
+#include "base/msg.h"
+#include "base/numfmt.h"
+#include "pack/packio.h"
 
 #include <math.h>
 #include <stdio.h>

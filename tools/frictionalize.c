@@ -1,13 +1,13 @@
 /* frictionalize: switch Mindlin-Deresiewicz friction on by uniaxial loading until the sliding
  * ratio saturates (phase (b), physics.md §9). */
-#include "cli.h"
-#include "friction.h"
-#include "frictionalize.h"
-#include "measure.h"
-#include "minopts.h"
-#include "msg.h"
-#include "numfmt.h"
-#include "packio.h"
+#include "base/cli.h"
+#include "qs/friction.h"
+#include "qs/frictionalize.h"
+#include "analysis/measure.h"
+#include "qs/minopts.h"
+#include "base/msg.h"
+#include "base/numfmt.h"
+#include "pack/packio.h"
 
 #include <math.h>
 #include <stdio.h>

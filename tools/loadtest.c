@@ -1,12 +1,12 @@
 /* loadtest: quasi-static loading of a pack along a path of wall displacements, one TSV row per
  * increment (physics.md §8; the path grammar is in loadpath.h and loadtest(1)). */
-#include "cli.h"
-#include "friction.h"
-#include "loadpath.h"
-#include "measure.h"
-#include "minopts.h"
-#include "msg.h"
-#include "packio.h"
+#include "base/cli.h"
+#include "qs/friction.h"
+#include "qs/loadpath.h"
+#include "analysis/measure.h"
+#include "qs/minopts.h"
+#include "base/msg.h"
+#include "pack/packio.h"
 
 #include <math.h>
 #include <stdio.h>

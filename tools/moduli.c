@@ -1,10 +1,10 @@
 /* moduli: Hooke's-law moduli of each interval of a loadtest curve (physics.md §8). */
-#include "cli.h"
-#include "curve.h"
-#include "emt.h"
-#include "material.h"
-#include "msg.h"
-#include "table.h"
+#include "base/cli.h"
+#include "analysis/curve.h"
+#include "analysis/emt.h"
+#include "pack/material.h"
+#include "base/msg.h"
+#include "base/table.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,8 +1,8 @@
 /* packexport: write a pack for ParaView/OVITO (VTK), LAMMPS or YADE. */
-#include "cli.h"
-#include "export.h"
-#include "msg.h"
-#include "packio.h"
+#include "base/cli.h"
+#include "analysis/export.h"
+#include "base/msg.h"
+#include "pack/packio.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,11 +1,11 @@
 /* packgen: a loose, irregular pack of polydisperse elastic spheres in a box. */
-#include "cli.h"
-#include "dem.h"
-#include "material.h"
-#include "msg.h"
-#include "pack.h"
-#include "packio.h"
-#include "psd.h"
+#include "base/cli.h"
+#include "dem/dem.h"
+#include "pack/material.h"
+#include "base/msg.h"
+#include "pack/pack.h"
+#include "pack/packio.h"
+#include "pack/psd.h"
 
 #include <gsl/gsl_rng.h>
 #include <math.h>

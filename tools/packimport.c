@@ -1,10 +1,10 @@
 /* packimport: make a qusgm pack from "x y z r" lines (YADE, LAMMPS scripts, anything). */
-#include "cli.h"
-#include "export.h"
-#include "material.h"
-#include "msg.h"
-#include "numfmt.h"
-#include "packio.h"
+#include "base/cli.h"
+#include "analysis/export.h"
+#include "pack/material.h"
+#include "base/msg.h"
+#include "base/numfmt.h"
+#include "pack/packio.h"
 
 #include <gsl/gsl_rng.h>
 #include <stdlib.h>

@@ -1,10 +1,10 @@
 /* packinfo: describe packs as "key value" lines (or one TSV row per pack with --tsv). */
-#include "cli.h"
-#include "measure.h"
-#include "msg.h"
-#include "numfmt.h"
-#include "packio.h"
-#include "table.h"
+#include "base/cli.h"
+#include "analysis/measure.h"
+#include "base/msg.h"
+#include "base/numfmt.h"
+#include "pack/packio.h"
+#include "base/table.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -11,9 +11,9 @@
  * evaluation per contact, which is constant when the cost is linear.  This measures the
  * functional at sizes (1e5 grains and more) that packgen and densify take hours to reach;
  * it says nothing about how many iterations a minimisation needs there. */
-#include "functional.h"
-#include "msg.h"
-#include "packio.h"
+#include "qs/functional.h"
+#include "base/msg.h"
+#include "pack/packio.h"
 
 #include <stdio.h>
 #include <stdlib.h>

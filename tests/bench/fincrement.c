@@ -9,9 +9,9 @@
  * and wall time per increment (CLOCK_MONOTONIC; neighbour lists, the commit of the history
  * and the row's measures included), time per evaluation per contact, the largest residual.
  * Exit 1 if a case fails or stops at its iteration limit. */
-#include "loading.h"
-#include "msg.h"
-#include "packio.h"
+#include "qs/loading.h"
+#include "base/msg.h"
+#include "pack/packio.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -8,11 +8,11 @@
  * TSV row per method on stdout: iterations, energy+gradient evaluations, wall time
  * (CLOCK_MONOTONIC, neighbour-list builds included), time per evaluation per contact, and
  * the residual reached.  Exit 1 if a method fails or stops at its iteration limit. */
-#include "functional.h"
-#include "loading.h"
-#include "minimize.h"
-#include "msg.h"
-#include "packio.h"
+#include "qs/functional.h"
+#include "qs/loading.h"
+#include "qs/minimize.h"
+#include "base/msg.h"
+#include "pack/packio.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-# packformat: the pack reader (lib/packio.c) as a user meets it, through packinfo.
+# packformat: the pack reader (lib/pack/packio.c) as a user meets it, through packinfo.
 # One check for every error the reader reports (share/doc/pack-format.md, "Validity"), each
 # with exit status 1, an empty stdout and exactly one "packinfo: FILE:LINE: what" line on
 # stderr, and the positive cases: plain, gzip, stdin, '-', several packs in one stream, -o.

@@ -5,7 +5,7 @@
  * grains placed outside the grid's box (clamped into the boundary cells).  A pair is "close"
  * when d^2 < (r_i + r_j + skin)^2, computed the same way in both searches, so the sets must be
  * identical: no tolerance.  Each pair must come once, as i < j, with dx = x_i - x_j. */
-#include "cell.h"
+#include "contact/cell.h"
 #include "unit.h"
 
 #include <gsl/gsl_rng.h>

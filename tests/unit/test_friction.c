@@ -21,16 +21,16 @@
  *     of a line listed as "j i" (which the pack format allows: Q0 is then the force on j).
  *  7. A rigid translation and a rigid rotation of a wall-free pack change no tangential
  *     force or couple. */
-#include "contacts.h"
-#include "friction.h"
-#include "functional.h"
-#include "hertz.h"
-#include "msg.h"
-#include "pack.h"
+#include "contact/contacts.h"
+#include "qs/friction.h"
+#include "qs/functional.h"
+#include "contact/hertz.h"
+#include "base/msg.h"
+#include "pack/pack.h"
 #include "unit.h"
 #include "unit_hertz.h"
 #include "unit_pack.h"
-#include "vec3.h"
+#include "base/vec3.h"
 
 #include <float.h>
 #include <gsl/gsl_randist.h>

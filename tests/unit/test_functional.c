@@ -15,10 +15,10 @@
  *    the closed-form u (u.n_c = h_c for each contact) and touch nothing after, a grain with
  *    four contacts stays, and so does one squeezed between opposite walls; on random packs
  *    every moved grain ends without contacts and Pi falls. */
-#include "functional.h"
-#include "hertz.h"
-#include "loading.h"
-#include "pack.h"
+#include "qs/functional.h"
+#include "contact/hertz.h"
+#include "qs/loading.h"
+#include "pack/pack.h"
 #include "unit.h"
 #include "unit_hertz.h"
 #include "unit_pack.h"

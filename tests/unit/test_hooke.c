@@ -14,13 +14,13 @@
  * fit's normal matrix has condition number (column norms ratio)^2 of at most ~10 for the
  * paths used here, so the fitted moduli are good to ~1e-15.  1e-12 leaves a margin of 1000
  * and still catches any factor or sign error (those are O(1)). */
-#include "curve.h"
-#include "emt.h"
-#include "hooke.h"
-#include "loading.h"
-#include "material.h"
-#include "msg.h"
-#include "table.h"
+#include "analysis/curve.h"
+#include "analysis/emt.h"
+#include "analysis/hooke.h"
+#include "qs/loading.h"
+#include "pack/material.h"
+#include "base/msg.h"
+#include "base/table.h"
 #include "unit.h"
 
 #include <math.h>

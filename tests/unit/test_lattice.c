@@ -30,11 +30,11 @@
  * need no reference: sig_xx = sig_yy = sig_zz under isotropic strain (cubic symmetry), and the
  * force on a wall equals the force carried across every plane between two layers (balance of
  * each slab of grains). */
-#include "functional.h"
-#include "hertz.h"
-#include "loading.h"
-#include "minimize.h"
-#include "pack.h"
+#include "qs/functional.h"
+#include "contact/hertz.h"
+#include "qs/loading.h"
+#include "qs/minimize.h"
+#include "pack/pack.h"
 #include "unit.h"
 #include "unit_lattice.h"
 

@@ -58,13 +58,13 @@
  * with the cube's symmetry: sigma_lattice = sigma_LW V_box 4 / (N V_cell)); C44 from an affine
  * shear.  The walled FCC block goes through the loader as well and is compared with a Newton
  * reference (unit_lattice.h: the exact Hessian of an O(N^2) Hertz energy, as in test_lattice.c). */
-#include "contacts.h"
-#include "hertz.h"
-#include "hooke.h"
-#include "loading.h"
-#include "measure.h"
-#include "msg.h"
-#include "pack.h"
+#include "contact/contacts.h"
+#include "contact/hertz.h"
+#include "analysis/hooke.h"
+#include "qs/loading.h"
+#include "analysis/measure.h"
+#include "base/msg.h"
+#include "pack/pack.h"
 #include "unit.h"
 #include "unit_lattice.h"
 

@@ -7,10 +7,10 @@
  * grain-grain one (E*_gw sqrt(R) = E*_gg sqrt(R/2)), so every grain is in exact equilibrium.
  * R and delta are powers of two, so every centre, distance and overlap is exact in binary and
  * the only rounding is in the force laws themselves (a few ulps). */
-#include "contacts.h"
-#include "hertz.h"
-#include "measure.h"
-#include "pack.h"
+#include "contact/contacts.h"
+#include "contact/hertz.h"
+#include "analysis/measure.h"
+#include "pack/pack.h"
 #include "unit.h"
 
 #include <math.h>

@@ -12,10 +12,10 @@
  *    and stopped_by "max_iter";
  *  - the displacement cap: between successive iterations no grain moves more than cap R, and
  *    the cap is reached (so the check is not vacuous); FIRE likewise for its first step. */
-#include "functional.h"
-#include "loading.h"
-#include "minimize.h"
-#include "pack.h"
+#include "qs/functional.h"
+#include "qs/loading.h"
+#include "qs/minimize.h"
+#include "pack/pack.h"
 #include "unit.h"
 #include "unit_pack.h"
 

@@ -3,10 +3,10 @@
  *
  * No tolerance anywhere in this file: every comparison is of bytes or of bit patterns,
  * because the format promises that write -> read -> write is the identity. */
-#include "msg.h"
-#include "numfmt.h"
-#include "pack.h"
-#include "packio.h"
+#include "base/msg.h"
+#include "base/numfmt.h"
+#include "pack/pack.h"
+#include "pack/packio.h"
 #include "unit.h"
 
 #include <gsl/gsl_rng.h>

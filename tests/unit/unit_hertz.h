@@ -6,8 +6,8 @@
 
 #include <math.h>
 #include <stddef.h>
-#include "hertz.h"
-#include "pack.h"
+#include "contact/hertz.h"
+#include "pack/pack.h"
 
 /* Grains i and j of p at positions x: d = x_i - x_j, its length *dist and the overlap
  * *h = r_i + r_j - *dist; nonzero when they touch (|d|^2 < (r_i + r_j)^2). */

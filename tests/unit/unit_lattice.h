@@ -9,8 +9,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "hertz.h"
-#include "pack.h"
+#include "contact/hertz.h"
+#include "pack/pack.h"
 #include "unit_hertz.h"
 
 enum { SC, FCC };

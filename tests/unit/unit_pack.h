@@ -6,7 +6,7 @@
 #include <gsl/gsl_randist.h>
 #include <gsl/gsl_rng.h>
 #include <math.h>
-#include "pack.h"
+#include "pack/pack.h"
 
 /* n grains, radii uniform in scale * [0.7, 1.3], E normal about 70 GPa (sd 10 %), nu uniform
  * in [0.15, 0.25], uniformly placed in a box of nominal solid fraction phi (not at the origin,

@@ -1,0 +1,511 @@
+/* export: VTK, LAMMPS and YADE writers and the "x y z r" reader (see export.h). */
+#include "analysis/export.h"
+#include "contact/contacts.h"
+#include "base/msg.h"
+#include "base/numfmt.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <zlib.h>
+
+/* Print v with num_format, then the separator. */
+static void
+put_num(FILE *fp, double v, int sep)
+{
+	char buf[40];
+
+	num_format(buf, v);
+	fputs(buf, fp);
+	fputc(sep, fp);
+}
+
+static void
+put_nums(FILE *fp, const double *v, int n)
+{
+	int k;
+
+	for (k = 0; k < n; k++)
+		put_num(fp, v[k], k + 1 < n ? ' ' : '\n');
+}
+
+/* The writers print without checking each call; the stream's error flag, checked once at
+ * the end, catches every failed write. */
+static int
+finish(FILE *fp)
+{
+	if (fflush(fp) != 0 || ferror(fp)) {
+		msg_seterr("write error");
+		return -1;
+	}
+	return 0;
+}
+
+/* VTK XML, ascii (OVITO refuses the appended raw encoding).  File version 1.0: cell
+ * offsets are the end of each cell, as every VTK and ParaView release reads them, and a
+ * .vtm of version 0.1 would be read with the old group/dataset layout, as nothing. */
+static void
+vtk_open(FILE *fp, const char *type)
+{
+	fprintf(fp, "<?xml version=\"1.0\"?>\n"
+	    "<VTKFile type=\"%s\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+	    type);
+}
+
+static void
+vtk_array_open(FILE *fp, const char *type, const char *name, int ncomp)
+{
+	fprintf(fp, "<DataArray type=\"%s\"", type);
+	if (name)
+		fprintf(fp, " Name=\"%s\"", name);
+	if (ncomp > 1)
+		fprintf(fp, " NumberOfComponents=\"%d\"", ncomp);
+	fputs(" format=\"ascii\">\n", fp);
+}
+
+static void
+vtk_array_doubles(FILE *fp, const char *name, const double *v, size_t n)
+{
+	size_t k;
+
+	vtk_array_open(fp, "Float64", name, 1);
+	for (k = 0; k < n; k++)
+		put_num(fp, v[k], '\n');
+	fputs("</DataArray>\n", fp);
+}
+
+/* connectivity 0 1 2 ... and offsets k, 2k, 3k ...: n cells of k consecutive points. */
+static void
+vtk_cells(FILE *fp, const char *kind, size_t n, int k)
+{
+	size_t c;
+
+	fprintf(fp, "<%s>\n", kind);
+	vtk_array_open(fp, "Int64", "connectivity", 1);
+	for (c = 0; c < n * (size_t)k; c++)
+		fprintf(fp, "%zu\n", c);
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Int64", "offsets", 1);
+	for (c = 1; c <= n; c++)
+		fprintf(fp, "%zu\n", c * (size_t)k);
+	fprintf(fp, "</DataArray>\n</%s>\n", kind);
+}
+
+static void
+vtk_piece_open(FILE *fp, size_t npoints, size_t nverts, size_t nlines)
+{
+	fprintf(fp, "<PolyData>\n<Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"%zu\" "
+	    "NumberOfLines=\"%zu\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
+	    npoints, nverts, nlines);
+}
+
+static void
+vtk_close(FILE *fp)
+{
+	fputs("</Piece>\n</PolyData>\n</VTKFile>\n", fp);
+}
+
+int
+export_vtp_grains(const struct pack *p, FILE *fp)
+{
+	size_t i;
+
+	vtk_open(fp, "PolyData");
+	vtk_piece_open(fp, p->n, p->n, 0);
+	fputs("<PointData Scalars=\"radius\">\n", fp);
+	vtk_array_open(fp, "Int64", "id", 1);
+	for (i = 0; i < p->n; i++)
+		fprintf(fp, "%ld\n", p->id[i]);
+	fputs("</DataArray>\n", fp);
+	vtk_array_doubles(fp, "radius", p->r, p->n);
+	vtk_array_doubles(fp, "E", p->E, p->n);
+	vtk_array_doubles(fp, "nu", p->nu, p->n);
+	fputs("</PointData>\n<Points>\n", fp);
+	vtk_array_open(fp, "Float64", "Points", 3);
+	for (i = 0; i < p->n; i++)
+		put_nums(fp, p->x + 3 * i, 3);
+	fputs("</DataArray>\n</Points>\n", fp);
+	vtk_cells(fp, "Verts", p->n, 1);
+	vtk_close(fp);
+	return finish(fp);
+}
+
+/* The far end of contact c: centre j, or the foot of the perpendicular from centre i on
+ * the wall (c->n points out of the wall, c->d is the centre's distance to it). */
+static void
+contact_end(const struct pack *p, const struct geo_contact *c, double e[3])
+{
+	int a;
+
+	for (a = 0; a < 3; a++)
+		e[a] = PACK_IS_WALL(c->j) ? p->x[3 * c->i + a] - c->d * c->n[a] :
+		    p->x[3 * (size_t)c->j + a];
+}
+
+int
+export_vtp_contacts(const struct pack *p, FILE *fp)
+{
+	struct geo_contacts gc;
+	size_t k;
+	double e[3];
+
+	contacts_init(&gc);
+	if (contacts_find(p, &gc)) {
+		contacts_free(&gc);
+		return -1;
+	}
+	vtk_open(fp, "PolyData");
+	vtk_piece_open(fp, 2 * gc.n, 0, gc.n);
+	fputs("<CellData Scalars=\"normal_force\">\n", fp);
+	vtk_array_open(fp, "Int64", "id1", 1);
+	for (k = 0; k < gc.n; k++)
+		fprintf(fp, "%ld\n", p->id[gc.c[k].i]);
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Int64", "id2", 1);
+	for (k = 0; k < gc.n; k++)
+		fprintf(fp, "%ld\n", PACK_IS_WALL(gc.c[k].j) ?
+		    EXPORT_VTK_WALL_ID(PACK_WALL_INDEX(gc.c[k].j)) : p->id[gc.c[k].j]);
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Float64", "normal_force", 1);
+	for (k = 0; k < gc.n; k++)
+		put_num(fp, gc.c[k].P, '\n');
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Float64", "overlap", 1);
+	for (k = 0; k < gc.n; k++)
+		put_num(fp, gc.c[k].h, '\n');
+	fputs("</DataArray>\n</CellData>\n<Points>\n", fp);
+	vtk_array_open(fp, "Float64", "Points", 3);
+	for (k = 0; k < gc.n; k++) {
+		put_nums(fp, p->x + 3 * gc.c[k].i, 3);
+		contact_end(p, &gc.c[k], e);
+		put_nums(fp, e, 3);
+	}
+	fputs("</DataArray>\n</Points>\n", fp);
+	vtk_cells(fp, "Lines", gc.n, 2);
+	vtk_close(fp);
+	contacts_free(&gc);
+	return finish(fp);
+}
+
+/* File names go into an attribute: escape what XML would misread. */
+static void
+put_xml_attr(FILE *fp, const char *s)
+{
+	for (; *s; s++)
+		switch (*s) {
+		case '&':
+			fputs("&amp;", fp);
+			break;
+		case '<':
+			fputs("&lt;", fp);
+			break;
+		case '>':
+			fputs("&gt;", fp);
+			break;
+		case '"':
+			fputs("&quot;", fp);
+			break;
+		default:
+			fputc(*s, fp);
+		}
+}
+
+int
+export_vtm(FILE *fp, const char *grains_vtp, const char *contacts_vtp)
+{
+	vtk_open(fp, "vtkMultiBlockDataSet");
+	fputs("<vtkMultiBlockDataSet>\n<DataSet index=\"0\" name=\"grains\" file=\"", fp);
+	put_xml_attr(fp, grains_vtp);
+	fputs("\"/>\n<DataSet index=\"1\" name=\"contacts\" file=\"", fp);
+	put_xml_attr(fp, contacts_vtp);
+	fputs("\"/>\n</vtkMultiBlockDataSet>\n</VTKFile>\n", fp);
+	return finish(fp);
+}
+
+static int
+lammps_check_ids(const struct pack *p)
+{
+	size_t i;
+
+	for (i = 0; i < p->n; i++)
+		if (p->id[i] < 1) {
+			msg_seterr("grain id %ld: LAMMPS atom ids must be positive", p->id[i]);
+			return -1;
+		}
+	return 0;
+}
+
+static void
+lammps_bounds(FILE *fp, const struct pack *p, const char *suffix)
+{
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		put_num(fp, p->box[a], ' ');
+		put_num(fp, p->box[a + 3], *suffix ? ' ' : '\n');
+		if (*suffix)
+			fprintf(fp, "%clo %chi\n", 'x' + a, 'x' + a);
+	}
+}
+
+int
+export_lammps_dump(const struct pack *p, FILE *fp, long timestep)
+{
+	size_t i;
+	double v[4];
+
+	if (lammps_check_ids(p))
+		return -1;
+	fprintf(fp, "ITEM: TIMESTEP\n%ld\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS ff ff ff\n",
+	    timestep, p->n);
+	lammps_bounds(fp, p, "");
+	fputs("ITEM: ATOMS id type x y z radius\n", fp);
+	for (i = 0; i < p->n; i++) {
+		memcpy(v, p->x + 3 * i, 3 * sizeof *v);
+		v[3] = p->r[i];
+		fprintf(fp, "%ld 1 ", p->id[i]);
+		put_nums(fp, v, 4);
+	}
+	return finish(fp);
+}
+
+int
+export_lammps_data(const struct pack *p, FILE *fp)
+{
+	size_t i;
+	double v[5];
+
+	if (lammps_check_ids(p))
+		return -1;
+	/* LAMMPS skips the first line; the rest is its header grammar, then the section. */
+	fprintf(fp, "LAMMPS data file: qusgm pack, atom_style sphere, SI units\n\n"
+	    "%zu atoms\n1 atom types\n\n", p->n);
+	lammps_bounds(fp, p, "lohi");
+	fputs("\nAtoms # sphere\n\n", fp);
+	for (i = 0; i < p->n; i++) {
+		v[0] = 2 * p->r[i];
+		v[1] = p->rho[i];
+		memcpy(v + 2, p->x + 3 * i, 3 * sizeof *v);
+		fprintf(fp, "%ld 1 ", p->id[i]);
+		put_nums(fp, v, 5);
+	}
+	return finish(fp);
+}
+
+int
+export_xyzr(const struct pack *p, FILE *fp, int periodic)
+{
+	size_t i;
+	double v[4];
+	int a;
+
+	if (periodic) {
+		fputs("##PERIODIC:: ", fp);
+		for (a = 0; a < 3; a++)
+			put_num(fp, pack_box_length(p->box, a), a < 2 ? ' ' : '\n');
+	}
+	for (i = 0; i < p->n; i++) {
+		memcpy(v, p->x + 3 * i, 3 * sizeof *v);
+		v[3] = p->r[i];
+		put_nums(fp, v, 4);
+	}
+	return finish(fp);
+}
+
+/* The "x y z r" reader.  Lines come from gzgets, so plain and gzip input share one path. */
+struct xyzr_in {
+	gzFile gz;
+	const char *name;
+	long line;
+	char *buf;
+	size_t cap;
+};
+
+static int
+in_error(const struct xyzr_in *in, long line, const char *fmt, const char *arg)
+{
+	char what[256];
+
+	snprintf(what, sizeof what, fmt, arg);
+	msg_seterr("%s:%ld: %s", in->name, line, what);
+	return -1;
+}
+
+/* 1: the next line is in in->buf, end of line stripped; 0: end of input; -1: error. */
+static int
+in_line(struct xyzr_in *in)
+{
+	size_t len = 0, n;
+	z_off_t start = gztell(in->gz);
+	const char *zmsg;
+	int err, got = 0;
+
+	for (;;) {
+		if (in->cap - len < 128) {
+			size_t cap = 2 * in->cap + 256;
+			char *b = realloc(in->buf, cap);
+			if (!b)
+				return in_error(in, in->line + 1, "%s", "out of memory");
+			in->buf = b;
+			in->cap = cap;
+		}
+		if (!gzgets(in->gz, in->buf + len, (int)(in->cap - len)))
+			in->buf[len] = 0;
+		else
+			got = 1;
+		n = strlen(in->buf + len);
+		len += n;
+		if (len > 0 && in->buf[len - 1] == '\n')
+			break;
+		if (len + 1 < in->cap) {
+			/* The end of the data.  zlib flags a truncated .gz as soon as it reads
+			 * the end of the compressed bytes but keeps serving the lines decoded
+			 * before it, so the error is reported here, where the data stops, and
+			 * the fragment of a line is not parsed. */
+			zmsg = gzerror(in->gz, &err);
+			if (err == Z_BUF_ERROR)
+				zmsg = "unexpected end of compressed data";
+			else if (strstr(zmsg, ">: "))
+				zmsg = strstr(zmsg, ">: ") + 3;	/* drop zlib's "<fd:N>: " */
+			if (err != Z_OK && err != Z_STREAM_END)
+				return in_error(in, in->line + 1, "corrupt or truncated input (%s)", zmsg);
+			break;
+		}
+	}
+	if (!got)
+		return 0;
+	in->line++;
+	/* gzgets copies NUL bytes too; the stream position shows what strlen cannot. */
+	if (start >= 0 && gztell(in->gz) - start != (z_off_t)len)
+		return in_error(in, in->line, "%s", "binary data (NUL byte) in a text file");
+	if (len > 0 && in->buf[len - 1] == '\n')
+		in->buf[--len] = 0;
+	if (len > 0 && in->buf[len - 1] == '\r')
+		in->buf[--len] = 0;
+	return 1;
+}
+
+/* Split s in place at blanks; returns the number of fields, storing at most max. */
+static int
+fields(char *s, char **tok, int max)
+{
+	int n = 0;
+
+	for (;;) {
+		s += strspn(s, " \t");
+		if (!*s)
+			return n;
+		if (n < max)
+			tok[n] = s;
+		n++;
+		s += strcspn(s, " \t");
+		if (*s)
+			*s++ = 0;
+	}
+}
+
+static int
+in_sphere(struct xyzr_in *in, const double *box, struct pack *p)
+{
+	char *tok[4];
+	double v[4];
+	int n, k;
+
+	n = fields(in->buf, tok, 4);
+	if (n != 4) {
+		char cnt[16];
+		snprintf(cnt, sizeof cnt, "%d", n);
+		return in_error(in, in->line, "expected 4 columns (x y z r), found %s", cnt);
+	}
+	for (k = 0; k < 4; k++)
+		if (num_parse(tok[k], &v[k]))
+			return in_error(in, in->line, "'%s' is not a finite number", tok[k]);
+	if (!(v[3] > 0))
+		return in_error(in, in->line, "radius %s is not positive", tok[3]);
+	if (box)
+		for (k = 0; k < 3; k++)
+			if (v[k] < box[k] || v[k] > box[k + 3]) {
+				char why[160], lo[40], hi[40];
+				num_format(lo, box[k]);
+				num_format(hi, box[k + 3]);
+				snprintf(why, sizeof why, "centre %c = %s is outside the box [%s, %s]",
+				    'x' + k, tok[k], lo, hi);
+				return in_error(in, in->line, "%s", why);
+			}
+	if (pack_add_grain(p, (long)p->n + 1, v, v[3], 0, 0, 0) == (size_t)-1)
+		return in_error(in, in->line, "%s", "out of memory");
+	return 0;
+}
+
+static void
+fit_box(struct pack *p)
+{
+	size_t i;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		p->box[a] = p->x[a] - p->r[0];
+		p->box[a + 3] = p->x[a] + p->r[0];
+	}
+	for (i = 1; i < p->n; i++)
+		for (a = 0; a < 3; a++) {
+			double x = p->x[3 * i + a], r = p->r[i];
+			if (x - r < p->box[a])
+				p->box[a] = x - r;
+			if (x + r > p->box[a + 3])
+				p->box[a + 3] = x + r;
+		}
+	/* x - r rounds: a sphere that touches a wall would overlap it by an ulp and make a
+	 * contact that is not there.  Move each wall out until h = r - d <= 0 holds exactly as
+	 * contacts_find computes it. */
+	for (i = 0; i < p->n; i++)
+		for (a = 0; a < 3; a++) {
+			double x = p->x[3 * i + a], r = p->r[i];
+			while (r - (x - p->box[a]) > 0)
+				p->box[a] = nextafter(p->box[a], -HUGE_VAL);
+			while (r - (p->box[a + 3] - x) > 0)
+				p->box[a + 3] = nextafter(p->box[a + 3], HUGE_VAL);
+		}
+}
+
+int
+xyzr_read(FILE *fp, const char *name, const double *box, struct pack *p)
+{
+	struct xyzr_in in = {NULL, name, 0, NULL, 0};
+	int fd, r;
+
+	pack_init(p);
+	fd = dup(fileno(fp));
+	if (fd < 0 || !(in.gz = gzdopen(fd, "rb"))) {
+		if (fd >= 0)
+			close(fd);
+		msg_seterr("%s: cannot open for reading", name);
+		return -1;
+	}
+	while ((r = in_line(&in)) == 1) {
+		char *s = in.buf + strspn(in.buf, " \t");
+		if (*s == 0 || *s == '#')
+			continue;	/* blank, comment, or YADE's ##PERIODIC:: cell line */
+		if ((r = in_sphere(&in, box, p)) < 0)
+			break;
+	}
+	gzclose(in.gz);
+	free(in.buf);
+	if (r == 0 && p->n == 0) {
+		if (in.line == 0)
+			in_error(&in, 1, "%s", "empty input");
+		else
+			in_error(&in, in.line + 1, "%s", "no spheres (only blank and comment lines)");
+		r = -1;
+	}
+	if (r < 0) {
+		pack_free(p);
+		return -1;
+	}
+	if (box)
+		memcpy(p->box, box, sizeof p->box);
+	else
+		fit_box(p);
+	return 0;
+}

@@ -1,0 +1,50 @@
+/* export: packs in other programs' formats, and spheres from plain "x y z r" text.
+ *
+ * Owns the writers behind packexport and the reader behind packimport:
+ *  - VTK XML PolyData (.vtp, ascii): grains as points with one vertex cell each, and
+ *    contacts as two-point lines; a .vtm multiblock file that names the two;
+ *  - LAMMPS: a dump frame (ITEM: ... ATOMS id type x y z radius) and a data file
+ *    (atom_style sphere);
+ *  - YADE's SpherePack text: "x y z r" lines, optionally after "##PERIODIC:: Lx Ly Lz";
+ *  - the reader of such "x y z r" text, strict like packio (file:line errors, zlib, so .gz
+ *    works and a truncated .gz is an error).
+ * Every number goes through num_format, so the output is a function of the pack alone.
+ * Writers return 0, or -1 with the error slot set (a write error, a value the target format
+ * cannot hold).  SI units throughout, as in the pack. */
+#ifndef QUSGM_EXPORT_H
+#define QUSGM_EXPORT_H
+
+#include <stdio.h>
+#include "pack/pack.h"
+
+/* In the contacts .vtp, id2 of a grain-wall contact is the wall: -1 xlo, -2 xhi, -3 ylo,
+ * -4 yhi, -5 zlo, -6 zhi (PACK_WALL(w) for w in pack.h's order). */
+#define EXPORT_VTK_WALL_ID(w) PACK_WALL(w)
+
+/* Grains: points at the centres, PointData id (Int64), radius, E, nu (Float64), one vertex
+ * cell per point. */
+int export_vtp_grains(const struct pack *p, FILE *fp);
+/* Contacts found from the positions (contacts_find): a line from centre i to centre j, or
+ * from the centre to the contact point on the wall; CellData id1, id2, normal_force (the
+ * Hertz force P, N) and overlap (m). */
+int export_vtp_contacts(const struct pack *p, FILE *fp);
+/* A vtkMultiBlockDataSet naming the two .vtp files, given relative to the .vtm. */
+int export_vtm(FILE *fp, const char *grains_vtp, const char *contacts_vtp);
+
+/* One LAMMPS dump frame; box bounds "ff ff ff" (walls).  Atom ids are the grain ids,
+ * which LAMMPS wants positive: a pack holding id 0 is refused. */
+int export_lammps_dump(const struct pack *p, FILE *fp, long timestep);
+/* A LAMMPS data file for atom_style sphere: "id type diameter density x y z", type 1. */
+int export_lammps_data(const struct pack *p, FILE *fp);
+
+/* "x y z r" lines, nothing else; with periodic, a first line "##PERIODIC:: Lx Ly Lz" with
+ * the box lengths (YADE's periodic cell). */
+int export_xyzr(const struct pack *p, FILE *fp, int periodic);
+
+/* Read "x y z r" lines (blank lines and '#' comments allowed, "##PERIODIC::" among them)
+ * from fp into p, initialised here: ids 1..N in file order, E = nu = rho = 0 for the caller
+ * to fill.  With box NULL, p->box is the tightest box holding every sphere; otherwise it is
+ * box, and every centre must lie in it.  0, or -1 with "name:line: what" in the slot. */
+int xyzr_read(FILE *fp, const char *name, const double *box, struct pack *p);
+
+#endif

@@ -1,0 +1,43 @@
+/* measure: what a pack says about itself (physics.md §7-8).
+ *
+ * Porosity, coordination (grain plus wall contacts per grain), grains under 4 contacts,
+ * rattlers (grains left after iteratively removing every grain with fewer than 4 contacts
+ * among the remaining ones and the walls: they carry no load in a frictionless pack), radius
+ * statistics, the largest overlap over the smaller radius; and, when contacts carry forces,
+ * wall stresses (normal contact forces on the two walls of an axis, averaged, over the wall
+ * area), the volume-averaged (Love-Weber) stress, normal-force statistics, the force-balance
+ * residual (largest per-grain |F_i| / largest contact force on i, that force floored at
+ * QS_RESIDUAL_FLOOR times the mean normal contact force as the minimisers do (functional.h;
+ * residual_strict has no floor), with moments |M_i|/R_i
+ * counted the same way, and the mean unbalanced-force ratio mean|F_i| / mean|f_c|), the
+ * sliding ratio from the contact history, and the fabric tensor <n n> of grain-grain
+ * contacts with its anisotropy a = 15/2 sqrt(3/2 d:d), d = <n n> - I/3. */
+#ifndef QUSGM_MEASURE_H
+#define QUSGM_MEASURE_H
+
+#include "contact/contacts.h"
+#include "pack/pack.h"
+
+struct pack_measures {
+	size_t grains, contacts_gg, contacts_gw, under4, rattlers, history, stale_history;
+	double volume, porosity, coordination, coordination_nr;
+	double r_mean, r_std, r_min, r_max, overlap_max;
+	int has_forces;
+	double sig_wall[3];	/* Pa, compression positive */
+	double sig_lw[6];	/* xx yy zz xy xz yz */
+	double sigma_c;		/* tr(sig_wall)/3 */
+	double P_mean, P_max;
+	double residual_max, residual_mean;
+	double residual_strict;	/* residual_max without the floor */
+	double sliding_ratio;	/* NaN when no contact carries friction history */
+	double fabric[6], fabric_anisotropy;
+};
+
+/* Fills m; gc receives the contacts (may be reused by the caller).  0 or -1. */
+int measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m);
+/* Per-grain contact counts (grain + wall) over gc; counts has p->n entries. */
+void measure_coordination(const struct pack *p, const struct geo_contacts *gc, unsigned *counts);
+/* Marks rattlers (1) in flag[p->n]; returns their number. */
+size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned char *flag);
+
+#endif

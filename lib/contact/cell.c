@@ -1,0 +1,150 @@
+/* cell: uniform grid neighbour search (see cell.h). */
+#include "contact/cell.h"
+#include "base/msg.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void
+cell_init(struct cell_grid *g)
+{
+	memset(g, 0, sizeof *g);
+}
+
+void
+cell_free(struct cell_grid *g)
+{
+	free(g->start);
+	free(g->idx);
+	free(g->cell_of);
+	memset(g, 0, sizeof *g);
+}
+
+static int
+clampi(long v, int n)
+{
+	return v < 0 ? 0 : v >= n ? n - 1 : (int)v;
+}
+
+int
+cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], const double hi[3], double edge)
+{
+	size_t ncells = 1, k;
+	int a;
+
+	for (;;) {
+		ncells = 1;
+		for (a = 0; a < 3; a++) {
+			double len = hi[a] - lo[a];
+			double m = floor(len / edge);
+
+			if (!(m >= 1))
+				m = 1;
+			if (m > 2048)
+				m = 2048;
+			g->nc[a] = (int)m;
+			g->lo[a] = lo[a];
+			g->inv[a] = m / (len > 0 ? len : 1);
+			ncells *= (size_t)m;
+		}
+		/* a sparse pack in a large box: coarser cells keep memory O(N) */
+		if ((double)ncells <= 8.0 * (double)n + 4096)
+			break;
+		edge *= 1.25;
+	}
+	if (ncells != g->ncells || !g->start) {
+		free(g->start);
+		g->start = malloc((ncells + 1) * sizeof *g->start);
+		g->ncells = ncells;
+	}
+	if (n > g->cap) {
+		free(g->idx);
+		free(g->cell_of);
+		g->idx = malloc(n * sizeof *g->idx);
+		g->cell_of = malloc(n * sizeof *g->cell_of);
+		g->cap = n;
+	}
+	if (!g->start || (n && (!g->idx || !g->cell_of))) {
+		msg_seterr("out of memory for the neighbour grid");
+		return -1;
+	}
+	g->n = n;
+	memset(g->start, 0, (ncells + 1) * sizeof *g->start);
+	for (k = 0; k < n; k++) {
+		int c[3];
+		for (a = 0; a < 3; a++)
+			c[a] = clampi((long)floor((x[3 * k + a] - g->lo[a]) * g->inv[a]), g->nc[a]);
+		g->cell_of[k] = ((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0];
+		g->start[g->cell_of[k] + 1]++;
+	}
+	for (k = 0; k < ncells; k++)
+		g->start[k + 1] += g->start[k];
+	{
+		size_t *fill = malloc(ncells * sizeof *fill);
+		if (!fill) {
+			msg_seterr("out of memory for the neighbour grid");
+			return -1;
+		}
+		memcpy(fill, g->start, ncells * sizeof *fill);
+		for (k = 0; k < n; k++)
+			g->idx[fill[g->cell_of[k]]++] = k;
+		free(fill);
+	}
+	return 0;
+}
+
+long
+cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, double skin, cell_pair_fn fn,
+    void *ctx)
+{
+	long visited = 0;
+	int cx, cy, cz;
+	int nx = g->nc[0], ny = g->nc[1], nz = g->nc[2];
+
+	for (cz = 0; cz < nz; cz++)
+		for (cy = 0; cy < ny; cy++)
+			for (cx = 0; cx < nx; cx++) {
+				size_t c = ((size_t)cz * ny + cy) * nx + cx;
+				int dz, dy, dx;
+
+				/* half stencil: this cell and the 13 neighbours "after" it */
+				for (dz = 0; dz <= 1; dz++)
+					for (dy = (dz ? -1 : 0); dy <= 1; dy++)
+						for (dx = (dz || dy ? -1 : 0); dx <= 1; dx++) {
+							int ox = cx + dx, oy = cy + dy, oz = cz + dz;
+							size_t o, p, q;
+
+							if (ox < 0 || oy < 0 || ox >= nx || oy >= ny || oz >= nz)
+								continue;
+							o = ((size_t)oz * ny + oy) * nx + ox;
+							for (p = g->start[c]; p < g->start[c + 1]; p++) {
+								size_t i = g->idx[p];
+								size_t q0 = o == c ? p + 1 : g->start[o];
+								for (q = q0; q < g->start[o + 1]; q++) {
+									size_t j = g->idx[q];
+									double d[3], d2, cut;
+									d[0] = x[3 * i] - x[3 * j];
+									d[1] = x[3 * i + 1] - x[3 * j + 1];
+									d[2] = x[3 * i + 2] - x[3 * j + 2];
+									d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+									cut = r[i] + r[j] + skin;
+									if (d2 >= cut * cut)
+										continue;
+									visited++;
+									if (i < j) {
+										if (fn(i, j, d, d2, ctx))
+											return -1;
+									} else {
+										d[0] = -d[0];
+										d[1] = -d[1];
+										d[2] = -d[2];
+										if (fn(j, i, d, d2, ctx))
+											return -1;
+									}
+								}
+							}
+						}
+			}
+	return visited;
+}

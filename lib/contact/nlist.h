@@ -1,0 +1,35 @@
+/* nlist: Verlet neighbour lists of polydisperse spheres, built in O(N) with the cell grid.
+ *
+ * A list holds every pair i < j closer than r_i + r_j + skin at the positions and box of
+ * the last build, as rows (CSR) sorted by j.  It stays exact while no pair can have closed
+ * the skin since: twice the largest non-affine displacement plus the affine shortening of
+ * the longest listed pair below the skin (positions that follow a changing box affinely do
+ * not count as displacement).  nlist_stale() answers that; the caller rebuilds. */
+#ifndef QUSGM_NLIST_H
+#define QUSGM_NLIST_H
+
+#include <stddef.h>
+#include "contact/cell.h"
+
+struct nlist {
+	size_t n;
+	size_t *first;		/* n + 1 row offsets */
+	size_t *nbr;		/* neighbour j of each pair, rows sorted */
+	size_t npairs, cap;
+	double skin, rmax;
+	double *xb;		/* positions at the build */
+	double blo[3], bhi[3];	/* box at the build */
+	struct cell_grid grid;
+	size_t *fill;
+	long builds;
+};
+
+void nlist_init(struct nlist *nl);
+void nlist_free(struct nlist *nl);
+/* Build for n spheres at x with radii r (largest rmax) in the box [lo, hi]. 0 or -1. */
+int nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const double lo[3],
+    const double hi[3], double rmax, double skin);
+/* 1 when a pair may have come within range since the build. */
+int nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const double hi[3]);
+
+#endif

@@ -1,0 +1,201 @@
+/* pack: the data model (see pack.h). */
+#include "pack/pack.h"
+#include "base/msg.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const pack_wall_names[NWALLS] = {"xlo", "xhi", "ylo", "yhi", "zlo", "zhi"};
+
+void
+pack_init(struct pack *p)
+{
+	memset(p, 0, sizeof *p);
+	p->wall_nu = 0.495;
+}
+
+void
+pack_free(struct pack *p)
+{
+	size_t k;
+
+	free(p->id);
+	free(p->x);
+	free(p->r);
+	free(p->E);
+	free(p->nu);
+	free(p->rho);
+	free(p->c);
+	for (k = 0; k < p->nhist; k++)
+		free(p->history[k]);
+	free(p->history);
+	for (k = 0; k < p->nmeta; k++) {
+		free(p->meta[k].key);
+		free(p->meta[k].value);
+	}
+	free(p->meta);
+	memset(p, 0, sizeof *p);
+}
+
+static int
+grow(void **ptr, size_t n, size_t size)
+{
+	void *q = realloc(*ptr, n * size);
+
+	if (!q && n) {
+		msg_seterr("out of memory for %zu grains", n);
+		return -1;
+	}
+	*ptr = q;
+	return 0;
+}
+
+int
+pack_reserve(struct pack *p, size_t n)
+{
+	if (n <= p->cap)
+		return 0;
+	if (grow((void **)&p->id, n, sizeof *p->id) || grow((void **)&p->x, 3 * n, sizeof *p->x) ||
+	    grow((void **)&p->r, n, sizeof *p->r) || grow((void **)&p->E, n, sizeof *p->E) ||
+	    grow((void **)&p->nu, n, sizeof *p->nu) || grow((void **)&p->rho, n, sizeof *p->rho))
+		return -1;
+	p->cap = n;
+	return 0;
+}
+
+size_t
+pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, double nu, double rho)
+{
+	size_t i = p->n;
+
+	if (i == p->cap && pack_reserve(p, p->cap ? 2 * p->cap : 64))
+		return (size_t)-1;
+	p->id[i] = id;
+	memcpy(p->x + 3 * i, x, 3 * sizeof *x);
+	p->r[i] = r;
+	p->E[i] = E;
+	p->nu[i] = nu;
+	p->rho[i] = rho;
+	p->n++;
+	return i;
+}
+
+int
+pack_add_contact(struct pack *p, const struct pack_contact *c)
+{
+	if (p->nc == p->ccap) {
+		size_t nc = p->ccap ? 2 * p->ccap : 64;
+		if (grow((void **)&p->c, nc, sizeof *p->c))
+			return -1;
+		p->ccap = nc;
+	}
+	p->c[p->nc++] = *c;
+	return 0;
+}
+
+int
+pack_add_history(struct pack *p, const char *line)
+{
+	char **h = realloc(p->history, (p->nhist + 1) * sizeof *h);
+
+	if (!h)
+		return -1;
+	p->history = h;
+	if (!(h[p->nhist] = strdup(line)))
+		return -1;
+	p->nhist++;
+	return 0;
+}
+
+int
+pack_set_meta(struct pack *p, const char *key, const char *value)
+{
+	size_t k;
+	struct pack_meta *m;
+
+	for (k = 0; k < p->nmeta; k++)
+		if (strcmp(p->meta[k].key, key) == 0) {
+			char *v = strdup(value);
+			if (!v)
+				return -1;
+			free(p->meta[k].value);
+			p->meta[k].value = v;
+			return 0;
+		}
+	m = realloc(p->meta, (p->nmeta + 1) * sizeof *m);
+	if (!m)
+		return -1;
+	p->meta = m;
+	m[p->nmeta].key = strdup(key);
+	m[p->nmeta].value = strdup(value);
+	if (!m[p->nmeta].key || !m[p->nmeta].value)
+		return -1;
+	p->nmeta++;
+	return 0;
+}
+
+const char *
+pack_get_meta(const struct pack *p, const char *key)
+{
+	size_t k;
+
+	for (k = 0; k < p->nmeta; k++)
+		if (strcmp(p->meta[k].key, key) == 0)
+			return p->meta[k].value;
+	return NULL;
+}
+
+int
+pack_get_meta_double(const struct pack *p, const char *key, double *v)
+{
+	const char *s = pack_get_meta(p, key);
+	char *end;
+	double x;
+
+	if (!s)
+		return -1;
+	x = strtod(s, &end);
+	if (end == s || *end || !isfinite(x))
+		return -1;
+	*v = x;
+	return 0;
+}
+
+double
+pack_box_length(const double box[6], int axis)
+{
+	return box[3 + axis] - box[axis];
+}
+
+double
+pack_box_volume(const double box[6])
+{
+	return pack_box_length(box, 0) * pack_box_length(box, 1) * pack_box_length(box, 2);
+}
+
+double
+pack_grain_volume(const struct pack *p)
+{
+	double v = 0;
+	size_t i;
+
+	for (i = 0; i < p->n; i++)
+		v += p->r[i] * p->r[i] * p->r[i];
+	return v * 4.0 / 3.0 * 3.14159265358979323846;
+}
+
+size_t
+pack_find_id(const struct pack *p, long id, size_t *sorted)
+{
+	size_t lo = 0, hi = p->n;
+
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if (p->id[sorted[mid]] < id)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < p->n && p->id[sorted[lo]] == id ? sorted[lo] : (size_t)-1;
+}

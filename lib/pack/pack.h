@@ -1,0 +1,97 @@
+/* pack: the data model every tool shares.
+ *
+ * A pack is N spherical grains in a rectangular box bounded by six walls, the reference box
+ * against which strains are measured, the contacts that carry history (normal force P0,
+ * tangential force Q0 on the first grain, torsional couple M0, all at the last committed
+ * equilibrium), and provenance (one history line per program that touched it).
+ * Units are SI: m, Pa, kg/m^3, N, N m.  Grains are stored as parallel arrays so that the
+ * minimisers can work on x[] directly. */
+#ifndef QUSGM_PACK_H
+#define QUSGM_PACK_H
+
+#include <stddef.h>
+
+#define PACK_FORMAT_NAME "qusgm-pack"
+#define PACK_FORMAT_VERSION 1
+
+/* Walls: index w = 2 * axis + side (side 0 = low, 1 = high). */
+enum { WALL_XLO, WALL_XHI, WALL_YLO, WALL_YHI, WALL_ZLO, WALL_ZHI, NWALLS };
+/* In a contact, j >= 0 is a grain index and j < 0 a wall: j = PACK_WALL(w). */
+#define PACK_WALL(w) (-1 - (long)(w))
+#define PACK_IS_WALL(j) ((j) < 0)
+#define PACK_WALL_INDEX(j) ((int)(-1 - (j)))
+
+extern const char *const pack_wall_names[NWALLS];
+
+/* Distance from a grain centre xi to wall w of box (lo[3], hi[3]), positive inside: the
+ * grain touches the wall when it is below the radius. */
+static inline double
+pack_wall_distance(const double box[6], const double *xi, int w)
+{
+	int a = w / 2;
+
+	return w % 2 ? box[3 + a] - xi[a] : xi[a] - box[a];
+}
+
+struct pack_contact {
+	size_t i;	/* grain index */
+	long j;		/* grain index, or PACK_WALL(w) */
+	double P0;	/* normal force at the last equilibrium (N) */
+	double Q0[3];	/* tangential force on grain i (N) */
+	double M0;	/* torsional couple on i about the normal from j to i (N m) */
+};
+
+struct pack_meta {
+	char *key;
+	char *value;
+};
+
+struct pack {
+	size_t n, cap;
+	long *id;	/* user-visible grain ids, unique, >= 0 */
+	double *x;	/* centres, 3n (m) */
+	double *r;	/* radii (m) */
+	double *E;	/* Young's moduli (Pa) */
+	double *nu;	/* Poisson ratios */
+	double *rho;	/* densities (kg/m^3) */
+
+	double box[6];		/* xlo ylo zlo xhi yhi zhi (m) */
+	/* The boundary along each axis: 0, the two box faces are rigid walls (every pack of
+	 * format 1); 1, periodic with the box length as the period, and no walls on that axis.
+	 * The contact enumerator (contact/contacts.h) is the one place that acts on it. */
+	int periodic[3];
+	double refbox[6];	/* reference box for strains */
+	int has_refbox;
+	double wall_E, wall_nu;	/* wall moduli (Pa, -) */
+	double mu, wall_mu;	/* friction coefficients grain-grain, grain-wall */
+
+	size_t nc, ccap;
+	struct pack_contact *c;
+
+	size_t nhist;
+	char **history;
+	size_t nmeta;
+	struct pack_meta *meta;
+};
+
+void pack_init(struct pack *p);
+void pack_free(struct pack *p);
+int pack_reserve(struct pack *p, size_t n);
+/* Append a grain; returns its index or (size_t)-1 when out of memory. */
+size_t pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, double nu,
+    double rho);
+int pack_add_contact(struct pack *p, const struct pack_contact *c);
+int pack_add_history(struct pack *p, const char *line);
+int pack_set_meta(struct pack *p, const char *key, const char *value);
+const char *pack_get_meta(const struct pack *p, const char *key);
+/* The meta value of key as a finite number: 0 with *v set, or -1 (absent or not a number). */
+int pack_get_meta_double(const struct pack *p, const char *key, double *v);
+
+/* Box geometry: wall w's inward normal and position along its axis. */
+double pack_box_length(const double box[6], int axis);
+double pack_box_volume(const double box[6]);
+double pack_grain_volume(const struct pack *p);
+/* Index of the grain with the given id, or (size_t)-1 (binary search over a cached sort). */
+size_t pack_find_id(const struct pack *p, long id, size_t *scratch_sorted);
+
+#endif

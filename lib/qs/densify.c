@@ -1,0 +1,396 @@
+/* densify: grow under-coordinated grains, shrink, minimise; then compact (see densify.h). */
+#include "qs/densify.h"
+#include "contact/contacts.h"
+#include "qs/functional.h"
+#include "qs/loading.h"
+#include "base/msg.h"
+#include "base/table.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+double
+densify_onset_default(double stress)
+{
+	return fmin(1e5, 0.1 * stress);
+}
+
+void
+densify_params_default(struct densify_params *dp)
+{
+	dp->stress = 4e6;
+	dp->onset = 0;	/* densify_onset_default(stress) */
+	dp->stress_tol = 0.01;
+	dp->strain_step = 2e-3;
+	dp->max_growth = 0.05;
+	dp->grow_tol = 1e-2;
+	dp->grow_max_iter = 20000;
+	dp->release_after = 5000;
+	dp->min_coord = 4;
+	dp->max_rounds = 1000;
+	dp->nsub = 1;
+	dp->k_inc = 10;
+	dp->skin = 0.3;
+	qs_min_params_default(&dp->min);
+}
+
+struct gaps {
+	double g[4];	/* the four smallest surface gaps, ascending (negative: overlap) */
+	unsigned k;
+};
+
+static void
+gap_insert(struct gaps *gp, unsigned want, double v)
+{
+	unsigned q;
+
+	if (gp->k < want)
+		gp->k++;
+	else if (v >= gp->g[want - 1])
+		return;
+	for (q = gp->k - 1; q > 0 && gp->g[q - 1] > v; q--)
+		gp->g[q] = gp->g[q - 1];
+	gp->g[q] = v;
+}
+
+/* Grow each grain with fewer than min_coord contacts until it touches its min_coord-th
+ * nearest neighbour or wall (from the Verlet list: neighbours within the skin), by at most
+ * max_growth of its radius.  Returns the number of grains grown. */
+static size_t
+grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const struct densify_params *dp,
+    double scale, struct gaps *gp)
+{
+	struct pack *p = s->p;
+	size_t i, k, grown = 0;
+	unsigned want = dp->min_coord < 4 ? dp->min_coord : 4;
+	int w;
+
+	if (want == 0)
+		return 0;
+	for (i = 0; i < s->n; i++)
+		gp[i].k = 0;
+	for (i = 0; i < s->n; i++) {
+		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
+			size_t j = s->nl.nbr[k];
+			double d0 = x[3 * i] - x[3 * j], d1 = x[3 * i + 1] - x[3 * j + 1], d2 = x[3 * i + 2] - x[3 * j + 2];
+			double gap = sqrt(d0 * d0 + d1 * d1 + d2 * d2) - p->r[i] - p->r[j];
+			if (cnt[i] < dp->min_coord)
+				gap_insert(&gp[i], want, gap);
+			if (cnt[j] < dp->min_coord)
+				gap_insert(&gp[j], want, gap);
+		}
+		if (cnt[i] < dp->min_coord)
+			for (w = 0; w < NWALLS; w++)
+				gap_insert(&gp[i], want, pack_wall_distance(p->box, x + 3 * i, w) - p->r[i]);
+	}
+	for (i = 0; i < s->n; i++) {
+		double dr, cap = scale * dp->max_growth * p->r[i];
+		if (cnt[i] >= dp->min_coord)
+			continue;
+		/* touch the want-th gap with a small overlap (1e-6 R) so that it counts; grow at
+		 * least 1e-3 R (scaled), or a grain caged by neighbours that push back after each
+		 * minimisation creeps for many rounds */
+		dr = gp[i].k == want ? gp[i].g[want - 1] + 1e-6 * p->r[i] : cap;
+		dr = fmax(dr, scale * 1e-3 * p->r[i]);
+		p->r[i] += fmin(dr, cap);
+		grown++;
+	}
+	if (grown)
+		qs_radii_changed(s);
+	return grown;
+}
+
+/* sigma_c = tr(sigma)/3 from the wall forces */
+static double
+wall_sigma_c(const struct qs_system *s)
+{
+	double sig[3];
+
+	qs_wall_stress(s, sig);
+	return (sig[0] + sig[1] + sig[2]) / 3;
+}
+
+static void
+stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densify_stage *st)
+{
+	double sum = 0;
+	size_t i;
+
+	st->sigma_c = wall_sigma_c(s);
+	st->porosity = 1 - pack_grain_volume(s->p) / pack_box_volume(s->p->box);
+	qs_coordination(s, x, cnt);
+	st->under4 = 0;
+	for (i = 0; i < s->n; i++) {
+		sum += cnt[i];
+		st->under4 += cnt[i] < 4;
+	}
+	st->coordination = sum / s->n;
+}
+
+/* A strain step de (NULL: none) and its equilibrium, up to mp->max_iter iterations in all,
+ * in chunks of release_after iterations with the unbraced grains released between them (see
+ * densify.h).  Returns as load_increment. */
+static int
+minimize_releasing(struct qs_system *s, double *x, const double *de, const struct densify_params *dp,
+    const struct qs_min_params *mp, struct qs_min_report *rep)
+{
+	struct qs_min_params cm = *mp;
+	long it = 0, evals = 0, left = mp->max_iter;
+	int st;
+
+	for (;;) {
+		if (dp->release_after > 0 && left > dp->release_after)
+			cm.max_iter = dp->release_after;
+		else
+			cm.max_iter = left;
+		st = de ? load_increment(s, x, de, dp->nsub, dp->k_inc, &cm, rep) : qs_minimize(s, x, &cm, rep);
+		de = NULL;
+		it += rep->iter;
+		evals += rep->evals;
+		left -= rep->iter;
+		if (st != 1 || left <= 0)
+			break;
+		if (qs_release_unbraced(s, x) < 0) {
+			st = -1;
+			break;
+		}
+	}
+	rep->iter = it;
+	rep->evals = evals;
+	return st;
+}
+
+int
+densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx, struct densify_stage *last)
+{
+	struct densify_params dpl = *dp;
+	struct qs_system s;
+	struct qs_min_report rep;
+	struct densify_stage st;
+	struct gaps *gp = NULL;
+	unsigned *cnt = NULL;
+	double *x = NULL, r0sum = 0, zero[3] = {0, 0, 0};
+	double floor_loose, e_prev = NAN, y_prev = NAN, eps_now = 0, scale = 1, boxsave[6], *xsave = NULL, *rsave = NULL;
+	size_t i;
+	long round;
+	int status = -1, limit_hit = 0, have_ref = p->has_refbox, full = 1;
+
+	if (!(dpl.onset > 0))
+		dpl.onset = densify_onset_default(dpl.stress);
+	dp = &dpl;
+	memset(&st, 0, sizeof st);
+	if (qs_init(&s, p, dp->skin))
+		return -1;
+	x = malloc(3 * p->n * sizeof *x);
+	cnt = malloc(p->n * sizeof *cnt);
+	gp = malloc(p->n * sizeof *gp);
+	xsave = malloc(3 * p->n * sizeof *xsave);
+	rsave = malloc(p->n * sizeof *rsave);
+	if (!x || !cnt || !gp || !xsave || !rsave) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	memcpy(x, p->x, 3 * p->n * sizeof *x);
+	for (i = 0; i < p->n; i++)
+		r0sum += p->r[i];
+	/* Before the pack carries the onset stress there is no load to balance: judge forces
+	 * against what a contact carries at the onset, about onset x (2 r_mean)^2 (forces below
+	 * tol times that are balanced).  A floor 1e-3 times lower made unjammed rounds near
+	 * jamming converge to residual stresses of 1e-3 Pa, critically slowly (58k L-BFGS
+	 * iterations in one round of a 1e4-grain pack); the equilibria at and above the onset are
+	 * judged against their own forces as before. */
+	floor_loose = dp->onset * 4 * (r0sum / p->n) * (r0sum / p->n);
+	s.force_floor = floor_loose;
+
+#define RECORD(name, rnd)                                                        \
+	do {                                                                     \
+		double rs_ = 0;                                                  \
+		stage_measures(&s, x, cnt, &st);                                 \
+		for (i = 0; i < p->n; i++)                                       \
+			rs_ += p->r[i];                                          \
+		st.stage = name;                                                 \
+		st.round = rnd;                                                  \
+		st.growth = rs_ / r0sum - 1;                                     \
+		st.iterations = rep.iter;                                        \
+		st.res_max = rep.res_max;                                        \
+		st.res_mean = rep.res_mean;                                      \
+		st.min_status = rep.status;                                      \
+		/* below the onset the pack is not jammed: nothing to balance; */ \
+		/* rounds at grow_tol stop at grow_max_iter by design */          \
+		limit_hit |= rep.status == 1 && st.sigma_c >= dp->onset && full; \
+		if (fn)                                                          \
+			fn(&st, ctx);                                            \
+	} while (0)
+
+	if (qs_minimize(&s, x, &dp->min, &rep) < 0)
+		goto out;
+	RECORD("relax", 0);
+	for (round = 1;; round++) {
+		double de, sc;
+		size_t grown;
+
+		/* the reference box: where the stress reached the onset and stayed there (a pack
+		 * that relaxes below it was not jammed; a pack densified again keeps its own) */
+		if (st.sigma_c >= dp->onset && !have_ref) {
+			memcpy(p->refbox, p->box, sizeof p->refbox);
+			have_ref = 1;
+		} else if (st.sigma_c < dp->onset && !p->has_refbox)
+			have_ref = 0;
+		if (st.under4 == 0 && st.sigma_c >= dp->onset && full)
+			break;
+		if (round > dp->max_rounds) {
+			msg_seterr("phase (a) did not finish in %ld rounds: %zu grains under %u contacts, sigma_c %g Pa",
+			    dp->max_rounds, st.under4, dp->min_coord, st.sigma_c);
+			goto out;
+		}
+		/* keep the state: a round that jumps from below the onset to far above it (the
+		 * pack jammed within one squeeze) is undone and redone with half the squeeze and
+		 * half the growth, so that the reference box lies near the onset */
+		memcpy(xsave, x, 3 * p->n * sizeof *x);
+		memcpy(rsave, p->r, p->n * sizeof *rsave);
+		memcpy(boxsave, p->box, sizeof boxsave);
+		grown = grow_grains(&s, x, cnt, dp, scale, gp);
+		de = st.sigma_c < dp->onset ? scale * dp->strain_step : 0;
+		if (grown == 0 && de == 0) {
+			/* under-coordinated grains that cannot grow (already touching): rattlers
+			 * of a stressed pack; squeeze the box a little to seat them */
+			de = 0.1 * scale * dp->strain_step;
+		}
+		{
+			double d3[3] = {de, de, de};
+			struct qs_min_params mp = dp->min;
+
+			/* Every round is minimised to grow_tol, jammed or not: it only decides which
+			 * grains grow next; the round that meets the end condition is then taken to
+			 * the full tolerance and judged again (below).  Just above jamming a full
+			 * minimisation slows critically (70k L-BFGS iterations in the jamming round
+			 * of a 1e4-grain pack, 44k more over the 8 rounds that seated its rattlers). */
+			mp.tol = fmax(mp.tol, dp->grow_tol);
+			if (mp.max_iter > dp->grow_max_iter)
+				mp.max_iter = dp->grow_max_iter;
+			s.force_floor = st.sigma_c < dp->onset ? floor_loose : 0;
+			if (minimize_releasing(&s, x, de > 0 ? d3 : zero, dp, &mp, &rep) < 0)
+				goto out;
+			full = mp.tol <= dp->min.tol;
+			sc = wall_sigma_c(&s);
+			if (st.sigma_c < dp->onset && sc > 10 * dp->onset && scale > 1.0 / 1024) {
+				memcpy(x, xsave, 3 * p->n * sizeof *x);
+				memcpy(p->r, rsave, p->n * sizeof *rsave);
+				memcpy(p->box, boxsave, sizeof boxsave);
+				qs_radii_changed(&s);
+				scale *= 0.5;
+				s.force_floor = floor_loose;
+				if (qs_minimize(&s, x, &mp, &rep) < 0)
+					goto out;
+				full = 0;
+				RECORD("retry", round);
+				continue;
+			}
+			if (sc >= dp->onset && !full) {
+				size_t under = 0;
+
+				qs_coordination(&s, x, cnt);
+				for (i = 0; i < s.n; i++)
+					under += cnt[i] < dp->min_coord;
+				if (under == 0) {
+					/* the end condition holds at grow_tol: the full equilibrium, in
+					 * chunks of grow_max_iter iterations, stopping early if the pack
+					 * relaxes below the onset (it only looked jammed: a 1e4-grain pack
+					 * once spent 200k L-BFGS iterations relaxing from 1e4 to 6e3 Pa) */
+					long it = rep.iter, left = dp->min.max_iter;
+					struct qs_min_params fm = dp->min;
+
+					s.force_floor = 0;
+					for (;;) {
+						fm.max_iter = left < dp->grow_max_iter ? left : dp->grow_max_iter;
+						if (minimize_releasing(&s, x, NULL, dp, &fm, &rep) < 0)
+							goto out;
+						it += rep.iter;
+						left -= rep.iter;
+						if (rep.status != 1 || left <= 0 || wall_sigma_c(&s) < dp->onset)
+							break;
+					}
+					rep.iter = it;
+					full = 1;
+				}
+			}
+		}
+		RECORD("grow", round);
+	}
+	if (!have_ref) {
+		memcpy(p->refbox, p->box, sizeof p->refbox);
+		have_ref = 1;
+	}
+	p->has_refbox = 1;
+	s.force_floor = 0;
+	/* compaction to the target: secant on y = sigma_c^(2/3) against the strain */
+	for (round = 1; fabs(st.sigma_c / dp->stress - 1) > dp->stress_tol || st.under4 > 0; round++) {
+		double y = pow(st.sigma_c, 2.0 / 3.0), yt = pow(dp->stress, 2.0 / 3.0), de, d3[3];
+		double eps[3];
+
+		if (round > dp->max_rounds) {
+			msg_seterr("compaction did not reach %g Pa in %ld steps (sigma_c %g Pa)", dp->stress,
+			    dp->max_rounds, st.sigma_c);
+			goto out;
+		}
+		load_strain(p->box, p->refbox, eps);
+		eps_now = (eps[0] + eps[1] + eps[2]) / 3;
+		if (!isnan(e_prev) && eps_now != e_prev && (y - y_prev) / (eps_now - e_prev) > 0)
+			de = (yt - y) / ((y - y_prev) / (eps_now - e_prev));
+		else if (eps_now > 1e-9 && y > pow(dp->onset, 2.0 / 3.0))
+			/* first step: the line through the onset at the reference box */
+			de = (yt - y) / ((y - pow(dp->onset, 2.0 / 3.0)) / eps_now);
+		else
+			de = (st.sigma_c < dp->stress ? 0.1 : -0.1) * dp->strain_step;
+		de = fmax(-dp->strain_step, fmin(dp->strain_step, de));
+		if (eps_now > 0 && de < -0.5 * eps_now)
+			de = -0.5 * eps_now;	/* never unload the pack back towards jamming */
+		e_prev = eps_now;
+		y_prev = y;
+		d3[0] = d3[1] = d3[2] = de;
+		/* compaction can leave a grain with fewer than min_coord contacts: grow it too */
+		if (st.under4 > 0)
+			grow_grains(&s, x, cnt, dp, 1.0, gp);
+		if (fabs(st.sigma_c / dp->stress - 1) <= dp->stress_tol)
+			d3[0] = d3[1] = d3[2] = 0;
+		if (minimize_releasing(&s, x, d3, dp, &dp->min, &rep) < 0)
+			goto out;
+		RECORD("compact", round);
+	}
+#undef RECORD
+	memcpy(p->x, x, 3 * p->n * sizeof *x);
+	if (contacts_store(p, 0))
+		goto out;
+	/* frictionless compaction: nothing slides (a frictional pack densified again) */
+	if (pack_get_meta(p, "sliding_ratio") && pack_set_meta(p, "sliding_ratio", "0")) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	status = limit_hit ? 1 : 0;
+	if (limit_hit)
+		msg_seterr("a minimisation stopped at its iteration limit (largest residual %.3g)", st.res_max);
+out:
+	if (last)
+		*last = st;
+	qs_free(&s);
+	free(x), free(cnt), free(gp), free(xsave), free(rsave);
+	return status;
+}
+
+void
+densify_log_header(FILE *fp)
+{
+	fputs("# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean\n",
+	    fp);
+}
+
+void
+densify_log_row(FILE *fp, const struct densify_stage *st)
+{
+	double v[8] = {st->sigma_c, st->porosity, st->coordination, (double)st->under4, st->growth,
+	    (double)st->iterations, st->res_max, st->res_mean};
+
+	fprintf(fp, "%s\t%ld\t", st->stage, st->round);
+	table_row(fp, v, 8);
+}

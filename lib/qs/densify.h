@@ -1,0 +1,85 @@
+/* densify: phase (a) of making a pack (physics.md §9, S §2.4): frictionless isotropic
+ * compaction of a loose pack.
+ *
+ * Rounds: every grain with fewer than min_coord contacts (grain plus wall) is expanded until
+ * it touches min_coord neighbours or walls (at most max_growth of its radius per round), the
+ * box is shrunk by strain_step while the confining stress is below the onset, and the pack is
+ * brought to equilibrium.  The rounds end when no grain has fewer than min_coord contacts and
+ * the stress has reached the onset; the box where the stress reached the onset and stayed
+ * above it becomes the reference box for strains.  Then the box is compressed isotropically (a secant on
+ * sigma_c^(2/3), which Hertz contacts make nearly linear in strain) until sigma_c is within
+ * stress_tol of the target.  A growth round only decides which grains grow next: it is
+ * minimised to the looser grow_tol in at most grow_max_iter iterations (not an error), and
+ * only a round that meets the end condition is taken on to the full tolerance (in chunks,
+ * stopping early if the stress falls below the onset: the pack only looked jammed) and
+ * judged again.  Near jamming a full-tolerance minimisation slows critically (70k L-BFGS
+ * iterations in the jamming round of a 1e4-grain pack, 44k more over the 8 rounds that
+ * seated its rattlers; 124k in all to 4 MPa this way against 144k).  Below the onset the
+ * residual's force floor is what a contact carries at the onset (an unjammed pack has no
+ * load to balance).  Every compaction step is an equilibrium to the full tolerance.
+ *
+ * Every minimisation here runs in chunks of release_after iterations; between chunks the
+ * grains with 1-3 contacts, which frictionless equilibrium holds only once those contacts
+ * have opened, are moved to where they just touch (qs_release_unbraced).  The minimiser
+ * opens such a contact only asymptotically (the Hertz stiffness vanishes as h^(1/2)): a
+ * 1e5-grain pack's second compaction step stood at a largest residual near 1 after 99k
+ * L-BFGS iterations, held by hundreds of grains with one contact left.  With a release every
+ * 5000 iterations the 1e4-grain benchmark pack reached 4 MPa in 102 s against 206 s
+ * (65947 iterations against 124451); every 2000, 168 s. */
+#ifndef QUSGM_DENSIFY_H
+#define QUSGM_DENSIFY_H
+
+#include "qs/minimize.h"
+#include "pack/pack.h"
+
+struct densify_params {
+	double stress;		/* target confining stress sigma_c (Pa) */
+	double onset;		/* stress that marks the reference box (Pa); 0: densify_onset_default */
+	double stress_tol;	/* relative tolerance on the final sigma_c */
+	double strain_step;	/* largest isotropic strain per step */
+	double max_growth;	/* largest relative growth of a radius per round */
+	double grow_tol;	/* residual target of rounds that start below the onset */
+	long grow_max_iter;	/* iteration limit of those rounds */
+	long release_after;	/* minimiser iterations between releases of unbraced grains; 0: never */
+	unsigned min_coord;
+	long max_rounds;
+	int nsub;		/* sub-increments per strain step */
+	long k_inc;		/* minimiser iterations between sub-increments */
+	double skin;		/* Verlet skin / smallest radius */
+	struct qs_min_params min;
+};
+
+struct densify_stage {
+	const char *stage;	/* "relax", "grow", "compact" */
+	long round;
+	double sigma_c, porosity, coordination;
+	size_t under4;
+	double growth;		/* mean relative radius growth so far */
+	long iterations;
+	double res_max, res_mean;
+	int min_status;
+};
+
+typedef void (*densify_log_fn)(const struct densify_stage *st, void *ctx);
+
+/* The default onset for a target stress: 1e5 Pa, or a tenth of the target below 1 MPa.
+ * Just above jamming the minimisations slow critically as the stress falls (the Hessian's
+ * soft modes): at 1e4 Pa a 1e4-grain pack spent 100k+ L-BFGS iterations per round and did
+ * not finish in an hour, at 1e5 Pa it reached 4 MPa in 227 s; a 2740-grain pack took 49 s
+ * and 26 s, ending at porosity 0.3859 and 0.3843.  The price: strains count from a box
+ * (1e5/4e6)^(2/3) = 8.5 % of the Hertz strain to 4 MPa past the first contact forces. */
+double densify_onset_default(double stress);
+
+void densify_params_default(struct densify_params *dp);
+/* Densify p in place (positions, radii, box, refbox, contacts).  0 on success; 1 when a
+ * minimisation hit its iteration limit (p holds the state reached); -1 on error. */
+int densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx,
+    struct densify_stage *last);
+
+#include <stdio.h>
+
+/* The log: one TSV header, one row per stage. */
+void densify_log_header(FILE *fp);
+void densify_log_row(FILE *fp, const struct densify_stage *st);
+
+#endif

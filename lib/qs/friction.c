@@ -1,0 +1,389 @@
+/* friction: Mindlin-Deresiewicz tangential force and torsion over a frozen increment
+ * (see friction.h). */
+#include "qs/friction.h"
+#include "contact/contacts.h"
+#include "contact/hertz.h"
+#include "base/msg.h"
+#include "base/vec3.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void
+fr_init(struct qs_friction *f, enum fr_rule rule)
+{
+	memset(f, 0, sizeof *f);
+	f->rule = rule;
+}
+
+void
+fr_free(struct qs_friction *f)
+{
+	free(f->c);
+	free(f->x0);
+	memset(f, 0, sizeof *f);
+}
+
+int
+fr_rule_parse(const char *name, enum fr_rule *rule)
+{
+	if (strcmp(name, "return-map") == 0)
+		*rule = FR_RETURN_MAP;
+	else if (strcmp(name, "paper") == 0)
+		*rule = FR_PAPER;
+	else
+		return -1;
+	return 0;
+}
+
+const char *
+fr_rule_name(enum fr_rule rule)
+{
+	return rule == FR_PAPER ? "paper" : "return-map";
+}
+
+static double
+shear_modulus(double E, double nu)
+{
+	return E / (2 * (1 + nu));
+}
+
+/* The frozen quantities of one contact at the reference configuration (physics.md §3-5). */
+static void
+setup_contact(const struct pack *p, const struct geo_contact *g, struct fr_contact *c, struct qs_friction *f)
+{
+	size_t i = g->i;
+	double Es, Rs, a, Gi = shear_modulus(p->E[i], p->nu[i]), Gj, nui = p->nu[i], nuj, mu, Ri = p->r[i];
+	double Q0[3] = {0, 0, 0}, M0 = 0, tq[3], tn, qn;
+	int wall = PACK_IS_WALL(g->j), k;
+
+	memset(c, 0, sizeof *c);
+	c->i = i;
+	c->j = g->j;
+	memcpy(c->n, g->n, sizeof c->n);
+	contacts_moduli(p, g, &Es, &Rs);
+	c->Es = Es;
+	c->Rs = Rs;
+	a = sqrt(Rs * g->h);
+	if (wall) {
+		Gj = shear_modulus(p->wall_E, p->wall_nu);
+		nuj = p->wall_nu;
+		mu = p->wall_mu;
+		for (k = 0; k < 3; k++)
+			c->li[k] = -g->n[k] * (Ri - g->h);
+	} else {
+		double Rj = p->r[g->j], d = g->d;
+		double A2 = (d - Ri + Rj) * (d + Ri - Rj) * (Ri + Rj - d) * (Ri + Rj + d) / (4 * d * d);
+		double li, lj;
+		Gj = shear_modulus(p->E[g->j], p->nu[g->j]);
+		nuj = p->nu[g->j];
+		mu = p->mu;
+		if (A2 < 0)
+			A2 = 0;
+		li = sqrt(fmax(Ri * Ri - A2, 0));
+		lj = sqrt(fmax(Rj * Rj - A2, 0));
+		for (k = 0; k < 3; k++) {
+			c->li[k] = -g->n[k] * li;
+			c->lj[k] = g->n[k] * lj;
+		}
+	}
+	c->k = 8 * a / ((2 - nui) / Gi + (2 - nuj) / Gj);
+	c->qmax = mu * g->P;
+	c->kt = 16.0 / 3.0 * a * a * a / (1 / Gi + 1 / Gj);
+	c->mmax = 3 * M_PI / 16 * a * mu * g->P;
+	if (g->hist >= 0) {
+		memcpy(Q0, p->c[g->hist].Q0, sizeof Q0);
+		/* a line may name the pair as "j i" (pack-format.md): its Q0 is then the force
+		 * on j, and the force on i is its opposite (M0 is the same either way) */
+		if (p->c[g->hist].i != g->i)
+			for (k = 0; k < 3; k++)
+				Q0[k] = -Q0[k];
+		M0 = p->c[g->hist].M0;
+	}
+	/* Q^p = |Q0| T Q0 / |T Q0|: the history force turned into the reference tangent plane */
+	tn = vec3_dot(Q0, c->n);
+	for (k = 0; k < 3; k++)
+		tq[k] = Q0[k] - tn * c->n[k];
+	qn = vec3_norm(tq);
+	if (qn > 0)
+		for (k = 0; k < 3; k++)
+			c->qp[k] = tq[k] * (vec3_norm(Q0) / qn);
+	qn = vec3_norm(c->qp);
+	if (qn > c->qmax || fabs(M0) > c->mmax) {
+		double ex = fmax(c->qmax > 0 ? qn / c->qmax - 1 : (qn > 0 ? INFINITY : 0),
+		    c->mmax > 0 ? fabs(M0) / c->mmax - 1 : (M0 != 0 ? INFINITY : 0));
+		if (ex > 1e-9) {
+			f->clamped++;
+			f->clamp_excess = fmax(f->clamp_excess, ex);
+		}
+		if (qn > c->qmax)
+			for (k = 0; k < 3; k++)
+				c->qp[k] *= c->qmax / qn;
+		if (fabs(M0) > c->mmax)
+			M0 = M0 > 0 ? c->mmax : -c->mmax;
+	}
+	c->mp = M0;
+	memcpy(c->Q, c->qp, sizeof c->Q);
+	c->M = c->mp;
+}
+
+/* M_max of a history line's contact at normal force P (physics.md §5): a = sqrt(R* h(P)). */
+static double
+line_mmax(const struct pack *p, const struct pack_contact *c, double mu, double P)
+{
+	size_t i = c->i;
+	int wall = PACK_IS_WALL(c->j);
+	double Es = wall ? hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu) :
+	                   hertz_Estar(p->E[i], p->nu[i], p->E[c->j], p->nu[c->j]);
+	double Rs = wall ? p->r[i] : hertz_Rstar(p->r[i], p->r[c->j]);
+
+	return 3 * M_PI / 16 * sqrt(Rs * hertz_overlap(Es, Rs, P)) * mu * P;
+}
+
+int
+fr_check_history(const struct pack *p)
+{
+	double Pmean = 0;
+	size_t k;
+
+	for (k = 0; k < p->nc; k++)
+		Pmean += p->c[k].P0 / p->nc;
+	for (k = 0; k < p->nc; k++) {
+		const struct pack_contact *c = &p->c[k];
+		double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, qn = vec3_norm(c->Q0);
+		/* the most a committed line can exceed its limit: the slip the normal force's fall
+		 * in one increment calls for, far below the limit of an average contact */
+		double qlim = mu * (c->P0 + Pmean) * (1 + 1e-9);
+		double mlim = (line_mmax(p, c, mu, c->P0) + line_mmax(p, c, mu, Pmean)) * (1 + 1e-9);
+		char jn[32];
+
+		if (qn <= qlim && fabs(c->M0) <= mlim)
+			continue;
+		if (PACK_IS_WALL(c->j))
+			snprintf(jn, sizeof jn, "%s", pack_wall_names[PACK_WALL_INDEX(c->j)]);
+		else
+			snprintf(jn, sizeof jn, "%ld", p->id[c->j]);
+		if (qn > qlim)
+			msg_seterr("contact %ld %s: |Q0| = %.6g N is far above its sliding limit mu P0 = %.6g N (mu %g; "
+			           "a committed pack exceeds it by less than mu times the mean normal force, %.6g N)",
+			    p->id[c->i], jn, qn, mu * c->P0, mu, mu * Pmean);
+		else
+			msg_seterr("contact %ld %s: |M0| = %.6g N m is far above its torsional limit %.6g N m (mu %g)",
+			    p->id[c->i], jn, fabs(c->M0), line_mmax(p, c, mu, c->P0), mu);
+		return -1;
+	}
+	return 0;
+}
+
+int
+fr_begin(struct qs_friction *f, struct qs_system *s)
+{
+	struct pack *p = s->p;
+	struct geo_contacts gc;
+	size_t k, matched = 0;
+
+	contacts_init(&gc);
+	if (contacts_find(p, &gc))
+		return -1;
+	if (gc.n > f->cap) {
+		struct fr_contact *c = realloc(f->c, gc.n * sizeof *c);
+		if (!c) {
+			contacts_free(&gc);
+			msg_seterr("out of memory for contacts");
+			return -1;
+		}
+		f->c = c;
+		f->cap = gc.n;
+	}
+	if (f->ngrains != p->n || !f->x0) {
+		free(f->x0);
+		f->x0 = malloc((p->n ? 3 * p->n : 1) * sizeof *f->x0);
+		if (!f->x0) {
+			contacts_free(&gc);
+			msg_seterr("out of memory");
+			return -1;
+		}
+		f->ngrains = p->n;
+	}
+	memcpy(f->x0, p->x, 3 * p->n * sizeof *f->x0);
+	f->n = gc.n;
+	f->clamped = 0;
+	f->clamp_excess = 0;
+	for (k = 0; k < gc.n; k++) {
+		setup_contact(p, &gc.c[k], &f->c[k], f);
+		matched += gc.c[k].hist >= 0;
+	}
+	f->stale = p->nc - matched;
+	contacts_free(&gc);
+	s->fr = f;
+	s->dim = 6 * s->n;
+	return 0;
+}
+
+/* s^2 below the limit, its tangent 2 lim s - lim^2 above: the return map's potential,
+ * continuous with its derivative at s = lim. */
+static double
+clamp_potential(double s, double lim)
+{
+	return s <= lim ? s * s : 2 * lim * s - lim * lim;
+}
+
+double
+fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g)
+{
+	const double *r = s->p->r, *x0 = f->x0;
+	const double *w = x + 3 * s->n;
+	double E = 0;
+	size_t k;
+	int a;
+
+	for (k = 0; k < f->n; k++) {
+		struct fr_contact *c = &f->c[k];
+		size_t i = c->i, j = c->j >= 0 ? (size_t)c->j : 0;
+		int wall = PACK_IS_WALL(c->j);
+		double du[3], Oi[3], Oj[3] = {0, 0, 0}, us[3], t[3], dn, Ot, q[3], qn, m;
+
+		for (a = 0; a < 3; a++) {
+			du[a] = x[3 * i + a] - x0[3 * i + a];
+			Oi[a] = w[3 * i + a] / r[i];
+			if (!wall) {
+				du[a] -= x[3 * j + a] - x0[3 * j + a];
+				Oj[a] = w[3 * j + a] / r[j];
+			}
+		}
+		/* u_s = T du + Omega_i x R_ij - Omega_j x R_ji (walls translate along their normal) */
+		dn = vec3_dot(du, c->n);
+		vec3_cross(Oi, c->li, t);
+		for (a = 0; a < 3; a++)
+			us[a] = du[a] - dn * c->n[a] + t[a];
+		if (!wall) {
+			vec3_cross(Oj, c->lj, t);
+			for (a = 0; a < 3; a++)
+				us[a] -= t[a];
+		}
+		for (a = 0; a < 3; a++)
+			q[a] = c->qp[a] - c->k * us[a];
+		qn = vec3_norm(q);
+		c->qtrial = qn;
+		if (qn <= c->qmax) {
+			memcpy(c->Q, q, sizeof q);
+			E += (qn * qn - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+		} else if (f->rule == FR_RETURN_MAP) {
+			for (a = 0; a < 3; a++)
+				c->Q[a] = c->qmax * q[a] / qn;
+			E += (clamp_potential(qn, c->qmax) - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+		} else {
+			/* F (6)-(7b): the stiffness reduced so that |Q^p - k u_s| = Q_max */
+			double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = vec3_dot(c->qp, c->qp);
+			double rad = cq * cq + c->qmax * c->qmax - pp, kr = rad > 0 ? (cq + sqrt(rad)) / un : 0;
+			for (a = 0; a < 3; a++)
+				c->Q[a] = c->qp[a] - kr * us[a];
+			qn = vec3_norm(c->Q);
+			if (qn > c->qmax)	/* only when |Q^p| > Q_max, which fr_begin rules out */
+				for (a = 0; a < 3; a++)
+					c->Q[a] *= c->qmax / qn;
+			E += -vec3_dot(c->qp, us) + 0.5 * kr * vec3_dot(us, us);
+		}
+		/* torsion: Omega_t = (Omega_i - Omega_j) . n, the same clamp in one dimension */
+		Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
+		m = c->mp - c->kt * Ot;
+		c->M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
+		E += (clamp_potential(fabs(m), c->mmax) - c->mp * c->mp) / (2 * c->kt);
+		if (g) {
+			double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i, mi[3];
+			/* dPi/du_i = -Q, dPi/dOmega_i = -(R_ij x Q) - M n, scaled by 1/R_i */
+			vec3_cross(c->li, c->Q, mi);
+			for (a = 0; a < 3; a++) {
+				gi[a] -= c->Q[a];
+				gwi[a] -= (mi[a] + c->M * c->n[a]) / r[i];
+			}
+			if (!wall) {
+				double *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j, mj[3];
+				vec3_cross(c->lj, c->Q, mj);
+				for (a = 0; a < 3; a++) {
+					gj[a] += c->Q[a];
+					gwj[a] += (mj[a] + c->M * c->n[a]) / r[j];
+				}
+			}
+		}
+	}
+	return E;
+}
+
+size_t
+fr_sliding(const struct qs_friction *f)
+{
+	size_t k, n = 0;
+
+	for (k = 0; k < f->n; k++)
+		if (f->c[k].qmax > 0 && vec3_norm(f->c[k].Q) >= f->c[k].qmax * (1 - 1e-9))
+			n++;
+	return n;
+}
+
+void
+fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double *k)
+{
+	size_t q;
+
+	for (q = 0; q < f->n; q++) {
+		const struct fr_contact *c = &f->c[q];
+		k[c->i] += c->k + c->kt / (s->p->r[c->i] * s->p->r[c->i]);
+		if (c->j >= 0)
+			k[c->j] += c->k + c->kt / (s->p->r[c->j] * s->p->r[c->j]);
+	}
+}
+
+/* Hertz normal force of contact c at the pack's current positions (0 when it has opened). */
+static double
+normal_force_now(const struct pack *p, const struct fr_contact *c)
+{
+	const double *xi = p->x + 3 * c->i;
+	double h;
+
+	if (PACK_IS_WALL(c->j)) {
+		double n[3], pos;
+		int axis = PACK_WALL_INDEX(c->j) / 2;
+		contacts_wall_plane(p, PACK_WALL_INDEX(c->j), n, &pos);
+		h = p->r[c->i] - (xi[axis] - pos) * n[axis];
+	} else {
+		const double *xj = p->x + 3 * c->j;
+		double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+		h = p->r[c->i] + p->r[c->j] - vec3_norm(d);
+	}
+	return hertz_force(c->Es, c->Rs, h);
+}
+
+int
+fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
+{
+	struct pack *p = s->p;
+	size_t k, n3 = 3 * s->n;
+
+	if (isnan(qs_energy(s, x, NULL, NULL)))
+		return -1;
+	/* the final forces become history lines; contacts_store keeps those still touching */
+	p->nc = 0;
+	for (k = 0; k < f->n; k++) {
+		const struct fr_contact *c = &f->c[k];
+		struct pack_contact pc = {c->i, c->j, 0, {c->Q[0], c->Q[1], c->Q[2]}, c->M};
+		if (pack_add_contact(p, &pc))
+			return -1;
+	}
+	memcpy(p->x, x, n3 * sizeof *x);
+	if (contacts_store(p, 1))
+		return -1;
+	memset(x + n3, 0, n3 * sizeof *x);
+	/* the sliding count: the trial force of each reference contact against the limit of
+	 * its normal force now (opened contacts have none) */
+	f->nslide = 0;
+	for (k = 0; k < f->n; k++) {
+		const struct fr_contact *c = &f->c[k];
+		double qlim = (PACK_IS_WALL(c->j) ? p->wall_mu : p->mu) * normal_force_now(p, c);
+		if (qlim > 0 && c->qtrial >= qlim * (1 - 1e-9))
+			f->nslide++;
+	}
+	return 0;
+}

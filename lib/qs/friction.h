@@ -1,0 +1,104 @@
+/* friction: Mindlin-Deresiewicz tangential forces and torsional couples (physics.md §3-6).
+ *
+ * With friction the unknowns of an equilibrium are 6N lengths: the grain centres x (3N) and
+ * the small rotation vectors of the increment times the radius, R_i Omega_i (3N), stored
+ * after the centres.  Rotations are measured from the start of the increment and are zero
+ * there; orientation itself is not tracked (spheres), the history forces carry the memory.
+ *
+ * An increment starts (fr_begin) from a committed equilibrium, the reference configuration:
+ * every contact touching there gets its tangent plane T = I - n n, lever arms R_ij and R_ji,
+ * stick stiffness k*, sliding limit Q_max = mu P, torsional stiffness k*_t and M_max, all from
+ * the reference overlap and frozen for the increment (F, after (7b)), and its history force
+ * Q0 turned into that tangent plane with its magnitude kept (Q^p) and clamped to Q_max.
+ * Contacts that form during the increment carry only their Hertz normal force (P0 = 0 at the
+ * reference).  The tangential and torsional terms of a reference contact stay in Pi for the
+ * whole increment, even if that contact opens: the linearised increment keeps Pi one smooth
+ * potential; the history of a contact that has opened is dropped at the commit.
+ *
+ * Sliding rule: FR_RETURN_MAP (default) clamps the trial force q = Q^p - k* u_s to the disc
+ * |Q| <= Q_max, which has the exact potential phi_s = (g(|q|) - |Q^p|^2) / (2 k*),
+ * grad phi_s = -Q; FR_PAPER reduces the stiffness so that |Q^p - k u_s| = Q_max (F (6)-(7b)
+ * corrected as physics.md §4 says), whose "energy" -Q^p.u_s + k |u_s|^2 / 2 (F (17a)) is not an
+ * antiderivative of the force: the minimisers use the gradient, so that rule still works, but
+ * an energy-based stopping test (eps1) means little with it.  Torsion uses the
+ * one-dimensional clamp in both rules (they coincide in 1-D).
+ *
+ * fr_commit ends an increment: the final forces become the history (P0, Q0, M0) of every
+ * contact that still touches, new contacts get P0 with Q0 = M0 = 0, opened ones are dropped,
+ * and the pack's positions are updated.  The committed forces are the equilibrium's, exactly:
+ * a contact whose normal force fell during the increment can end it with |Q0| a little above
+ * mu P0 (the limit was frozen at the start); it slips to the new limit when the next
+ * increment starts (fr_begin's clamp), as the linearised model has it. */
+#ifndef QUSGM_FRICTION_H
+#define QUSGM_FRICTION_H
+
+#include "qs/functional.h"
+#include "pack/pack.h"
+
+enum fr_rule { FR_RETURN_MAP, FR_PAPER };
+
+struct fr_contact {
+	size_t i;
+	long j;			/* grain index or PACK_WALL(w) */
+	double n[3];		/* reference normal on i, from j to i */
+	double li[3], lj[3];	/* lever arms centre -> contact of i and of j (R_ij, R_ji) */
+	double k, qmax, qp[3];	/* stick stiffness, sliding limit, reference force on i */
+	double kt, mmax, mp;	/* torsion: stiffness, limit, reference couple on i about n */
+	double Q[3], M;		/* force and couple on i at the last evaluation */
+	double qtrial;		/* |Q^p - k* u_s| at the last evaluation (the elastic trial) */
+	double Es, Rs;		/* Hertz E* and R* of the pair (for its normal force at the commit) */
+};
+
+struct qs_friction {
+	size_t n, cap;
+	struct fr_contact *c;
+	double *x0;		/* reference centres (3N) */
+	size_t ngrains;
+	enum fr_rule rule;
+	/* from fr_begin: history lines that matched no touching contact (dropped), and
+	 * reference forces clamped to the sliding limit (|Q0| > Q_max or |M0| > M_max) with the
+	 * largest excess |Q0| / Q_max - 1 */
+	size_t stale, clamped;
+	double clamp_excess;
+	/* from fr_commit: the contacts that slide by the end-of-increment test (see fr_commit) */
+	size_t nslide;
+};
+
+void fr_init(struct qs_friction *f, enum fr_rule rule);
+void fr_free(struct qs_friction *f);
+/* Parse "return-map" / "paper"; 0 or -1. */
+int fr_rule_parse(const char *name, enum fr_rule *rule);
+const char *fr_rule_name(enum fr_rule rule);
+
+/* Check a pack's history against its friction coefficients.  A committed line can exceed its
+ * sliding limit mu P0 by the slip its normal force's fall in the last increment calls for
+ * (see fr_commit), which is small against the limit of an average contact; a line with
+ * |Q0| > mu (P0 + P_mean) (or |M0| above M_max(P0) + M_max(P_mean)) cannot come from a
+ * commit and is refused as corrupt.  Lines below that are repaired by fr_begin's clamp.
+ * Returns 0, or -1 with msg_seterr naming the first offending contact by grain ids. */
+int fr_check_history(const struct pack *p);
+
+/* Start an increment from the pack's positions p->x and contact history p->c (friction
+ * coefficients p->mu, p->wall_mu).  Attaches f to s: qs_energy then works on 6N unknowns.
+ * The caller's x must hold p->x followed by 3N zeros.  0 or -1. */
+int fr_begin(struct qs_friction *f, struct qs_system *s);
+/* Pi's frictional part at x (6N) and its gradient added into g (6N) unless NULL; updates
+ * each contact's Q and M.  Called by qs_energy. */
+double fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g);
+/* End the increment at x (6N): evaluate, write the history into p->c, move p->x to x, zero the
+ * rotations in x.  Counts the sliding contacts of the increment into f->nslide: those whose
+ * elastic trial force reaches the limit of their normal force at the end, |Q^p - k* u_s| >=
+ * mu P_end.  That is the Mindlin-Deresiewicz test with the limit the contact has when the
+ * increment ends; |Q| = Q_max with the limit frozen at the start (fr_sliding) also counts a
+ * contact whose normal force rose faster than its tangential load (it sticks under the
+ * updated limit): under uniaxial compression that reported half the contacts of a pack as
+ * sliding.  0 or -1. */
+int fr_commit(struct qs_friction *f, struct qs_system *s, double *x);
+/* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
+ * |Q| >= Q_max (1 - 1e-9)). */
+size_t fr_sliding(const struct qs_friction *f);
+/* Add each grain's frictional stiffness (k* and k*_t / R_i^2, in N/m per unit of the scaled
+ * unknowns) into k (N entries): the minimisers' bound on the Hessian. */
+void fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double *k);
+
+#endif

@@ -1,0 +1,79 @@
+/* functional: the total potential energy Pi of a pack and its exact gradient (physics.md §2, §6).
+ *
+ * Frictionless part: Pi(x) = sum over grain pairs and grain-wall pairs in contact of the Hertz
+ * energy U(h) = 8/15 E* sqrt(R*) h^(5/2), at grain centres x (3N, metres) inside the walls
+ * of the current box; dPi/dx_i = -F_i, the sum of contact forces on grain i.  The constant
+ * U(h0) of the papers' Pi is left out: minimisers only need differences.  Contacts are found
+ * through a Verlet list that is rebuilt whenever it may have gone stale, so no contact is
+ * missed however far the grains move between evaluations. */
+#ifndef QUSGM_FUNCTIONAL_H
+#define QUSGM_FUNCTIONAL_H
+
+#include "contact/nlist.h"
+#include "pack/pack.h"
+
+/* Default floor of a grain's largest contact force in the residual, relative to the mean
+ * normal contact force (see qs_residual); packinfo and the minimisers share it. */
+#define QS_RESIDUAL_FLOOR 1e-3
+
+struct qs_friction;	/* friction.h */
+
+struct qs_system {
+	struct pack *p;		/* radii, moduli; p->box is the current box */
+	size_t n;
+	size_t dim;		/* unknowns: 3n centres, or 6n with friction (centres, R_i Omega_i) */
+	struct qs_friction *fr;	/* the increment's frictional contacts, or NULL (frictionless) */
+	double *comp;		/* (1 - nu^2) / E per grain (1/Pa) */
+	double wall_comp;
+	double rmin, rmax, skin;
+	struct nlist nl;
+	long evals;		/* energy/gradient evaluations so far */
+	double force_floor;	/* N: see qs_residual */
+	/* from the last evaluation */
+	size_t ncontacts;
+	double sum_force;	/* sum of normal contact forces (N) */
+	double wall_force[NWALLS];	/* normal force on each wall (N) */
+};
+
+/* skin: Verlet skin over the smallest radius (0.3 is a good default). 0 or -1. */
+int qs_init(struct qs_system *s, struct pack *p, double skin);
+void qs_free(struct qs_system *s);
+
+/* Pi at x (s->dim unknowns); gradient into g (s->dim) unless NULL; per-grain largest contact force into fmax (n)
+ * unless NULL.  Returns NAN when the neighbour list cannot be built (slot set). */
+double qs_energy(struct qs_system *s, const double *x, double *g, double *fmax);
+
+/* Residual of a gradient: the largest |F_i| / (largest contact force on i) over grains with
+ * contacts (with friction, the larger of |F_i| and |M_i| / R_i), and the mean unbalanced-force ratio mean|F_i| / mean contact force.  A grain's
+ * largest contact force is floored at floor_rel times the mean contact force and at
+ * s->force_floor (N): a grain that carries almost nothing (a rattler losing its last
+ * contact) could otherwise only satisfy the ratio when that contact has fully opened, which
+ * the minimiser approaches asymptotically (the Hertz force vanishes as h^(3/2)). */
+void qs_residual(const struct qs_system *s, const double *g, const double *fmax, double floor_rel,
+    double *res_max, double *res_mean);
+
+/* Release the grains that frictionless equilibrium cannot hold: a grain with 1, 2 or 3
+ * contacts (grains and walls) whose normals are linearly independent balances only when
+ * every one of those contacts carries zero force, i.e. once they have opened.  The
+ * minimiser gets there only asymptotically, because a Hertz contact's stiffness vanishes as
+ * h^(1/2); this moves each such grain, in index order, by the smallest displacement u with
+ * u.n_c = h_c for each of its contacts c (overlap h_c, normal n_c pointing at the grain), so
+ * that they all just touch.  A move is skipped when it would open a new overlap, when the
+ * normals are nearly dependent (a grain squeezed between two opposite contacts can be in
+ * equilibrium) or when it is longer than a quarter of the Verlet skin.  Frictionless
+ * systems only (with friction a grain's state carries tangential history): returns the
+ * number of grains moved, 0 with friction, -1 on error (message set). */
+long qs_release_unbraced(struct qs_system *s, double *x);
+
+/* Wall stresses of the last evaluation: normal force on the two walls of each axis,
+ * averaged, over the current wall area (Pa, compression positive). */
+void qs_wall_stress(const struct qs_system *s, double sig[3]);
+
+
+
+/* After an evaluation at x: contacts per grain (grain and wall) into counts (n). */
+void qs_coordination(const struct qs_system *s, const double *x, unsigned *counts);
+/* Radii changed (grains grown): rebuild the neighbour list at the next evaluation. */
+void qs_radii_changed(struct qs_system *s);
+
+#endif

@@ -1,0 +1,87 @@
+/* loading: moving the walls of a pack and carrying the grains along (physics.md §7-8).
+ *
+ * The loader (struct loader) is what frictionalize and loadtest share: it holds a pack and
+ * its functional, and each loader_step applies one strain increment, finds the equilibrium
+ * (6N unknowns with friction, 3N without), commits the contact history into the pack and
+ * measures the new state.  Everything an increment depends on is in the pack (positions,
+ * box, reference box, contact history; rotations restart from zero), and the neighbour
+ * lists sum in a fixed order, so a test split into two runs through a written pack repeats
+ * the rows of one run to the last digit.
+ *
+ * Strains are compression-positive: eps_l = (L_l^ref - L_l) / L_l^ref.  A strain
+ * increment moves both walls of an axis symmetrically about the box centre; the grains
+ * follow affinely, which is the papers' initial guess (F (A1)) for the next equilibrium.
+ * An increment can be applied in sub-increments, k_inc minimiser iterations apart, with the
+ * last one minimised to convergence. */
+#ifndef QUSGM_LOADING_H
+#define QUSGM_LOADING_H
+
+#include "qs/friction.h"
+#include "qs/minimize.h"
+#include "pack/pack.h"
+
+/* Scale the box by (1 - de[a]) on each axis about its centre, and x affinely. */
+void load_strain_box(double box[6], double *x, size_t n, const double de[3]);
+
+/* Apply the strain increment de in nsub sub-increments and minimise; x is updated, and the
+ * box of s->p.  Returns the status of the last minimisation; rep sums iterations. */
+int load_increment(struct qs_system *s, double *x, const double de[3], int nsub, long k_inc,
+    const struct qs_min_params *mp, struct qs_min_report *rep);
+
+/* Current strain of box against the reference box (compression positive). */
+void load_strain(const double box[6], const double refbox[6], double eps[3]);
+
+struct load_params {
+	int friction;		/* 0: frictionless (3N unknowns, no history kept) */
+	enum fr_rule rule;
+	int nsub;		/* sub-increments per increment (affine guess each) */
+	long k_inc;		/* minimiser iterations between sub-increments */
+	double skin;		/* Verlet skin / smallest radius */
+	struct qs_min_params min;
+};
+
+/* The state after an increment (or at the start). */
+struct load_row {
+	long inc;
+	int seg;		/* path segment (1, 2, ...; 0 for the starting state) */
+	double eps[3];		/* strain against the reference box, compression positive */
+	double sig[3];		/* wall stresses (Pa) */
+	double sig_lw[6];	/* volume-averaged (Love-Weber) stress xx yy zz xy xz yz (Pa) */
+	double sigma_c;		/* tr(sig)/3 */
+	double porosity, coordination, sliding_ratio;
+	long iterations, evals;
+	double res_max, res_mean;
+	int status;		/* the minimiser's: 0 converged, 1 iteration limit */
+};
+
+struct loader {
+	struct pack *p;
+	struct load_params lp;
+	struct qs_system s;
+	struct qs_friction f;
+	double *x;		/* 6N: centres then R_i Omega_i */
+	long inc;
+};
+
+void load_params_default(struct load_params *lp);
+/* Start loading p (which must have a reference box).  0 or -1. */
+int loader_open(struct loader *L, struct pack *p, const struct load_params *lp);
+/* The current state of the pack, as a row with inc = the increments so far; the residual is
+ * that of the pack as it stands (its history forces included).  0 or -1. */
+int loader_measure(struct loader *L, struct load_row *row);
+/* One increment de of the strain against the reference box (compression positive per axis:
+ * each box length shrinks by de times its reference length); row receives the new state.  Returns
+ * -1 on error, else the minimiser's status (1: iteration limit; the pack holds the state
+ * reached, committed). */
+int loader_step(struct loader *L, const double de[3], struct load_row *row);
+void loader_close(struct loader *L);
+
+/* The rows as TSV (share/doc/tables.md): inc, seg, strains, wall stresses, Love-Weber normal
+ * stresses, sigma_c, the mean lateral stress sig_lat (of the two axes other than axis), porosity,
+ * coordination, sliding_ratio, iterations, residual, res_mean; with_moduli adds K and G of
+ * the increment (NaN where the increment does not determine them, and on the first row). */
+#include <stdio.h>
+void load_table_header(FILE *fp, int with_moduli);
+void load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, double K, double G);
+
+#endif

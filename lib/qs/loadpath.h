@@ -1,0 +1,76 @@
+/* loadpath: the loading paths of loadtest, their text form and the driver that walks them
+ * (physics.md §8; share/man/man1/loadtest.1 documents the grammar).
+ *
+ * A path is one or more segments separated by ';'.  A segment is a kind followed by
+ * key=value settings, separated by spaces:
+ *
+ *     uniaxial  [axis=z]                 strain along one axis, the others fixed
+ *     isotropic                          the same strain on the three axes
+ *     triaxial  [axis=z] [lateral=R]     axial strain, both lateral strains R times it
+ *     triaxial  [axis=z] hold=PA|hold    axial strain; the lateral walls keep the mean lateral
+ *                                        stress at PA (hold: at its value when the segment starts)
+ *     polyaxial ratio=A:B:C              strain increments in the proportions A:B:C (x:y:z)
+ *
+ * and, for any kind: step=D (strain per increment along the axis, or per axis for isotropic,
+ * or of the largest ratio; negative unloads), then the stop: steps=N, to-stress=PA (sigma_c
+ * reaches PA: from below when loading, from above when unloading), to-strain=E (the
+ * controlling strain, measured from the reference box, reaches E).  Missing settings come
+ * from the defaults (the tool's --strain-step, --steps, --to-stress, --axis).
+ * Example: a loading-unloading cycle of a uniaxial test,
+ *     "uniaxial to-stress=20e6; uniaxial step=-1e-4 to-stress=5e6"
+ *
+ * Constant lateral stress is held by a servo: each increment's lateral strain is predicted
+ * from the segment's own increments so far (d sig_lat = A de_axial + B de_lat, A from the
+ * first, uniaxial increment, B learnt by damped secants) so as to bring the mean lateral stress
+ * back to its target; the rows report the lateral stress reached. */
+#ifndef QUSGM_LOADPATH_H
+#define QUSGM_LOADPATH_H
+
+#include "qs/loading.h"
+
+enum path_kind { PATH_UNIAXIAL, PATH_ISOTROPIC, PATH_TRIAXIAL, PATH_POLYAXIAL };
+
+struct path_seg {
+	enum path_kind kind;
+	int axis;
+	double step;		/* NaN: default */
+	double ratio[3];	/* strain increment per unit of step, per axis */
+	int hold;		/* triaxial: 0 strain ratio, 1 hold a given stress, 2 hold the start stress */
+	double hold_stress;
+	long steps;		/* 0: none */
+	double to_stress, to_strain;	/* NaN: none */
+};
+
+struct load_path {
+	size_t n;
+	struct path_seg seg[64];
+};
+
+struct path_defaults {
+	double step;
+	long steps;
+	double to_stress, to_strain;
+	int axis;
+};
+
+/* Parse spec into path with the defaults filled in; every segment must have a stop.
+ * 0, or -1 with msg_seterr naming the segment and the word that does not parse. */
+int path_parse(const char *spec, const struct path_defaults *def, struct load_path *path);
+const char *path_kind_name(enum path_kind k);
+
+struct path_limits {
+	long max_steps;		/* per segment */
+	double max_strain;	/* |strain| on any axis */
+};
+
+/* Called with each row: segment index (-1 for the starting row) and the row. */
+typedef int (*path_row_fn)(int seg, const struct load_row *row, void *ctx);
+
+/* Walk the path from the loader's current state.  Returns 0 when every segment reached its
+ * stop; 1 when a minimisation hit its iteration limit, 2 when a segment ran into a limit
+ * (max_steps, max_strain) before its stress or strain target, 3 when fn asked to stop (nonzero);
+ * -1 on error (msg_seterr says which). */
+int path_run(struct loader *L, const struct load_path *path, const struct path_limits *lim, path_row_fn fn,
+    void *ctx);
+
+#endif

@@ -1,0 +1,29 @@
+/* minopts: validation of the shared minimiser options (see minopts.h). */
+#include "qs/minopts.h"
+
+const char *qs_method_arg = "lbfgs";
+
+void
+qs_min_opts_check(struct qs_min_params *mp)
+{
+	if (qs_method_parse(qs_method_arg, &mp->method))
+		cli_usage_error("--method: '%s' is not cg, fire or lbfgs", qs_method_arg);
+	if (!(mp->tol > 0 && mp->tol < 1))
+		cli_usage_error("--tol: must be in (0, 1)");
+	if (!(mp->tol_floor >= 0 && mp->tol_floor <= 1))
+		cli_usage_error("--tol-floor: must be in [0, 1]");
+	if (mp->max_iter < 1)
+		cli_usage_error("--max-iter: must be positive");
+	if (!(mp->cap > 0 && mp->cap <= 0.5))
+		cli_usage_error("--cap: must be in (0, 0.5]");
+	if (mp->k_sd < 1)
+		cli_usage_error("--k-sd: must be positive");
+	if (!(mp->ls_sigma > 0 && mp->ls_sigma < 1))
+		cli_usage_error("--ls-sigma: must be in (0, 1)");
+	if (!(mp->eps1 >= 0) || !(mp->eps2 >= 0))
+		cli_usage_error("--eps1, --eps2: must be non-negative");
+	if (mp->lbfgs_m < 1 || mp->lbfgs_m > 100)
+		cli_usage_error("--lbfgs-m: must be in [1, 100]");
+	if (!(mp->fire_dt > 0 && mp->fire_dt <= 10))
+		cli_usage_error("--fire-dt: must be in (0, 10]");
+}

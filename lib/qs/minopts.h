@@ -1,0 +1,29 @@
+/* minopts: the minimiser's command-line options, shared by every tool that finds
+ * equilibria (densify, frictionalize, loadtest), so that each option has one name, one
+ * help line and one default everywhere.  Use QS_MIN_OPTS(mp) inside a cli_opt table, then
+ * qs_min_opts_check(mp) after cli_parse. */
+#ifndef QUSGM_MINOPTS_H
+#define QUSGM_MINOPTS_H
+
+#include "base/cli.h"
+#include "qs/minimize.h"
+
+extern const char *qs_method_arg;
+
+#define QS_MIN_OPTS(mp)                                                                                      \
+	{"method", 0, CLI_STRING, &qs_method_arg, "NAME", "minimiser: cg (the papers' modified CG), fire or lbfgs", NULL}, \
+	{"tol", 0, CLI_DOUBLE, &(mp).tol, "RATIO", "equilibrium: largest per-grain |F_i| / largest contact force on i", NULL}, \
+	{"tol-floor", 0, CLI_DOUBLE, &(mp).tol_floor, "RATIO", "--tol judges a grain against at least RATIO x the mean contact force", NULL}, \
+	{"max-iter", 0, CLI_LONG, &(mp).max_iter, "N", "iteration limit of one minimisation", NULL},                 \
+	{"cap", 0, CLI_DOUBLE, &(mp).cap, "RATIO", "largest displacement of a grain per iteration / its radius", NULL}, \
+	{"k-sd", 0, CLI_LONG, &(mp).k_sd, "N", "cg: steepest-descent restart every N iterations", NULL},          \
+	{"ls-sigma", 0, CLI_DOUBLE, &(mp).ls_sigma, "S", "cg: line search ends at |dPi/da| <= S |dPi/da(0)|", NULL}, \
+	{"eps1", 0, CLI_DOUBLE, &(mp).eps1, "E", "papers' criterion: stop when Pi falls by less than E |Pi| (0: off)", NULL}, \
+	{"eps2", 0, CLI_DOUBLE, &(mp).eps2, "E", "papers' criterion: stop when |grad Pi|^2 < E N (E R^2)^2 (0: off)", NULL}, \
+	{"fire-dt", 0, CLI_DOUBLE, &(mp).fire_dt, "T", "fire: largest time step / (1/sqrt(stiffness bound))", NULL}, \
+	{"lbfgs-m", 0, CLI_LONG, &(mp).lbfgs_m, "M", "lbfgs: number of stored steps", NULL}
+
+/* Validate the values and resolve --method; reports through cli_usage_error. */
+void qs_min_opts_check(struct qs_min_params *mp);
+
+#endif
