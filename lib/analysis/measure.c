@@ -1,7 +1,6 @@
 /* measure: porosity, coordination, stresses, residual, fabric (see measure.h). */
 #include "analysis/measure.h"
 #include "base/msg.h"
-#include "qs/functional.h"
 #include "base/vec3.h"
 
 #include <math.h>
@@ -60,52 +59,110 @@ measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned c
 	return nr;
 }
 
-/* Lever arm lengths from centres to the contact plane (physics.md §3). */
-static void
-lever_lengths(const struct pack *p, const struct geo_contact *c, double *li, double *lj)
-{
-	double Ri = p->r[c->i], Rj, d = c->d, A2;
+/* The per-grain balance and the sums that measure_pack accumulates over the contacts. */
+struct balance {
+	double *F, *M, *fbig;	/* net force, net moment, largest contact force per grain */
+	const unsigned char *rat;
+	double Psum, fsum;
+	size_t cnr;		/* contact ends on non-rattlers */
+};
 
-	if (PACK_IS_WALL(c->j)) {
-		*li = Ri - c->h;
-		*lj = 0;
-		return;
-	}
-	Rj = p->r[c->j];
-	A2 = (d - Ri + Rj) * (d + Ri - Rj) * (Ri + Rj - d) * (Ri + Rj + d) / (4 * d * d);
-	if (A2 < 0)
-		A2 = 0;
-	*li = sqrt(fmax(Ri * Ri - A2, 0));
-	*lj = sqrt(fmax(Rj * Rj - A2, 0));
+static void
+add_fabric(struct pack_measures *m, const double n[3])
+{
+	m->fabric[0] += n[0] * n[0];
+	m->fabric[1] += n[1] * n[1];
+	m->fabric[2] += n[2] * n[2];
+	m->fabric[3] += n[0] * n[1];
+	m->fabric[4] += n[0] * n[2];
+	m->fabric[5] += n[1] * n[2];
 }
 
-int
-measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m)
+/* Love-Weber: branch (x) force of one contact, compression positive. */
+static void
+add_love_weber(struct pack_measures *m, const double n[3], double l, const double ff[3])
 {
-	unsigned *cnt;
-	unsigned char *rat;
-	double *F, *M, *fbig;
-	double sumr = 0, sumr2 = 0, Psum = 0, fsum = 0, Fsum = 0;
-	size_t k, nsl = 0, nfr = 0, nres = 0, nnr = 0, cnr = 0;
+	m->sig_lw[0] += l * n[0] * ff[0];
+	m->sig_lw[1] += l * n[1] * ff[1];
+	m->sig_lw[2] += l * n[2] * ff[2];
+	m->sig_lw[3] += l * 0.5 * (n[0] * ff[1] + n[1] * ff[0]);
+	m->sig_lw[4] += l * 0.5 * (n[0] * ff[2] + n[2] * ff[0]);
+	m->sig_lw[5] += l * 0.5 * (n[1] * ff[2] + n[2] * ff[1]);
+}
+
+/* Grain g's balance gains force f and, at lever arm arm, the tangential force Q and the
+ * torsional couple tor (along the normal). */
+static void
+add_to_grain(struct balance *b, size_t g, const double f[3], const double arm[3], const double Q[3], const double tor[3],
+    double fm)
+{
+	double t[3];
 	int a;
 
-	memset(m, 0, sizeof *m);
-	m->sliding_ratio = NAN;
-	if (contacts_find(p, gc))
-		return -1;
-	cnt = malloc(p->n * sizeof *cnt);
-	rat = malloc(p->n);
-	F = calloc(3 * p->n, sizeof *F);
-	M = calloc(3 * p->n, sizeof *M);
-	fbig = calloc(p->n, sizeof *fbig);
-	if (!cnt || !rat || !F || !M || !fbig) {
-		free(cnt), free(rat), free(F), free(M), free(fbig);
-		msg_seterr("out of memory");
-		return -1;
+	for (a = 0; a < 3; a++)
+		b->F[3 * g + a] += f[a];
+	vec3_cross(arm, Q, t);
+	for (a = 0; a < 3; a++)
+		b->M[3 * g + a] += t[a] + tor[a];
+	b->fbig[g] = fmax(b->fbig[g], fm);
+}
+
+static void
+measure_contact(const struct pack *p, const struct geo_contact *c, struct pack_measures *m, struct balance *b)
+{
+	int wall = PACK_IS_WALL(c->j), a;
+	double Rmin = wall ? p->r[c->i] : fmin(p->r[c->i], p->r[c->j]);
+	double f[3], Q[3] = {0, 0, 0}, Mt = 0, li, lj, fm, arm[3], tor[3];
+	size_t i = c->i;
+
+	if (wall) {
+		m->contacts_gw++;
+		if (!b->rat[i])
+			b->cnr++;
+	} else {
+		m->contacts_gg++;
+		add_fabric(m, c->n);
+		if (!b->rat[i] && !b->rat[c->j])
+			b->cnr += 2;
 	}
-	m->grains = p->n;
-	m->volume = pack_box_volume(p->box);
-	m->porosity = 1 - pack_grain_volume(p) / m->volume;
+	m->overlap_max = fmax(m->overlap_max, c->h / Rmin);
+	if (c->hist >= 0) {
+		pack_contact_q0_on(&p->c[c->hist], i, Q);
+		Mt = p->c[c->hist].M0;
+	}
+	for (a = 0; a < 3; a++)
+		f[a] = c->P * c->n[a] + Q[a];
+	fm = vec3_norm(f);
+	b->Psum += c->P;
+	b->fsum += fm;
+	m->P_max = fmax(m->P_max, c->P);
+	contact_lever_lengths(wall, p->r[i], wall ? 0 : p->r[c->j], c->d, c->h, &li, &lj);
+	add_love_weber(m, c->n, li + lj, f);
+	if (wall)
+		m->sig_wall[PACK_WALL_INDEX(c->j) / 2] += c->P;
+	/* balance of grain i: force f, moment of Q about the centre plus torsion */
+	for (a = 0; a < 3; a++) {
+		arm[a] = -c->n[a] * li;
+		tor[a] = Mt * c->n[a];
+	}
+	add_to_grain(b, i, f, arm, Q, tor, fm);
+	if (!wall) {
+		double mf[3], mQ[3] = {-Q[0], -Q[1], -Q[2]};
+		for (a = 0; a < 3; a++) {
+			mf[a] = -f[a];
+			arm[a] = c->n[a] * lj;
+			tor[a] = -Mt * c->n[a];
+		}
+		add_to_grain(b, (size_t)c->j, mf, arm, mQ, tor, fm);
+	}
+}
+
+static void
+measure_radii(const struct pack *p, struct pack_measures *m)
+{
+	double sumr = 0, sumr2 = 0;
+	size_t k;
+
 	m->r_min = INFINITY;
 	for (k = 0; k < p->n; k++) {
 		sumr += p->r[k];
@@ -115,121 +172,61 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	}
 	m->r_mean = sumr / p->n;
 	m->r_std = p->n > 1 ? sqrt(fmax(sumr2 - sumr * sumr / p->n, 0) / (p->n - 1)) : 0;
+}
 
-	measure_coordination(p, gc, cnt);
-	m->rattlers = measure_rattlers(p, gc, rat);
+static void
+measure_fabric(struct pack_measures *m)
+{
+	double d[6], dd;
+	int a;
+
+	if (!m->contacts_gg)
+		return;
+	for (a = 0; a < 6; a++)
+		m->fabric[a] /= m->contacts_gg;
+	memcpy(d, m->fabric, sizeof d);
+	for (a = 0; a < 3; a++)
+		d[a] -= 1.0 / 3.0;
+	dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2 * (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]);
+	m->fabric_anisotropy = 7.5 * sqrt(1.5 * dd);
+}
+
+/* Stresses, mean force and the residual, once every contact is summed. */
+static void
+measure_forces(const struct pack *p, size_t nct, const struct balance *b, struct pack_measures *m)
+{
+	double Fsum = 0;
+	size_t k, nres = 0;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		double area = pack_box_length(p->box, (a + 1) % 3) * pack_box_length(p->box, (a + 2) % 3);
+		m->sig_wall[a] /= 2 * area;
+	}
+	m->sigma_c = (m->sig_wall[0] + m->sig_wall[1] + m->sig_wall[2]) / 3;
+	for (a = 0; a < 6; a++)
+		m->sig_lw[a] /= m->volume;
+	m->P_mean = b->Psum / nct;
 	for (k = 0; k < p->n; k++) {
-		m->under4 += cnt[k] < 4;
-		m->coordination += cnt[k];
+		double fr, mr, floor_ = MEASURE_RESIDUAL_FLOOR * m->P_mean;
+		if (!(b->fbig[k] > 0))
+			continue;
+		fr = vec3_norm(b->F + 3 * k);
+		mr = vec3_norm(b->M + 3 * k) / p->r[k];
+		m->residual_strict = fmax(m->residual_strict, fmax(fr, mr) / b->fbig[k]);
+		m->residual_max = fmax(m->residual_max, fmax(fr, mr) / fmax(b->fbig[k], floor_));
+		Fsum += fr;
+		nres++;
 	}
-	m->coordination /= p->n;
+	m->residual_mean = nres ? (Fsum / nres) / (b->fsum / nct) : 0;
+}
 
-	for (k = 0; k < gc->n; k++) {
-		const struct geo_contact *c = &gc->c[k];
-		double Rmin = PACK_IS_WALL(c->j) ? p->r[c->i] : fmin(p->r[c->i], p->r[c->j]);
-		double f[3], Q[3] = {0, 0, 0}, Mt = 0, li, lj, t[3], fm;
-		size_t i = c->i;
+/* The sliding ratio of the history: lines at their limit mu P0, over the contacts. */
+static void
+measure_sliding(const struct pack *p, const struct geo_contacts *gc, struct pack_measures *m)
+{
+	size_t k, nsl = 0, nfr = 0;
 
-		if (PACK_IS_WALL(c->j)) {
-			m->contacts_gw++;
-		} else {
-			m->contacts_gg++;
-			m->fabric[0] += c->n[0] * c->n[0];
-			m->fabric[1] += c->n[1] * c->n[1];
-			m->fabric[2] += c->n[2] * c->n[2];
-			m->fabric[3] += c->n[0] * c->n[1];
-			m->fabric[4] += c->n[0] * c->n[2];
-			m->fabric[5] += c->n[1] * c->n[2];
-			if (!rat[i] && !rat[c->j])
-				cnr += 2;
-		}
-		if (PACK_IS_WALL(c->j) && !rat[i])
-			cnr++;
-		m->overlap_max = fmax(m->overlap_max, c->h / Rmin);
-		if (c->hist >= 0) {
-			memcpy(Q, p->c[c->hist].Q0, sizeof Q);
-			Mt = p->c[c->hist].M0;
-		}
-		for (a = 0; a < 3; a++)
-			f[a] = c->P * c->n[a] + Q[a];
-		fm = vec3_norm(f);
-		Psum += c->P;
-		fsum += fm;
-		m->P_max = fmax(m->P_max, c->P);
-		lever_lengths(p, c, &li, &lj);
-		/* Love-Weber: sum over contacts of branch (x) force, compression positive */
-		{
-			double l = li + lj, ff[3];
-			for (a = 0; a < 3; a++)
-				ff[a] = c->P * c->n[a] + Q[a];
-			m->sig_lw[0] += l * c->n[0] * ff[0];
-			m->sig_lw[1] += l * c->n[1] * ff[1];
-			m->sig_lw[2] += l * c->n[2] * ff[2];
-			m->sig_lw[3] += l * 0.5 * (c->n[0] * ff[1] + c->n[1] * ff[0]);
-			m->sig_lw[4] += l * 0.5 * (c->n[0] * ff[2] + c->n[2] * ff[0]);
-			m->sig_lw[5] += l * 0.5 * (c->n[1] * ff[2] + c->n[2] * ff[1]);
-		}
-		if (PACK_IS_WALL(c->j))
-			m->sig_wall[PACK_WALL_INDEX(c->j) / 2] += c->P;
-		/* balance of grain i: force f, moment of Q about the centre plus torsion */
-		for (a = 0; a < 3; a++)
-			F[3 * i + a] += f[a];
-		{
-			double arm[3] = {-c->n[0] * li, -c->n[1] * li, -c->n[2] * li};
-			vec3_cross(arm, Q, t);
-			for (a = 0; a < 3; a++)
-				M[3 * i + a] += t[a] + Mt * c->n[a];
-		}
-		fbig[i] = fmax(fbig[i], fm);
-		if (!PACK_IS_WALL(c->j)) {
-			size_t j = (size_t)c->j;
-			double arm[3] = {c->n[0] * lj, c->n[1] * lj, c->n[2] * lj}, mQ[3] = {-Q[0], -Q[1], -Q[2]};
-			for (a = 0; a < 3; a++)
-				F[3 * j + a] -= f[a];
-			vec3_cross(arm, mQ, t);
-			for (a = 0; a < 3; a++)
-				M[3 * j + a] += t[a] - Mt * c->n[a];
-			fbig[j] = fmax(fbig[j], fm);
-		}
-	}
-	for (k = 0; k < p->n; k++)
-		if (!rat[k])
-			nnr++;
-	m->coordination_nr = nnr ? (double)cnr / nnr : 0;
-	if (m->contacts_gg) {
-		double d[6], dd;
-		for (a = 0; a < 6; a++)
-			m->fabric[a] /= m->contacts_gg;
-		memcpy(d, m->fabric, sizeof d);
-		for (a = 0; a < 3; a++)
-			d[a] -= 1.0 / 3.0;
-		dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2 * (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]);
-		m->fabric_anisotropy = 7.5 * sqrt(1.5 * dd);
-	}
-	m->has_forces = gc->n > 0 && m->P_max > 0;
-	if (m->has_forces) {
-		size_t nct = gc->n;
-		for (a = 0; a < 3; a++) {
-			double area = pack_box_length(p->box, (a + 1) % 3) * pack_box_length(p->box, (a + 2) % 3);
-			m->sig_wall[a] /= 2 * area;
-		}
-		m->sigma_c = (m->sig_wall[0] + m->sig_wall[1] + m->sig_wall[2]) / 3;
-		for (a = 0; a < 6; a++)
-			m->sig_lw[a] /= m->volume;
-		m->P_mean = Psum / nct;
-		for (k = 0; k < p->n; k++) {
-			double fr, mr, floor_ = QS_RESIDUAL_FLOOR * m->P_mean;
-			if (!(fbig[k] > 0))
-				continue;
-			fr = vec3_norm(F + 3 * k);
-			mr = vec3_norm(M + 3 * k) / p->r[k];
-			m->residual_strict = fmax(m->residual_strict, fmax(fr, mr) / fbig[k]);
-			m->residual_max = fmax(m->residual_max, fmax(fr, mr) / fmax(fbig[k], floor_));
-			Fsum += fr;
-			nres++;
-		}
-		m->residual_mean = nres ? (Fsum / nres) / (fsum / nct) : 0;
-	}
 	m->history = p->nc;
 	for (k = 0; k < gc->n; k++)
 		if (gc->c[k].hist >= 0) {
@@ -242,6 +239,54 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	m->stale_history = p->nc - nfr;
 	if (p->nc > 0)
 		m->sliding_ratio = gc->n ? (double)nsl / gc->n : 0;
-	free(cnt), free(rat), free(F), free(M), free(fbig);
+}
+
+int
+measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m)
+{
+	unsigned *cnt;
+	unsigned char *rat;
+	struct balance b;
+	size_t k, nnr = 0;
+
+	memset(m, 0, sizeof *m);
+	memset(&b, 0, sizeof b);
+	m->sliding_ratio = NAN;
+	if (contacts_find(p, gc))
+		return -1;
+	cnt = malloc(p->n * sizeof *cnt);
+	rat = malloc(p->n);
+	b.F = calloc(3 * p->n, sizeof *b.F);
+	b.M = calloc(3 * p->n, sizeof *b.M);
+	b.fbig = calloc(p->n, sizeof *b.fbig);
+	if (!cnt || !rat || !b.F || !b.M || !b.fbig) {
+		free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	m->grains = p->n;
+	m->volume = pack_box_volume(p->box);
+	m->porosity = 1 - pack_grain_volume(p) / m->volume;
+	measure_radii(p, m);
+	measure_coordination(p, gc, cnt);
+	m->rattlers = measure_rattlers(p, gc, rat);
+	for (k = 0; k < p->n; k++) {
+		m->under4 += cnt[k] < 4;
+		m->coordination += cnt[k];
+	}
+	m->coordination /= p->n;
+	b.rat = rat;
+	for (k = 0; k < gc->n; k++)
+		measure_contact(p, &gc->c[k], m, &b);
+	for (k = 0; k < p->n; k++)
+		if (!rat[k])
+			nnr++;
+	m->coordination_nr = nnr ? (double)b.cnr / nnr : 0;
+	measure_fabric(m);
+	m->has_forces = gc->n > 0 && m->P_max > 0;
+	if (m->has_forces)
+		measure_forces(p, gc->n, &b, m);
+	measure_sliding(p, gc, m);
+	free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig);
 	return 0;
 }

@@ -7,7 +7,7 @@
  * wall stresses (normal contact forces on the two walls of an axis, averaged, over the wall
  * area), the volume-averaged (Love-Weber) stress, normal-force statistics, the force-balance
  * residual (largest per-grain |F_i| / largest contact force on i, that force floored at
- * QS_RESIDUAL_FLOOR times the mean normal contact force as the minimisers do (functional.h;
+ * MEASURE_RESIDUAL_FLOOR times the mean normal contact force as the minimisers do (functional.h;
  * residual_strict has no floor), with moments |M_i|/R_i
  * counted the same way, and the mean unbalanced-force ratio mean|F_i| / mean|f_c|), the
  * sliding ratio from the contact history, and the fabric tensor <n n> of grain-grain
@@ -17,6 +17,10 @@
 
 #include "contact/contacts.h"
 #include "pack/pack.h"
+
+/* Floor of a grain's largest contact force in the residual, relative to the mean normal
+ * contact force: packinfo and the minimisers share it (qs/functional.h, qs_residual). */
+#define MEASURE_RESIDUAL_FLOOR 1e-3
 
 struct pack_measures {
 	size_t grains, contacts_gg, contacts_gw, under4, rattlers, history, stale_history;

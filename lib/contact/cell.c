@@ -27,11 +27,31 @@ clampi(long v, int n)
 	return v < 0 ? 0 : v >= n ? n - 1 : (int)v;
 }
 
+/* The cell index of coordinate v along axis a: clamped into the grid, or wrapped on a
+ * periodic axis. */
+static int
+cell_coord(const struct cell_grid *g, int a, double v)
+{
+	long c = (long)floor((v - g->lo[a]) * g->inv[a]);
+
+	if (g->periodic[a]) {
+		c %= g->nc[a];
+		return (int)(c < 0 ? c + g->nc[a] : c);
+	}
+	return clampi(c, g->nc[a]);
+}
+
 int
-cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], const double hi[3], double edge)
+cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], const double hi[3], double edge,
+    const int *periodic)
 {
 	size_t ncells = 1, k;
 	int a;
+
+	for (a = 0; a < 3; a++) {
+		g->periodic[a] = periodic && periodic[a];
+		g->len[a] = hi[a] - lo[a];
+	}
 
 	for (;;) {
 		ncells = 1;
@@ -53,6 +73,12 @@ cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], c
 			break;
 		edge *= 1.25;
 	}
+	for (a = 0; a < 3; a++)
+		if (g->periodic[a] && g->nc[a] < 3) {
+			msg_seterr("the box is too short along periodic axis %c (%.6g m) for grains of this size: it must "
+			    "hold three interaction distances", "xyz"[a], g->len[a]);
+			return -1;
+		}
 	if (ncells != g->ncells || !g->start) {
 		free(g->start);
 		g->start = malloc((ncells + 1) * sizeof *g->start);
@@ -74,7 +100,7 @@ cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], c
 	for (k = 0; k < n; k++) {
 		int c[3];
 		for (a = 0; a < 3; a++)
-			c[a] = clampi((long)floor((x[3 * k + a] - g->lo[a]) * g->inv[a]), g->nc[a]);
+			c[a] = cell_coord(g, a, x[3 * k + a]);
 		g->cell_of[k] = ((size_t)c[2] * (size_t)g->nc[1] + (size_t)c[1]) * (size_t)g->nc[0] + (size_t)c[0];
 		g->start[g->cell_of[k] + 1]++;
 	}
@@ -94,12 +120,22 @@ cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], c
 	return 0;
 }
 
+static void
+min_image(const struct cell_grid *g, double d[3])
+{
+	int a;
+
+	for (a = 0; a < 3; a++)
+		if (g->periodic[a])
+			d[a] -= g->len[a] * nearbyint(d[a] / g->len[a]);
+}
+
 long
 cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, double skin, cell_pair_fn fn,
     void *ctx)
 {
 	long visited = 0;
-	int cx, cy, cz;
+	int cx, cy, cz, any_periodic = g->periodic[0] || g->periodic[1] || g->periodic[2];
 	int nx = g->nc[0], ny = g->nc[1], nz = g->nc[2];
 
 	for (cz = 0; cz < nz; cz++)
@@ -127,6 +163,8 @@ cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, doub
 									d[0] = x[3 * i] - x[3 * j];
 									d[1] = x[3 * i + 1] - x[3 * j + 1];
 									d[2] = x[3 * i + 2] - x[3 * j + 2];
+									if (any_periodic)
+										min_image(g, d);
 									d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 									cut = r[i] + r[j] + skin;
 									if (d2 >= cut * cut)

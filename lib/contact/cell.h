@@ -13,6 +13,8 @@
 
 struct cell_grid {
 	double lo[3], inv[3];	/* origin and 1/cell edge per axis */
+	int periodic[3];	/* wrap along this axis: cells, and branch vectors to the nearest image */
+	double len[3];		/* box lengths (the periods) */
 	int nc[3];		/* cells per axis */
 	size_t ncells;
 	size_t *start;		/* ncells + 1 offsets into idx */
@@ -23,12 +25,15 @@ struct cell_grid {
 
 void cell_init(struct cell_grid *g);
 void cell_free(struct cell_grid *g);
-/* Bin n points x[3n] in the box [lo, hi] with cells no smaller than edge. 0 on success. */
+/* Bin n points x[3n] in the box [lo, hi] with cells no smaller than edge; periodic (3 flags,
+ * or NULL) wraps the axes where it is set, and such an axis must hold at least three cells
+ * (a box length of three interaction distances), so that no pair is met twice.  0 on
+ * success, -1 with msg_seterr. */
 int cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], const double hi[3],
-    double edge);
+    double edge, const int *periodic);
 
 /* Calls fn(i, j, ctx) once for every pair i < j whose centres are closer than cut(i, j),
- * where cut = r_i + r_j + skin.  Returns the number of pairs visited, or -1 on fn error. */
+ * where cut = r_i + r_j + skin, with dx = x_i - x_j (its nearest image on periodic axes).  Returns the number of pairs visited, or -1 on fn error. */
 typedef int (*cell_pair_fn)(size_t i, size_t j, double dx[3], double d2, void *ctx);
 long cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, double skin,
     cell_pair_fn fn, void *ctx);

@@ -1,6 +1,5 @@
 /* contacts: geometric contact detection (see contacts.h). */
 #include "contact/contacts.h"
-#include "contact/cell.h"
 #include "contact/hertz.h"
 #include "base/msg.h"
 
@@ -53,52 +52,206 @@ contacts_moduli(const struct pack *p, const struct geo_contact *c, double *Es, d
 	}
 }
 
+int
+contact_enum_init(struct contact_enum *e, size_t n, const double *r, const double *lo, const double *hi,
+    const int *periodic, double skin, unsigned hsize)
+{
+	size_t i;
+	int a;
+
+	memset(e, 0, sizeof *e);
+	e->n = n;
+	e->r = r;
+	e->lo = lo;
+	e->hi = hi;
+	for (a = 0; a < 3; a++) {
+		e->periodic[a] = periodic && periodic[a];
+		e->any_periodic |= e->periodic[a];
+	}
+	for (i = 0; i < n; i++)
+		e->rmax = fmax(e->rmax, r[i]);
+	e->skin = skin;
+	e->hsize = hsize;
+	nlist_init(&e->nl);
+	nlist_init(&e->prev);
+	if (hsize) {
+		e->hwall = calloc((n ? n : 1) * NWALLS * hsize, sizeof *e->hwall);
+		if (!e->hwall) {
+			msg_seterr("out of memory for the contact history");
+			return -1;
+		}
+	}
+	return 0;
+}
+
 void
-contacts_wall_plane(const struct pack *p, int w, double n[3], double *pos)
+contact_enum_free(struct contact_enum *e)
 {
-	int axis = w / 2, high = w % 2;
-
-	n[0] = n[1] = n[2] = 0;
-	n[axis] = high ? -1.0 : 1.0;
-	*pos = p->box[axis + 3 * high];
+	nlist_free(&e->nl);
+	nlist_free(&e->prev);
+	free(e->hpair[0]), free(e->hpair[1]), free(e->hwall);
+	free(e->full_first), free(e->full_nbr);
+	memset(e, 0, sizeof *e);
 }
 
-struct find_ctx {
-	const struct pack *p;
-	struct geo_contacts *gc;
-};
-
-static int
-on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
+void
+contact_enum_radii_changed(struct contact_enum *e)
 {
-	struct find_ctx *ctx = vctx;
-	const struct pack *p = ctx->p;
-	struct geo_contact c;
-	double d = sqrt(d2), Es, Rs;
+	size_t i;
 
-	c.i = i;
-	c.j = (long)j;
-	c.h = p->r[i] + p->r[j] - d;
-	if (!(c.h > 0) || d == 0)
+	e->rmax = 0;
+	for (i = 0; i < e->n; i++)
+		e->rmax = fmax(e->rmax, e->r[i]);
+	e->stale = 1;
+}
+
+/* The history slots of the new list: a pair listed before keeps its slot's values. */
+static int
+carry_history(struct contact_enum *e)
+{
+	const struct nlist *old = &e->prev, *nl = &e->nl;
+	int nx = 1 - e->hcur;
+	size_t i, k, h = e->hsize;
+
+	if (nl->npairs > e->hcap[nx] || !e->hpair[nx]) {
+		size_t cap = nl->npairs + nl->npairs / 4 + 16;
+		free(e->hpair[nx]);
+		e->hpair[nx] = malloc(h * cap * sizeof *e->hpair[nx]);
+		if (!e->hpair[nx]) {
+			msg_seterr("out of memory for the contact history");
+			return -1;
+		}
+		e->hcap[nx] = cap;
+	}
+	for (i = 0; i < e->n; i++) {
+		size_t o = old->first ? old->first[i] : 0, oe = old->first ? old->first[i + 1] : 0;
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			double *to = e->hpair[nx] + h * k;
+			while (o < oe && old->nbr[o] < nl->nbr[k])
+				o++;
+			if (o < oe && old->nbr[o] == nl->nbr[k])
+				memcpy(to, e->hpair[e->hcur] + h * o, h * sizeof *to);
+			else
+				memset(to, 0, h * sizeof *to);
+		}
+	}
+	e->hcur = nx;
+	return 0;
+}
+
+int
+contact_enum_update(struct contact_enum *e, const double *x, int force)
+{
+	if (!force && !e->stale && e->nl.first && !nlist_stale(&e->nl, x, e->lo, e->hi))
 		return 0;
-	c.d = d;
-	c.n[0] = dx[0] / d;
-	c.n[1] = dx[1] / d;
-	c.n[2] = dx[2] / d;
-	c.hist = -1;
-	contacts_moduli(p, &c, &Es, &Rs);
-	c.P = hertz_force(Es, Rs, c.h);
-	return push(ctx->gc, &c);
+	if (e->hsize) {	/* the last list stays, for carrying the history over */
+		struct nlist t = e->prev;
+		e->prev = e->nl;
+		e->nl = t;
+	}
+	if (nlist_build(&e->nl, x, e->r, e->n, e->lo, e->hi, e->rmax, e->skin, e->periodic))
+		return -1;
+	e->stale = 0;
+	return e->hsize ? carry_history(e) : 0;
 }
 
+/* Both directions of the half list, rows ascending (i's lower neighbours, from their rows
+ * in grain order, then its own row). */
 static int
-cmp_gc(const void *a, const void *b)
+full_rows(struct contact_enum *e)
 {
-	const struct geo_contact *x = a, *y = b;
+	const struct nlist *nl = &e->nl;
+	size_t i, k, n = e->n, *fill;
 
-	if (x->i != y->i)
-		return x->i < y->i ? -1 : 1;
-	return x->j < y->j ? -1 : x->j > y->j;
+	free(e->full_first), free(e->full_nbr);
+	e->full_first = calloc(n + 1, sizeof *e->full_first);
+	e->full_nbr = malloc((2 * nl->npairs + 1) * sizeof *e->full_nbr);
+	fill = calloc(n ? n : 1, sizeof *fill);
+	if (!e->full_first || !e->full_nbr || !fill) {
+		free(fill);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	for (i = 0; i < n; i++)
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			e->full_first[i + 1]++;
+			e->full_first[nl->nbr[k] + 1]++;
+		}
+	for (i = 0; i < n; i++)
+		e->full_first[i + 1] += e->full_first[i];
+	for (i = 0; i < n; i++)
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			size_t j = nl->nbr[k];
+			e->full_nbr[e->full_first[i] + fill[i]++] = j;
+			e->full_nbr[e->full_first[j] + fill[j]++] = i;
+		}
+	free(fill);
+	e->full_builds = nl->builds;
+	return 0;
+}
+
+long
+contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mode, contact_fn fn, void *ctx)
+{
+	struct contact c;
+	size_t k;
+	long calls = 0;
+	int w;
+
+	if ((!e->full_first || e->full_builds != e->nl.builds) && full_rows(e))
+		return -2;
+	for (k = e->full_first[i]; k < e->full_first[i + 1]; k++) {
+		size_t j = e->full_nbr[k];
+		double sum = e->r[i] + e->r[j], dd;
+
+		c.dx[0] = x[3 * i] - x[3 * j], c.dx[1] = x[3 * i + 1] - x[3 * j + 1], c.dx[2] = x[3 * i + 2] - x[3 * j + 2];
+		if (e->any_periodic)
+			contact_min_image(e, c.dx);
+		dd = c.dx[0] * c.dx[0] + c.dx[1] * c.dx[1] + c.dx[2] * c.dx[2];
+		if (mode == CONTACT_TOUCHING && dd >= sum * sum)
+			continue;
+		c.i = i;
+		c.j = (long)j;
+		c.d = sqrt(dd);
+		c.h = sum - c.d;
+		c.hist = NULL;
+		if (fn(&c, ctx))
+			return -1;
+		calls++;
+	}
+	for (w = 0; w < NWALLS; w++) {
+		if (!contact_wall(e, x, i, w, mode, &c))
+			continue;
+		c.hist = NULL;
+		if (fn(&c, ctx))
+			return -1;
+		calls++;
+	}
+	return calls;
+}
+
+void
+contact_between(const struct pack *p, const double *x, size_t i, long j, struct contact *c)
+{
+	c->i = i;
+	c->j = j;
+	c->hist = NULL;
+	if (PACK_IS_WALL(j)) {
+		int w = PACK_WALL_INDEX(j), a = w / 2;
+		c->d = pack_wall_distance(p->box, x + 3 * i, w);
+		c->h = p->r[i] - c->d;
+		c->dx[0] = c->dx[1] = c->dx[2] = 0;
+		c->dx[a] = w % 2 ? -c->d : c->d;
+		return;
+	}
+	c->dx[0] = x[3 * i] - x[3 * j], c->dx[1] = x[3 * i + 1] - x[3 * j + 1], c->dx[2] = x[3 * i + 2] - x[3 * j + 2];
+	for (int a = 0; a < 3; a++)
+		if (p->periodic[a]) {
+			double L = p->box[3 + a] - p->box[a];
+			c->dx[a] -= L * nearbyint(c->dx[a] / L);
+		}
+	c->d = sqrt(c->dx[0] * c->dx[0] + c->dx[1] * c->dx[1] + c->dx[2] * c->dx[2]);
+	c->h = p->r[i] + p->r[j] - c->d;
 }
 
 static int
@@ -154,54 +307,57 @@ match_history(const struct pack *p, struct geo_contacts *gc)
 	return 0;
 }
 
+/* The touching contacts of p at p->x, in the enumerator's order: grain-grain pairs are
+ * collected first and the grain-wall ones after them, which is the order of the network. */
+struct find_ctx {
+	const struct pack *p;
+	struct geo_contacts *gc, walls;
+};
+
+static int
+on_contact(const struct contact *c, void *vctx)
+{
+	struct find_ctx *ctx = vctx;
+	struct geo_contact g;
+	double Es, Rs;
+
+	/* a contact of the network carries a positive overlap and has a normal */
+	if (!(c->h > 0) || c->d == 0)
+		return 0;
+	g.i = c->i;
+	g.j = c->j;
+	g.h = c->h;
+	g.d = c->d;
+	contact_normal(c, g.n);
+	g.hist = -1;
+	contacts_moduli(ctx->p, &g, &Es, &Rs);
+	g.P = hertz_force(Es, Rs, g.h);
+	return push(PACK_IS_WALL(c->j) ? &ctx->walls : ctx->gc, &g);
+}
+
 int
 contacts_find(const struct pack *p, struct geo_contacts *gc)
 {
-	struct cell_grid g;
-	struct find_ctx ctx = {p, gc};
-	double rmax = 0, lo[3], hi[3];
-	size_t i, ngg;
-	int a, w;
+	struct contact_enum e;
+	struct find_ctx ctx;
+	size_t k;
+	int rc = -1;
 
 	gc->n = 0;
-	for (i = 0; i < p->n; i++)
-		if (p->r[i] > rmax)
-			rmax = p->r[i];
-	for (a = 0; a < 3; a++) {
-		lo[a] = p->box[a];
-		hi[a] = p->box[a + 3];
-	}
-	cell_init(&g);
-	if (cell_build(&g, p->x, p->n, lo, hi, 2 * rmax) ||
-	    cell_for_pairs(&g, p->x, p->r, 0, on_pair, &ctx) < 0) {
-		cell_free(&g);
-		return -1;
-	}
-	cell_free(&g);
-	ngg = gc->n;
-	if (ngg > 1)	/* qsort(NULL, 0, ...) is undefined; gc->c is NULL before the first contact */
-		qsort(gc->c, ngg, sizeof *gc->c, cmp_gc);
-	for (i = 0; i < p->n; i++)
-		for (w = 0; w < NWALLS; w++) {
-			struct geo_contact c;
-			double n[3], pos, Es, Rs;
-			int axis = w / 2;
-
-			contacts_wall_plane(p, w, n, &pos);
-			c.d = (p->x[3 * i + axis] - pos) * n[axis];
-			c.h = p->r[i] - c.d;
-			if (!(c.h > 0))
-				continue;
-			c.i = i;
-			c.j = PACK_WALL(w);
-			memcpy(c.n, n, sizeof n);
-			c.hist = -1;
-			contacts_moduli(p, &c, &Es, &Rs);
-			c.P = hertz_force(Es, Rs, c.h);
-			if (push(gc, &c))
-				return -1;
-		}
-	return match_history(p, gc);
+	ctx.p = p;
+	ctx.gc = gc;
+	contacts_init(&ctx.walls);
+	if (contact_enum_init(&e, p->n, p->r, p->box, p->box + 3, p->periodic, 0, 0) ||
+	    contact_enum_update(&e, p->x, 1) || contact_foreach(&e, p->x, CONTACT_TOUCHING, on_contact, &ctx) < 0)
+		goto out;
+	for (k = 0; k < ctx.walls.n; k++)
+		if (push(gc, &ctx.walls.c[k]))
+			goto out;
+	rc = match_history(p, gc);
+out:
+	contacts_free(&ctx.walls);
+	contact_enum_free(&e);
+	return rc;
 }
 
 int
@@ -228,12 +384,7 @@ contacts_store(struct pack *p, int keep_history)
 		const struct geo_contact *g = &gc.c[k];
 		struct pack_contact c = {g->i, g->j, g->P, {0, 0, 0}, 0};
 		if (old && g->hist >= 0) {
-			memcpy(c.Q0, old[g->hist].Q0, sizeof c.Q0);
-			if (old[g->hist].i != g->i) {	/* the old line named the pair "j i" */
-				c.Q0[0] = -c.Q0[0];
-				c.Q0[1] = -c.Q0[1];
-				c.Q0[2] = -c.Q0[2];
-			}
+			pack_contact_q0_on(&old[g->hist], g->i, c.Q0);
 			c.M0 = old[g->hist].M0;
 		}
 		if (pack_add_contact(p, &c))

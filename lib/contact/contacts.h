@@ -1,15 +1,250 @@
-/* contacts: the geometric contact network of a pack, from grain positions alone.
+/* contacts: the one contact enumerator of the library, and the contact network it collects.
  *
- * A contact is a grain pair (or grain and wall) with overlap h > 0 (physics.md §2-3): its
- * unit normal n pointing from j (or out of the wall) to i, centre distance d, Hertz normal
- * force P and, where the pack carries history for the pair, the index of that history line.
- * Found with the cell grid in O(N). */
+ * Every consumer of contacts (the functional and its gradient, the minimisers' stiffness
+ * bound, densify's growth, the release of unbraced grains, the DEM forces, packinfo's
+ * measures, the exports) visits them through contact_foreach() or contact_foreach_grain():
+ * a Verlet list over the cell grid (nlist.h) for the grain pairs, then the walls, with the
+ * boundary applied here and nowhere else.  Along an axis that is periodic (pack.periodic)
+ * a pair's branch vector is its nearest image and that axis has no walls, so periodic packs
+ * need no change in any consumer.
+ *
+ * The record (struct contact) holds the pair, the branch vector dx = x_i - x_j (wall: from
+ * the wall's foot point to the centre), its length d, the overlap h = r_i + r_j - d (wall:
+ * r_i - d; negative is a gap) and the contact's history slot.  What not every consumer
+ * needs (the unit normal, the lever arms, the contact point, the effective radius) comes
+ * from the inline accessors below, so the hot loops pay only for what they read: the
+ * functional's evaluation inlines contact_foreach and its callback (bench/evalscale).
+ *
+ * History slots: an enumerator made with hsize > 0 keeps hsize doubles for every listed
+ * pair and every grain-wall pair (the DEM's tangential springs), carried over a rebuild of
+ * the list for the pairs listed in both, and zeroed by the enumerator when a pair is apart
+ * (h <= 0) as contact_foreach visits it in CONTACT_NEAR mode.
+ *
+ * Order: grain by grain; for grain i its pairs (i, j > i) in ascending j, then its walls in
+ * the order xlo xhi ylo yhi zlo zhi.  Sums over contacts are taken in this order
+ * everywhere, so results do not depend on the grid. */
 #ifndef QUSGM_CONTACTS_H
 #define QUSGM_CONTACTS_H
 
+#include <math.h>
 #include <stddef.h>
+#include "contact/nlist.h"
 #include "pack/pack.h"
 
+struct contact {
+	size_t i;
+	long j;			/* grain index, or PACK_WALL(w) */
+	double dx[3];		/* branch vector, on i: from j (its nearest image) or the wall */
+	double d;		/* |dx| */
+	double h;		/* overlap (m); negative: the gap of a near pair */
+	double *hist;		/* the pair's history slot (hsize doubles), or NULL */
+};
+
+/* What contact_foreach visits: CONTACT_TOUCHING, pairs closer than r_i + r_j and walls
+ * nearer than r_i; CONTACT_NEAR, every listed pair (within the skin) and every wall of every
+ * grain, whatever the gap. */
+enum { CONTACT_TOUCHING = 0, CONTACT_NEAR = 1 };
+
+struct contact_enum {
+	size_t n;
+	const double *r;	/* radii (n), owned by the caller */
+	const double *lo, *hi;	/* the box: lower and upper corners, owned by the caller */
+	int periodic[3];
+	int any_periodic;
+	double rmax, skin;
+	struct nlist nl;
+	struct nlist prev;	/* the list before the last rebuild (history carry) */
+	int stale;		/* radii changed: rebuild at the next update */
+	/* history slots: hsize doubles per listed pair (two buffers, swapped at a rebuild) and
+	 * per grain-wall pair (NWALLS per grain) */
+	unsigned hsize;
+	double *hpair[2];
+	size_t hcap[2];
+	int hcur;
+	double *hwall;
+	size_t *full_first, *full_nbr;	/* both directions of the list, for contact_foreach_grain */
+	long full_builds;		/* nl.builds when the full rows were made */
+};
+
+/* r: n radii; lo, hi: the box corners (read at every update, so the caller may move them);
+ * periodic: 3 flags or NULL (all walls); skin: Verlet skin (m); hsize: history doubles per
+ * contact (0: none).  0 or -1 (msg_seterr). */
+int contact_enum_init(struct contact_enum *e, size_t n, const double *r, const double *lo, const double *hi,
+    const int *periodic, double skin, unsigned hsize);
+void contact_enum_free(struct contact_enum *e);
+/* Make the list valid for positions x: rebuilt when it may have gone stale (or was never
+ * built, or force is set).  0 or -1 (out of memory; a periodic axis shorter than three
+ * interaction distances). */
+int contact_enum_update(struct contact_enum *e, const double *x, int force);
+/* The radii changed (grains grew): the list is rebuilt at the next update. */
+void contact_enum_radii_changed(struct contact_enum *e);
+
+/* Nearest image of a branch vector along the periodic axes. */
+static inline void
+contact_min_image(const struct contact_enum *e, double dx[3])
+{
+	int a;
+
+	for (a = 0; a < 3; a++)
+		if (e->periodic[a]) {
+			double L = e->hi[a] - e->lo[a];
+			dx[a] -= L * nearbyint(dx[a] / L);
+		}
+}
+
+/* The pair record of listed pair k (row of i) at x; 1 when it is visited in mode. */
+static inline int
+contact_pair(const struct contact_enum *e, const double *x, size_t i, size_t k, int mode, struct contact *c)
+{
+	size_t j = e->nl.nbr[k];
+	const double *xi = x + 3 * i, *xj = x + 3 * j;
+	double sum = e->r[i] + e->r[j], dd;
+
+	c->dx[0] = xi[0] - xj[0], c->dx[1] = xi[1] - xj[1], c->dx[2] = xi[2] - xj[2];
+	if (e->any_periodic)
+		contact_min_image(e, c->dx);
+	dd = c->dx[0] * c->dx[0] + c->dx[1] * c->dx[1] + c->dx[2] * c->dx[2];
+	c->hist = e->hsize ? e->hpair[e->hcur] + (size_t)e->hsize * k : NULL;
+	if (mode == CONTACT_TOUCHING && dd >= sum * sum)
+		return 0;
+	c->i = i;
+	c->j = (long)j;
+	c->d = sqrt(dd);
+	c->h = sum - c->d;
+	return 1;
+}
+
+/* The record of grain i and wall w at x; 1 when it is visited in mode (never on a periodic
+ * axis). */
+static inline int
+contact_wall(const struct contact_enum *e, const double *x, size_t i, int w, int mode, struct contact *c)
+{
+	int a = w / 2;
+	double dist;
+
+	if (e->periodic[a])
+		return 0;
+	dist = w % 2 ? e->hi[a] - x[3 * i + a] : x[3 * i + a] - e->lo[a];
+	c->i = i;
+	c->j = PACK_WALL(w);
+	c->h = e->r[i] - dist;
+	c->hist = e->hsize ? e->hwall + (size_t)e->hsize * (NWALLS * i + (size_t)w) : NULL;
+	if (mode == CONTACT_TOUCHING && c->h <= 0)
+		return 0;
+	c->d = dist;
+	c->dx[0] = c->dx[1] = c->dx[2] = 0;
+	c->dx[a] = w % 2 ? -dist : dist;
+	return 1;
+}
+
+static inline void
+contact_clear_history(const struct contact_enum *e, struct contact *c)
+{
+	unsigned q;
+
+	for (q = 0; q < e->hsize; q++)
+		c->hist[q] = 0;
+}
+
+/* Calls fn(c, ctx) for every contact of the pack at x (see the order above); in
+ * CONTACT_NEAR mode the history of a pair that is apart is zeroed before the call.  The
+ * list must be up to date (contact_enum_update).  Returns the number of calls, or -1 when fn
+ * returns nonzero. */
+typedef int (*contact_fn)(const struct contact *c, void *ctx);
+
+static inline long
+contact_foreach(const struct contact_enum *e, const double *x, int mode, contact_fn fn, void *ctx)
+{
+	struct contact c;
+	size_t i, k;
+	long calls = 0;
+	int w;
+
+	for (i = 0; i < e->n; i++) {
+		for (k = e->nl.first[i]; k < e->nl.first[i + 1]; k++) {
+			if (!contact_pair(e, x, i, k, mode, &c)) {
+				if (c.hist)
+					contact_clear_history(e, &c);
+				continue;
+			}
+			if (mode == CONTACT_NEAR && c.hist && c.h <= 0)
+				contact_clear_history(e, &c);
+			if (fn(&c, ctx))
+				return -1;
+			calls++;
+		}
+		for (w = 0; w < NWALLS; w++) {
+			if (!contact_wall(e, x, i, w, mode, &c)) {
+				if (c.hist && !e->periodic[w / 2])
+					contact_clear_history(e, &c);
+				continue;
+			}
+			if (mode == CONTACT_NEAR && c.hist && c.h <= 0)
+				contact_clear_history(e, &c);
+			if (fn(&c, ctx))
+				return -1;
+			calls++;
+		}
+	}
+	return calls;
+}
+
+/* Calls fn for every contact of grain i alone, with i first in each record (its pairs with
+ * every listed neighbour, lower and higher indices, ascending, then its walls), at x, which
+ * may have changed since the update only by moves shorter than a quarter of the skin.  For
+ * the grain-by-grain passes (the release of unbraced grains).  The history slot is not
+ * given (NULL).  Returns the number of calls, -1 when fn returned nonzero (it may stop the
+ * walk that way), -2 when out of memory (msg_seterr). */
+long contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mode, contact_fn fn, void *ctx);
+
+/* The unit normal on i, from j (or out of the wall) to i. */
+static inline void
+contact_normal(const struct contact *c, double n[3])
+{
+	if (PACK_IS_WALL(c->j)) {
+		int w = PACK_WALL_INDEX(c->j);
+		n[0] = n[1] = n[2] = 0;
+		n[w / 2] = w % 2 ? -1.0 : 1.0;
+	} else {
+		n[0] = c->dx[0] / c->d, n[1] = c->dx[1] / c->d, n[2] = c->dx[2] / c->d;
+	}
+}
+
+/* Lever-arm lengths from the centres of i and j to the contact plane (physics.md §3) for a
+ * contact of i (radius Ri) with j (radius Rj, or a wall) at distance d and overlap h: the
+ * plane of the circle where the two spheres intersect; a wall's plane for a grain-wall
+ * contact (lj = 0). */
+static inline void
+contact_lever_lengths(int wall, double Ri, double Rj, double d, double h, double *li, double *lj)
+{
+	double A2;
+
+	if (wall) {
+		*li = Ri - h;
+		*lj = 0;
+		return;
+	}
+	A2 = (d - Ri + Rj) * (d + Ri - Rj) * (Ri + Rj - d) * (Ri + Rj + d) / (4 * d * d);
+	if (A2 < 0)
+		A2 = 0;
+	*li = sqrt(fmax(Ri * Ri - A2, 0));
+	*lj = sqrt(fmax(Rj * Rj - A2, 0));
+}
+
+/* The record of one given pair (i, j) or grain and wall (j = PACK_WALL(w)) of pack p at
+ * positions x, with p's box and boundary, whether they touch or not (no history slot). */
+void contact_between(const struct pack *p, const double *x, size_t i, long j, struct contact *c);
+
+/* Effective radius R* = (1/r_i + 1/r_j)^-1; r_i for a wall. */
+static inline double
+contact_Rstar(const struct contact *c, const double *r)
+{
+	return PACK_IS_WALL(c->j) ? r[c->i] : r[c->i] * r[c->j] / (r[c->i] + r[c->j]);
+}
+
+/* The contact network at the pack's own positions: every contact with h > 0, grain-grain
+ * first (i < j, ascending), then grain-wall in grain order, each with its unit normal, its
+ * Hertz normal force and the pack's history line for the pair. */
 struct geo_contact {
 	size_t i;
 	long j;		/* grain index or PACK_WALL(w) */
@@ -27,7 +262,7 @@ struct geo_contacts {
 
 void contacts_init(struct geo_contacts *gc);
 void contacts_free(struct geo_contacts *gc);
-/* All contacts with h > 0, grain-grain first (i < j), then grain-wall; 0 or -1. */
+/* All contacts of p at p->x (see above); 0 or -1. */
 int contacts_find(const struct pack *p, struct geo_contacts *gc);
 /* Replace p->c by a line per touching contact with P0 from Hertz at the current positions;
  * Q0 and M0 are carried over from the line of the same pair when keep_history is set (lines
@@ -35,7 +270,5 @@ int contacts_find(const struct pack *p, struct geo_contacts *gc);
 int contacts_store(struct pack *p, int keep_history);
 /* The E* and R* of contact c. */
 void contacts_moduli(const struct pack *p, const struct geo_contact *c, double *Es, double *Rs);
-/* Inward normal of wall w and the coordinate of its plane. */
-void contacts_wall_plane(const struct pack *p, int w, double n[3], double *pos);
 
 #endif

@@ -45,7 +45,7 @@ on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
 
 int
 nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const double lo[3], const double hi[3],
-    double rmax, double skin)
+    double rmax, double skin, const int *periodic)
 {
 	struct pass_ctx c = {nl, 0};
 	size_t i, k;
@@ -63,7 +63,7 @@ nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const 
 	}
 	nl->skin = skin;
 	nl->rmax = rmax;
-	if (cell_build(&nl->grid, x, n, lo, hi, 2 * rmax + skin))
+	if (cell_build(&nl->grid, x, n, lo, hi, 2 * rmax + skin, periodic))
 		return -1;
 	memset(nl->first, 0, (n + 1) * sizeof *nl->first);
 	cell_for_pairs(&nl->grid, x, r, skin, on_pair, &c);

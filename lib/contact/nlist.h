@@ -26,9 +26,10 @@ struct nlist {
 
 void nlist_init(struct nlist *nl);
 void nlist_free(struct nlist *nl);
-/* Build for n spheres at x with radii r (largest rmax) in the box [lo, hi]. 0 or -1. */
+/* Build for n spheres at x with radii r (largest rmax) in the box [lo, hi], periodic along
+ * the axes flagged in periodic (NULL: none; see cell_build). 0 or -1. */
 int nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const double lo[3],
-    const double hi[3], double rmax, double skin);
+    const double hi[3], double rmax, double skin, const int *periodic);
 /* 1 when a pair may have come within range since the build. */
 int nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const double hi[3]);
 

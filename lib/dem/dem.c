@@ -1,7 +1,8 @@
 /* dem: explicit DEM compaction for loose packs (see dem.h). */
 #include "dem/dem.h"
 #include "contact/cell.h"
-#include "contact/nlist.h"
+#include "contact/contacts.h"
+#include "contact/law.h"
 #include "base/msg.h"
 #include "base/vec3.h"
 
@@ -9,9 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define KT_RATIO 0.888888888888889	/* 2(1-nu)/(2-nu) at nu = 0.2: Mindlin stick over Hertz stiffness */
-#define ZETA 0.3			/* viscous normal damping ratio */
 #define E_WALL 2.0			/* grain-wall E* over grain-grain E* for rigid walls */
+/* The contact law of the settling: Hertz-Mindlin's DEM force (law.h: tangential spring
+ * 2(1-nu)/(2-nu) = 0.889 of the normal stiffness at nu = 0.2, viscous damping ratio 0.3),
+ * with the scaled E* of dem.h. */
+#define DEM_LAW (&contact_law_hertz_mindlin)
 
 struct dem {
 	size_t n;
@@ -19,15 +22,9 @@ struct dem {
 	double lo[3], hi[3];
 	double rmax, skin, dt, mu, damping, rate, viscous;
 	int unloading;		/* slow, quasi-static expansion towards the final stress */
-	/* two Verlet lists, the current one and the next build, each with the tangential
-	 * spring of every listed pair, so springs carry over a rebuild */
-	struct nlist list[2];
-	double *spring[2];
-	size_t spring_cap[2];
-	int cur;
-	size_t *first, *nbr;	/* the current list's rows */
-	double *xi;		/* the current list's springs */
-	double *xiw;			/* wall springs, 6 x 3 per grain */
+	/* the contacts, with the tangential spring of every listed pair and grain-wall pair
+	 * as their history, carried over a rebuild of the list */
+	struct contact_enum ce;
 	double wallf[NWALLS];
 	struct cell_grid grid;
 	size_t ncontacts;
@@ -38,8 +35,7 @@ static void
 dem_free(struct dem *d)
 {
 	free(d->x), free(d->v), free(d->w), free(d->f), free(d->t), free(d->r), free(d->m), free(d->I);
-	nlist_free(&d->list[0]), nlist_free(&d->list[1]);
-	free(d->spring[0]), free(d->spring[1]), free(d->xiw);
+	contact_enum_free(&d->ce);
 	cell_free(&d->grid);
 }
 
@@ -141,7 +137,7 @@ sort_spatially(struct dem *d, size_t *perm)
 	double *buf = malloc(3 * n * sizeof *buf);
 	int a;
 
-	if (!tmp || !buf || cell_build(&d->grid, d->x, n, d->lo, d->hi, 2 * d->rmax)) {
+	if (!tmp || !buf || cell_build(&d->grid, d->x, n, d->lo, d->hi, 2 * d->rmax, NULL)) {
 		free(tmp), free(buf);
 		msg_seterr("out of memory sorting grains");
 		return -1;
@@ -165,169 +161,71 @@ sort_spatially(struct dem *d, size_t *perm)
 	return 0;
 }
 
-/* Build the next list and carry the springs of pairs that were already listed. */
+/* The force of one contact on i (and j), from the law's DEM force at the contact point's
+ * relative velocity. */
 static int
-build_list(struct dem *d)
+on_force(const struct contact *c, void *vd)
 {
-	int nx = 1 - d->cur;
-	struct nlist *old = &d->list[d->cur], *nl = &d->list[nx];
-	size_t i, k, n = d->n;
+	struct dem *d = vd;
+	size_t i = c->i;
+	int wall = PACK_IS_WALL(c->j), a;
+	double ri = d->r[i], wr[3], ca[3], cb[3] = {0, 0, 0}, ft[3], F[3], cr[3], fn, fel;
+	struct law_pair lp;
+	struct law_dem_in in;
 
-	if (nlist_build(nl, d->x, d->r, n, d->lo, d->hi, d->rmax, d->skin))
-		return -1;
-	if (nl->npairs > d->spring_cap[nx] || !d->spring[nx]) {
-		size_t cap = nl->npairs + nl->npairs / 4 + 16;
-		free(d->spring[nx]);
-		d->spring[nx] = malloc(3 * cap * sizeof *d->spring[nx]);
-		if (!d->spring[nx]) {
-			msg_seterr("out of memory for the neighbour list");
-			return -1;
-		}
-		d->spring_cap[nx] = cap;
-	}
-	for (i = 0; i < n; i++) {
-		size_t o = old->first ? old->first[i] : 0, oe = old->first ? old->first[i + 1] : 0;
-		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
-			double *to = d->spring[nx] + 3 * k;
-			while (o < oe && old->nbr[o] < nl->nbr[k])
-				o++;
-			if (o < oe && old->nbr[o] == nl->nbr[k])
-				memcpy(to, d->spring[d->cur] + 3 * o, 3 * sizeof *to);
-			else
-				to[0] = to[1] = to[2] = 0;
-		}
-	}
-	d->cur = nx;
-	d->first = nl->first;
-	d->nbr = nl->nbr;
-	d->xi = d->spring[nx];
-	return 0;
-}
-
-/* Tangential spring update and Coulomb limit; returns the tangential force on i in ft. */
-static void
-tangential(double *xi, const double n[3], const double vt[3], double dt, double kt, double fmaxt, double ft[3])
-{
-	double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2], old, now, s;
-	int a;
-
-	old = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+	contact_normal(c, in.n);
+	lp.Es = wall ? E_WALL : 1.0;
+	lp.Rs = contact_Rstar(c, d->r);
+	in.h = c->h;
+	in.dt = d->dt;
+	in.mu = d->mu;
 	for (a = 0; a < 3; a++)
-		xi[a] -= xn * n[a];	/* turn the spring into the current tangent plane */
-	now = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-	s = now > 0 ? old / now : 0;
-	for (a = 0; a < 3; a++) {
-		xi[a] = xi[a] * s + vt[a] * dt;
-		ft[a] = -kt * xi[a];
+		wr[a] = -ri * in.n[a];
+	vec3_cross(d->w + 3 * i, wr, ca);
+	if (!wall) {
+		size_t j = (size_t)c->j;
+		in.meff = d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
+		for (a = 0; a < 3; a++)
+			wr[a] = d->r[j] * in.n[a];
+		vec3_cross(d->w + 3 * j, wr, cb);
+		for (a = 0; a < 3; a++)
+			in.vr[a] = d->v[3 * i + a] + ca[a] - d->v[3 * j + a] - cb[a];
+	} else {
+		in.meff = d->m[i];
+		for (a = 0; a < 3; a++)
+			in.vr[a] = d->v[3 * i + a] + ca[a];
 	}
-	now = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
-	if (now > fmaxt && now > 0) {
-		s = fmaxt / now;
+	fn = DEM_LAW->dem_force(DEM_LAW, &lp, &in, c->hist, ft, &fel);
+	if (wall)	/* the servo reads the elastic wall force */
+		d->wallf[PACK_WALL_INDEX(c->j)] += fel;
+	for (a = 0; a < 3; a++) {
+		F[a] = fn * in.n[a] + ft[a];
+		d->f[3 * i + a] += F[a];
+	}
+	vec3_cross(in.n, ft, cr);
+	for (a = 0; a < 3; a++)
+		d->t[3 * i + a] -= ri * cr[a];
+	if (!wall) {
+		size_t j = (size_t)c->j;
 		for (a = 0; a < 3; a++) {
-			ft[a] *= s;
-			xi[a] = -ft[a] / kt;
+			d->f[3 * j + a] -= F[a];
+			d->t[3 * j + a] -= d->r[j] * cr[a];
 		}
 	}
+	d->ncontacts++;
+	d->sum_cf += wall ? fn : sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+	return 0;
 }
 
 static void
 forces(struct dem *d)
 {
-	size_t i, k, n = d->n;
-	int a, wl;
-
-	memset(d->f, 0, 3 * n * sizeof *d->f);
-	memset(d->t, 0, 3 * n * sizeof *d->t);
+	memset(d->f, 0, 3 * d->n * sizeof *d->f);
+	memset(d->t, 0, 3 * d->n * sizeof *d->t);
 	memset(d->wallf, 0, sizeof d->wallf);
 	d->ncontacts = 0;
 	d->sum_cf = 0;
-	for (i = 0; i < n; i++) {
-		const double *xi_ = d->x + 3 * i;
-		double ri = d->r[i];
-		for (k = d->first[i]; k < d->first[i + 1]; k++) {
-			size_t j = d->nbr[k];
-			double dx[3], d2, sum = ri + d->r[j], dist, h, nn[3], Rs, kn, fn, meff, vr[3], ca[3], cb[3], wr[3],
-			    vn, vt[3], ft[3], F[3], c[3];
-
-			for (a = 0; a < 3; a++)
-				dx[a] = xi_[a] - d->x[3 * j + a];
-			d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-			if (d2 >= sum * sum) {
-				d->xi[3 * k] = d->xi[3 * k + 1] = d->xi[3 * k + 2] = 0;
-				continue;
-			}
-			dist = sqrt(d2);
-			h = sum - dist;
-			for (a = 0; a < 3; a++)
-				nn[a] = dx[a] / dist;
-			Rs = ri * d->r[j] / sum;
-			kn = 2 * sqrt(Rs * h);
-			fn = kn * h * (2.0 / 3.0);
-			meff = d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
-			for (a = 0; a < 3; a++)
-				wr[a] = -ri * nn[a];
-			vec3_cross(d->w + 3 * i, wr, ca);
-			for (a = 0; a < 3; a++)
-				wr[a] = d->r[j] * nn[a];
-			vec3_cross(d->w + 3 * j, wr, cb);
-			for (a = 0; a < 3; a++)
-				vr[a] = d->v[3 * i + a] + ca[a] - d->v[3 * j + a] - cb[a];
-			vn = vr[0] * nn[0] + vr[1] * nn[1] + vr[2] * nn[2];
-			fn -= 2 * ZETA * sqrt(meff * kn) * vn;
-			if (fn < 0)
-				fn = 0;
-			for (a = 0; a < 3; a++)
-				vt[a] = vr[a] - vn * nn[a];
-			tangential(d->xi + 3 * k, nn, vt, d->dt, KT_RATIO * kn, d->mu * fn, ft);
-			for (a = 0; a < 3; a++) {
-				F[a] = fn * nn[a] + ft[a];
-				d->f[3 * i + a] += F[a];
-				d->f[3 * j + a] -= F[a];
-			}
-			vec3_cross(nn, ft, c);
-			for (a = 0; a < 3; a++) {
-				d->t[3 * i + a] -= ri * c[a];
-				d->t[3 * j + a] -= d->r[j] * c[a];
-			}
-			d->ncontacts++;
-			d->sum_cf += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
-		}
-		for (wl = 0; wl < NWALLS; wl++) {
-			int ax = wl / 2;
-			double nn[3] = {0, 0, 0}, dist, h, kn, fn, vr[3], wr[3], ca[3], vn, vt[3], ft[3], c[3];
-			double *spring = d->xiw + 18 * i + 3 * wl;
-
-			nn[ax] = wl % 2 ? -1 : 1;
-			dist = wl % 2 ? d->hi[ax] - xi_[ax] : xi_[ax] - d->lo[ax];
-			h = ri - dist;
-			if (h <= 0) {
-				spring[0] = spring[1] = spring[2] = 0;
-				continue;
-			}
-			kn = 2 * E_WALL * sqrt(ri * h);
-			fn = kn * h * (2.0 / 3.0);
-			d->wallf[wl] += fn;
-			for (a = 0; a < 3; a++)
-				wr[a] = -ri * nn[a];
-			vec3_cross(d->w + 3 * i, wr, ca);
-			for (a = 0; a < 3; a++)
-				vr[a] = d->v[3 * i + a] + ca[a];
-			vn = vr[ax] * nn[ax];
-			fn -= 2 * ZETA * sqrt(d->m[i] * kn) * vn;
-			if (fn < 0)
-				fn = 0;
-			for (a = 0; a < 3; a++)
-				vt[a] = vr[a] - vn * nn[a];
-			tangential(spring, nn, vt, d->dt, KT_RATIO * kn, d->mu * fn, ft);
-			for (a = 0; a < 3; a++)
-				d->f[3 * i + a] += fn * nn[a] + ft[a];
-			vec3_cross(nn, ft, c);
-			for (a = 0; a < 3; a++)
-				d->t[3 * i + a] -= ri * c[a];
-			d->ncontacts++;
-			d->sum_cf += fn;
-		}
-	}
+	contact_foreach(&d->ce, d->x, CONTACT_TOUCHING, on_force, d);
 }
 
 /* Mean |net force| over grains with contacts, over the mean contact force. */
@@ -391,37 +289,36 @@ servo(struct dem *d, double ptarget, double *ratio_mean)
 	*ratio_mean = rs;
 }
 
+struct overlap_acc {
+	const double *r;
+	double mo;
+	size_t nc;
+};
+
+static int
+on_overlap(const struct contact *c, void *va)
+{
+	struct overlap_acc *o = va;
+
+	if (PACK_IS_WALL(c->j)) {
+		o->mo = fmax(o->mo, c->h / o->r[c->i]);
+		o->nc++;
+	} else {
+		o->mo = fmax(o->mo, c->h / fmin(o->r[c->i], o->r[c->j]));
+		o->nc += 2;
+	}
+	return 0;
+}
+
+/* Largest overlap over the smaller radius, and the coordination (contacts per grain). */
 static double
 max_overlap(const struct dem *d, double *coord)
 {
-	size_t i, k, nc = 0;
-	double mo = 0;
-	int a, wl;
+	struct overlap_acc o = {d->r, 0, 0};
 
-	for (i = 0; i < d->n; i++) {
-		for (k = d->first[i]; k < d->first[i + 1]; k++) {
-			size_t j = d->nbr[k];
-			double e2 = 0, s = d->r[i] + d->r[j];
-			for (a = 0; a < 3; a++) {
-				double e = d->x[3 * i + a] - d->x[3 * j + a];
-				e2 += e * e;
-			}
-			if (e2 < s * s) {
-				mo = fmax(mo, (s - sqrt(e2)) / fmin(d->r[i], d->r[j]));
-				nc += 2;
-			}
-		}
-		for (wl = 0; wl < NWALLS; wl++) {
-			int ax = wl / 2;
-			double dist = wl % 2 ? d->hi[ax] - d->x[3 * i + ax] : d->x[3 * i + ax] - d->lo[ax];
-			if (dist < d->r[i]) {
-				mo = fmax(mo, (d->r[i] - dist) / d->r[i]);
-				nc++;
-			}
-		}
-	}
-	*coord = (double)nc / d->n;
-	return mo;
+	contact_foreach(&d->ce, d->x, CONTACT_TOUCHING, on_overlap, &o);
+	*coord = (double)o.nc / d->n;
+	return o.mo;
 }
 
 /* Time step from the stiffest likely contact: the two smallest grains, or the smallest
@@ -434,15 +331,160 @@ dt_for_overlap(struct dem *d, double mmin, double rmin, double h)
 	d->dt = 0.2 * sqrt(0.5 * mmin / k);
 }
 
+/* Scaled copies of the grains (mean radius 1, density 1), in the order of placement:
+ * largest first, so random placement rarely fails (a counting sort of the radii into 256
+ * bins, descending). */
+static int
+dem_setup(struct dem *d, const struct pack *p, size_t *order, double *rmean, double *vol, double *mmin, double *rmin)
+{
+	size_t n = p->n, i, bins[257] = {0}, *tmp;
+
+	d->n = n;
+	d->x = calloc(3 * n, sizeof *d->x);
+	d->v = calloc(3 * n, sizeof *d->v);
+	d->w = calloc(3 * n, sizeof *d->w);
+	d->f = calloc(3 * n, sizeof *d->f);
+	d->t = calloc(3 * n, sizeof *d->t);
+	d->r = malloc(n * sizeof *d->r);
+	d->m = malloc(n * sizeof *d->m);
+	d->I = malloc(n * sizeof *d->I);
+	cell_init(&d->grid);
+	tmp = malloc(n * sizeof *tmp);
+	if (!d->x || !d->v || !d->w || !d->f || !d->t || !d->r || !d->m || !d->I || !tmp) {
+		free(tmp);
+		msg_seterr("out of memory for %zu grains", n);
+		return -1;
+	}
+	*rmean = *vol = 0;
+	*mmin = *rmin = INFINITY;
+	for (i = 0; i < n; i++)
+		*rmean += p->r[i];
+	*rmean /= n;
+	for (i = 0; i < n; i++) {
+		d->r[i] = p->r[i] / *rmean;
+		d->m[i] = 4.0 / 3.0 * M_PI * d->r[i] * d->r[i] * d->r[i];
+		d->I[i] = 0.4 * d->m[i] * d->r[i] * d->r[i];
+		*vol += d->m[i];
+		d->rmax = fmax(d->rmax, d->r[i]);
+		*rmin = fmin(*rmin, d->r[i]);
+		*mmin = fmin(*mmin, d->m[i]);
+		order[i] = i;
+	}
+	for (i = 0; i < n; i++)
+		bins[255 - (int)fmin(255, floor((d->r[i] - *rmin) / (d->rmax - *rmin + 1e-300) * 255.999)) + 1]++;
+	for (i = 0; i < 256; i++)
+		bins[i + 1] += bins[i];
+	for (i = 0; i < n; i++)
+		tmp[bins[255 - (int)fmin(255, floor((d->r[i] - *rmin) / (d->rmax - *rmin + 1e-300) * 255.999))]++] = i;
+	memcpy(order, tmp, n * sizeof *order);
+	free(tmp);
+	return 0;
+}
+
+/* The wall stress over the target, at a check of the settling. */
+static double
+stress_ratio(const struct dem *d, double ptarget)
+{
+	double s = 0;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		int b = (a + 1) % 3, e = (a + 2) % 3;
+		s += (d->wallf[2 * a] + d->wallf[2 * a + 1]) / (2 * (d->hi[b] - d->lo[b]) * (d->hi[e] - d->lo[e]));
+	}
+	return s / 3 / ptarget;
+}
+
+/* Settle under the servo: jam at the preload, then unload to the final stress and rest. */
+static int
+dem_settle(struct dem *d, const struct dem_params *dp, double pfinal, double vol, double mmin, double rmin,
+    dem_progress_fn fn, void *ctx, struct dem_status *st)
+{
+	double ptarget = pfinal * dp->preload;
+	long step;
+
+	dt_for_overlap(d, mmin, rmin, fmax(dp->overlap, 1e-6) * pow(dp->preload, 2.0 / 3.0) * 10);
+	for (step = 1; step <= dp->max_steps; step++) {
+		double ratio;
+
+		if (contact_enum_update(&d->ce, d->x, 0))
+			return -1;
+		forces(d);
+		if (step % 100 == 0 || step == dp->max_steps) {
+			double coord, ub = unbalanced(d);
+			st->step = step;
+			st->unbalanced = ub;
+			st->max_overlap = max_overlap(d, &coord);
+			st->coordination = coord;
+			st->phi = vol / ((d->hi[0] - d->lo[0]) * (d->hi[1] - d->lo[1]) * (d->hi[2] - d->lo[2]));
+			st->p_ratio = stress_ratio(d, ptarget);
+			st->stage = ptarget > pfinal ? 1 : 2;
+			/* the stresses only set the overlap scale: within a factor of 1.25 of the preload
+			 * and of 2 of the final target is close enough; rest is what matters */
+			st->at_rest = fabs(log(st->p_ratio)) < log(ptarget > pfinal ? 1.25 : 2.0) && ub < dp->rest_tol;
+			if (fn && step % 1000 == 0)
+				fn(st, ctx);
+			if (st->at_rest && ptarget > pfinal) {
+				ptarget = pfinal;	/* jammed at the preload: now unload */
+				d->unloading = 1;
+				st->at_rest = 0;
+			} else if (st->at_rest) {
+				break;
+			}
+			dt_for_overlap(d, mmin, rmin, fmax(st->max_overlap, dp->overlap));
+		}
+		integrate(d);
+		servo(d, ptarget, &ratio);
+	}
+	if (!st->at_rest) {
+		msg_seterr("the pack did not come to rest in %ld steps (stress/target %.3g, unbalanced %.3g)",
+		    dp->max_steps, st->p_ratio, st->unbalanced);
+		return -1;
+	}
+	return 0;
+}
+
+/* The pack takes the settled positions, in real units, and the spatial order too (ids 1..N
+ * along it): every later stage then walks memory in the order neighbours are met.  Radii
+ * and moduli were drawn independently, so renumbering loses nothing. */
+static int
+dem_write_back(const struct dem *d, struct pack *p, const size_t *order, double rmean)
+{
+	size_t n = p->n, i;
+	double *tmp = malloc(n * sizeof *tmp);
+	double *arrs[4] = {p->r, p->E, p->nu, p->rho};
+	int q, a;
+
+	if (!tmp) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	for (q = 0; q < 4; q++) {
+		memcpy(tmp, arrs[q], n * sizeof *tmp);
+		for (i = 0; i < n; i++)
+			arrs[q][i] = tmp[order[i]];
+	}
+	free(tmp);
+	for (i = 0; i < n; i++) {
+		p->id[i] = (long)i + 1;
+		for (a = 0; a < 3; a++)
+			p->x[3 * i + a] = d->x[3 * i + a] * rmean;
+	}
+	for (a = 0; a < 3; a++) {
+		p->box[a] = d->lo[a] * rmean;
+		p->box[a + 3] = d->hi[a] * rmean;
+	}
+	return 0;
+}
+
 int
 dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_progress_fn fn, void *ctx,
     struct dem_status *st)
 {
 	struct dem d;
-	size_t n = p->n, i, *order = NULL;
-	double rmean = 0, vol = 0, L0, ptarget, pfinal, mmin = INFINITY, rmin = INFINITY;
-	int a, status = -1, rebuilds = 0;
-	long step;
+	size_t n = p->n, *order = NULL;
+	double rmean, vol, L0, pfinal, mmin, rmin;
+	int a, status = -1;
 
 	memset(&d, 0, sizeof d);
 	memset(st, 0, sizeof *st);
@@ -450,70 +492,27 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 		msg_seterr("no grains to place");
 		return -1;
 	}
-	for (i = 0; i < n; i++)
-		rmean += p->r[i];
-	rmean /= n;
-	d.n = n;
-	d.x = calloc(3 * n, sizeof *d.x);
-	d.v = calloc(3 * n, sizeof *d.v);
-	d.w = calloc(3 * n, sizeof *d.w);
-	d.f = calloc(3 * n, sizeof *d.f);
-	d.t = calloc(3 * n, sizeof *d.t);
-	d.r = malloc(n * sizeof *d.r);
-	d.m = malloc(n * sizeof *d.m);
-	d.I = malloc(n * sizeof *d.I);
-	nlist_init(&d.list[0]);
-	nlist_init(&d.list[1]);
-	d.xiw = calloc(18 * n, sizeof *d.xiw);
 	order = malloc(n * sizeof *order);
-	cell_init(&d.grid);
-	if (!d.x || !d.v || !d.w || !d.f || !d.t || !d.r || !d.m || !d.I || !d.xiw || !order) {
+	if (!order) {
 		msg_seterr("out of memory for %zu grains", n);
+		return -1;
+	}
+	if (dem_setup(&d, p, order, &rmean, &vol, &mmin, &rmin))
 		goto out;
-	}
-	for (i = 0; i < n; i++) {
-		d.r[i] = p->r[i] / rmean;
-		d.m[i] = 4.0 / 3.0 * M_PI * d.r[i] * d.r[i] * d.r[i];
-		d.I[i] = 0.4 * d.m[i] * d.r[i] * d.r[i];
-		vol += d.m[i];
-		d.rmax = fmax(d.rmax, d.r[i]);
-		rmin = fmin(rmin, d.r[i]);
-		mmin = fmin(mmin, d.m[i]);
-		order[i] = i;
-	}
-	{
-		/* largest first, so random placement rarely fails: counting sort of radii into 256 bins, descending */
-		size_t bins[257] = {0}, *tmp = malloc(n * sizeof *tmp);
-		if (!tmp) {
-			msg_seterr("out of memory");
-			goto out;
-		}
-		for (i = 0; i < n; i++)
-			bins[255 - (int)fmin(255, floor((d.r[i] - rmin) / (d.rmax - rmin + 1e-300) * 255.999)) + 1]++;
-		for (i = 0; i < 256; i++)
-			bins[i + 1] += bins[i];
-		for (i = 0; i < n; i++)
-			tmp[bins[255 - (int)fmin(255, floor((d.r[i] - rmin) / (d.rmax - rmin + 1e-300) * 255.999))]++] = i;
-		memcpy(order, tmp, n * sizeof *order);
-		free(tmp);
-	}
 	L0 = cbrt(vol / dp->phi0 / (dp->aspect[0] * dp->aspect[1] * dp->aspect[2]));
 	for (a = 0; a < 3; a++) {
 		d.lo[a] = 0;
 		d.hi[a] = L0 * dp->aspect[a];
 	}
-	if (place_random(&d, rng, d.r, order))
-		goto out;
-	if (sort_spatially(&d, order))
+	if (place_random(&d, rng, d.r, order) || sort_spatially(&d, order))
 		goto out;
 	d.mu = dp->mu;
 	d.damping = dp->damping;
 	d.rate = dp->rate;
 	d.viscous = dp->viscous;
 	d.skin = 0.3 * rmin;
-	/* target stress from the mean overlap: Love-Weber p = Z phi <F> / (4 pi r^2) with
-	 * Z ~ 4.5 and phi ~ 0.6 for a loose frictional pack, <F> the Hertz force at the overlap
-	 * between two mean grains (E* = 1, R* = 1/2) */
+	if (contact_enum_init(&d.ce, n, d.r, d.lo, d.hi, NULL, d.skin, DEM_LAW->history))
+		goto out;
 	/* Target stress from the mean overlap: Love-Weber p = Z phi <F> / (4 pi r^2) with
 	 * Z ~ 4.5 and phi ~ 0.6 for a loose frictional pack and <F> the Hertz force at that
 	 * overlap between two mean grains (E* = 1, R* = 1/2).  Such a small stress cannot be
@@ -522,85 +521,8 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	 * unloaded to the target: unloading is nearly elastic and the frictional contact
 	 * network, hence the loose structure, survives it. */
 	pfinal = 4.5 * 0.6 * (4.0 / 3.0 * sqrt(0.5) * pow(dp->overlap, 1.5)) / (4 * M_PI);
-	ptarget = pfinal * dp->preload;
-	dt_for_overlap(&d, mmin, rmin, fmax(dp->overlap, 1e-6) * pow(dp->preload, 2.0 / 3.0) * 10);
-	if (build_list(&d))
+	if (dem_settle(&d, dp, pfinal, vol, mmin, rmin, fn, ctx, st) || dem_write_back(&d, p, order, rmean))
 		goto out;
-	for (step = 1; step <= dp->max_steps; step++) {
-		double ratio;
-
-		if (nlist_stale(&d.list[d.cur], d.x, d.lo, d.hi)) {
-			if (build_list(&d))
-				goto out;
-			rebuilds++;
-		}
-		forces(&d);
-		if (step % 100 == 0 || step == dp->max_steps) {
-			double coord, ub = unbalanced(&d);
-			st->step = step;
-			st->unbalanced = ub;
-			st->max_overlap = max_overlap(&d, &coord);
-			st->coordination = coord;
-			st->phi = vol / ((d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]));
-			{
-				double s = 0;
-				for (a = 0; a < 3; a++) {
-					int b = (a + 1) % 3, e = (a + 2) % 3;
-					s += (d.wallf[2 * a] + d.wallf[2 * a + 1]) / (2 * (d.hi[b] - d.lo[b]) * (d.hi[e] - d.lo[e]));
-				}
-				st->p_ratio = s / 3 / ptarget;
-				st->stage = ptarget > pfinal ? 1 : 2;
-			}
-			/* the stresses only set the overlap scale: within a factor of 1.25 of the preload
-			 * and of 2 of the final target is close enough; rest is what matters */
-			st->at_rest = fabs(log(st->p_ratio)) < log(ptarget > pfinal ? 1.25 : 2.0) && ub < dp->rest_tol;
-			if (fn && step % 1000 == 0)
-				fn(st, ctx);
-			if (st->at_rest && ptarget > pfinal) {
-				ptarget = pfinal;	/* jammed at the preload: now unload */
-				d.unloading = 1;
-				st->at_rest = 0;
-			} else if (st->at_rest) {
-				break;
-			}
-			dt_for_overlap(&d, mmin, rmin, fmax(st->max_overlap, dp->overlap));
-		}
-		integrate(&d);
-		servo(&d, ptarget, &ratio);
-	}
-	if (!st->at_rest) {
-		msg_seterr("the pack did not come to rest in %ld steps (stress/target %.3g, unbalanced %.3g)",
-		    dp->max_steps, st->p_ratio, st->unbalanced);
-		goto out;
-	}
-	/* The pack takes the spatial order too (ids 1..N along it): every later stage then
-	 * walks memory in the order neighbours are met.  Radii and moduli were drawn
-	 * independently, so renumbering loses nothing. */
-	{
-		double *tmp = malloc(n * sizeof *tmp);
-		double *arrs[4] = {p->r, p->E, p->nu, p->rho};
-		int q;
-
-		if (!tmp) {
-			msg_seterr("out of memory");
-			goto out;
-		}
-		for (q = 0; q < 4; q++) {
-			memcpy(tmp, arrs[q], n * sizeof *tmp);
-			for (i = 0; i < n; i++)
-				arrs[q][i] = tmp[order[i]];
-		}
-		free(tmp);
-	}
-	for (i = 0; i < n; i++) {
-		p->id[i] = (long)i + 1;
-		for (a = 0; a < 3; a++)
-			p->x[3 * i + a] = d.x[3 * i + a] * rmean;
-	}
-	for (a = 0; a < 3; a++) {
-		p->box[a] = d.lo[a] * rmean;
-		p->box[a + 3] = d.hi[a] * rmean;
-	}
 	status = 0;
 out:
 	free(order);

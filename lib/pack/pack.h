@@ -41,6 +41,19 @@ struct pack_contact {
 	double M0;	/* torsional couple on i about the normal from j to i (N m) */
 };
 
+/* The history force of line c as the force on grain i, one of the two grains it names.  A
+ * line may name its pair either way, 'i j' or 'j i' (pack-format.md); its Q0 acts on the
+ * first grain named, so the force on the other is -Q0 (action and reaction).  M0 is the
+ * same either way: the couple on j about the normal from i to j equals the couple on i about
+ * the normal from j to i.  This is the one place that applies the rule. */
+static inline void
+pack_contact_q0_on(const struct pack_contact *c, size_t i, double Q[3])
+{
+	double s = c->i == i ? 1.0 : -1.0;
+
+	Q[0] = c->Q0[0] * s, Q[1] = c->Q0[1] * s, Q[2] = c->Q0[2] * s;
+}
+
 struct pack_meta {
 	char *key;
 	char *value;

@@ -57,33 +57,50 @@ gap_insert(struct gaps *gp, unsigned want, double v)
 /* Grow each grain with fewer than min_coord contacts until it touches its min_coord-th
  * nearest neighbour or wall (from the Verlet list: neighbours within the skin), by at most
  * max_growth of its radius.  Returns the number of grains grown. */
+struct grow_ctx {
+	const struct pack *p;
+	const unsigned *cnt;
+	unsigned min_coord, want;
+	struct gaps *gp;
+};
+
+/* The surface gap of a near pair (or to a wall) for the grains short of contacts. */
+static int
+on_gap(const struct contact *c, void *vctx)
+{
+	struct grow_ctx *g = vctx;
+	const double *r = g->p->r;
+	size_t i = c->i;
+
+	if (PACK_IS_WALL(c->j)) {
+		if (g->cnt[i] < g->min_coord)
+			gap_insert(&g->gp[i], g->want, c->d - r[i]);
+	} else {
+		double gap = c->d - r[i] - r[c->j];
+		if (g->cnt[i] < g->min_coord)
+			gap_insert(&g->gp[i], g->want, gap);
+		if (g->cnt[c->j] < g->min_coord)
+			gap_insert(&g->gp[c->j], g->want, gap);
+	}
+	return 0;
+}
+
+/* Grow each grain with fewer than min_coord contacts until it touches its min_coord-th
+ * nearest neighbour or wall (from the Verlet list: neighbours within the skin), by at most
+ * max_growth of its radius.  Returns the number of grains grown. */
 static size_t
 grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const struct densify_params *dp,
     double scale, struct gaps *gp)
 {
 	struct pack *p = s->p;
-	size_t i, k, grown = 0;
-	unsigned want = dp->min_coord < 4 ? dp->min_coord : 4;
-	int w;
+	struct grow_ctx g = {p, cnt, dp->min_coord, dp->min_coord < 4 ? dp->min_coord : 4, gp};
+	size_t i, grown = 0;
 
-	if (want == 0)
+	if (g.want == 0)
 		return 0;
 	for (i = 0; i < s->n; i++)
 		gp[i].k = 0;
-	for (i = 0; i < s->n; i++) {
-		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
-			size_t j = s->nl.nbr[k];
-			double d0 = x[3 * i] - x[3 * j], d1 = x[3 * i + 1] - x[3 * j + 1], d2 = x[3 * i + 2] - x[3 * j + 2];
-			double gap = sqrt(d0 * d0 + d1 * d1 + d2 * d2) - p->r[i] - p->r[j];
-			if (cnt[i] < dp->min_coord)
-				gap_insert(&gp[i], want, gap);
-			if (cnt[j] < dp->min_coord)
-				gap_insert(&gp[j], want, gap);
-		}
-		if (cnt[i] < dp->min_coord)
-			for (w = 0; w < NWALLS; w++)
-				gap_insert(&gp[i], want, pack_wall_distance(p->box, x + 3 * i, w) - p->r[i]);
-	}
+	contact_foreach(&s->ce, x, CONTACT_NEAR, on_gap, &g);
 	for (i = 0; i < s->n; i++) {
 		double dr, cap = scale * dp->max_growth * p->r[i];
 		if (cnt[i] >= dp->min_coord)
@@ -91,7 +108,7 @@ grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const str
 		/* touch the want-th gap with a small overlap (1e-6 R) so that it counts; grow at
 		 * least 1e-3 R (scaled), or a grain caged by neighbours that push back after each
 		 * minimisation creeps for many rounds */
-		dr = gp[i].k == want ? gp[i].g[want - 1] + 1e-6 * p->r[i] : cap;
+		dr = gp[i].k == g.want ? gp[i].g[g.want - 1] + 1e-6 * p->r[i] : cap;
 		dr = fmax(dr, scale * 1e-3 * p->r[i]);
 		p->r[i] += fmin(dr, cap);
 		grown++;

@@ -44,62 +44,37 @@ fr_rule_name(enum fr_rule rule)
 	return rule == FR_PAPER ? "paper" : "return-map";
 }
 
-static double
-shear_modulus(double E, double nu)
-{
-	return E / (2 * (1 + nu));
-}
-
 /* The frozen quantities of one contact at the reference configuration (physics.md §3-5). */
 static void
-setup_contact(const struct pack *p, const struct geo_contact *g, struct fr_contact *c, struct qs_friction *f)
+setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_contact *c, struct qs_friction *f)
 {
+	const struct pack *p = s->p;
+	const struct contact_law *law = s->law;
 	size_t i = g->i;
-	double Es, Rs, a, Gi = shear_modulus(p->E[i], p->nu[i]), Gj, nui = p->nu[i], nuj, mu, Ri = p->r[i];
-	double Q0[3] = {0, 0, 0}, M0 = 0, tq[3], tn, qn;
+	double li, lj, Q0[3] = {0, 0, 0}, M0 = 0, tq[3], tn, qn;
 	int wall = PACK_IS_WALL(g->j), k;
+	struct law_pair lp;
+	struct law_tangent t;
 
 	memset(c, 0, sizeof *c);
 	c->i = i;
 	c->j = g->j;
 	memcpy(c->n, g->n, sizeof c->n);
-	contacts_moduli(p, g, &Es, &Rs);
-	c->Es = Es;
-	c->Rs = Rs;
-	a = sqrt(Rs * g->h);
-	if (wall) {
-		Gj = shear_modulus(p->wall_E, p->wall_nu);
-		nuj = p->wall_nu;
-		mu = p->wall_mu;
-		for (k = 0; k < 3; k++)
-			c->li[k] = -g->n[k] * (Ri - g->h);
-	} else {
-		double Rj = p->r[g->j], d = g->d;
-		double A2 = (d - Ri + Rj) * (d + Ri - Rj) * (Ri + Rj - d) * (Ri + Rj + d) / (4 * d * d);
-		double li, lj;
-		Gj = shear_modulus(p->E[g->j], p->nu[g->j]);
-		nuj = p->nu[g->j];
-		mu = p->mu;
-		if (A2 < 0)
-			A2 = 0;
-		li = sqrt(fmax(Ri * Ri - A2, 0));
-		lj = sqrt(fmax(Rj * Rj - A2, 0));
-		for (k = 0; k < 3; k++) {
-			c->li[k] = -g->n[k] * li;
-			c->lj[k] = g->n[k] * lj;
-		}
+	law->pair(law, p, i, g->j, &lp);
+	c->Es = lp.Es;
+	c->Rs = lp.Rs;
+	contact_lever_lengths(wall, p->r[i], wall ? 0 : p->r[g->j], g->d, g->h, &li, &lj);
+	for (k = 0; k < 3; k++) {
+		c->li[k] = -g->n[k] * li;
+		c->lj[k] = wall ? 0 : g->n[k] * lj;
 	}
-	c->k = 8 * a / ((2 - nui) / Gi + (2 - nuj) / Gj);
-	c->qmax = mu * g->P;
-	c->kt = 16.0 / 3.0 * a * a * a / (1 / Gi + 1 / Gj);
-	c->mmax = 3 * M_PI / 16 * a * mu * g->P;
+	law->tangent(law, &lp, g->h, g->P, wall ? p->wall_mu : p->mu, &t);
+	c->k = t.k;
+	c->qmax = t.qmax;
+	c->kt = t.kt;
+	c->mmax = t.mmax;
 	if (g->hist >= 0) {
-		memcpy(Q0, p->c[g->hist].Q0, sizeof Q0);
-		/* a line may name the pair as "j i" (pack-format.md): its Q0 is then the force
-		 * on j, and the force on i is its opposite (M0 is the same either way) */
-		if (p->c[g->hist].i != g->i)
-			for (k = 0; k < 3; k++)
-				Q0[k] = -Q0[k];
+		pack_contact_q0_on(&p->c[g->hist], i, Q0);
 		M0 = p->c[g->hist].M0;
 	}
 	/* Q^p = |Q0| T Q0 / |T Q0|: the history force turned into the reference tangent plane */
@@ -177,6 +152,9 @@ fr_check_history(const struct pack *p)
 	return 0;
 }
 
+static double friction_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax);
+static void friction_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k);
+
 int
 fr_begin(struct qs_friction *f, struct qs_system *s)
 {
@@ -212,14 +190,14 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 	f->clamped = 0;
 	f->clamp_excess = 0;
 	for (k = 0; k < gc.n; k++) {
-		setup_contact(p, &gc.c[k], &f->c[k], f);
+		setup_contact(s, &gc.c[k], &f->c[k], f);
 		matched += gc.c[k].hist >= 0;
 	}
 	f->stale = p->nc - matched;
 	contacts_free(&gc);
-	s->fr = f;
-	s->dim = 6 * s->n;
-	return 0;
+	qs_remove_terms(s);
+	qs_set_rotations(s, 1);
+	return qs_add_term(s, &(struct qs_term){"friction", friction_energy, friction_stiffness, f});
 }
 
 /* s^2 below the limit, its tangent 2 lim s - lim^2 above: the return map's potential,
@@ -230,7 +208,7 @@ clamp_potential(double s, double lim)
 	return s <= lim ? s * s : 2 * lim * s - lim * lim;
 }
 
-double
+static double
 fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g)
 {
 	const double *r = s->p->r, *x0 = f->x0;
@@ -312,6 +290,13 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 	return E;
 }
 
+static double
+friction_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax)
+{
+	(void)fmax;
+	return fr_energy(t->data, s, x, g);
+}
+
 size_t
 fr_sliding(const struct qs_friction *f)
 {
@@ -323,11 +308,13 @@ fr_sliding(const struct qs_friction *f)
 	return n;
 }
 
-void
-fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double *k)
+static void
+friction_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k)
 {
+	const struct qs_friction *f = t->data;
 	size_t q;
 
+	(void)x;
 	for (q = 0; q < f->n; q++) {
 		const struct fr_contact *c = &f->c[q];
 		k[c->i] += c->k + c->kt / (s->p->r[c->i] * s->p->r[c->i]);
@@ -340,20 +327,10 @@ fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double 
 static double
 normal_force_now(const struct pack *p, const struct fr_contact *c)
 {
-	const double *xi = p->x + 3 * c->i;
-	double h;
+	struct contact now;
 
-	if (PACK_IS_WALL(c->j)) {
-		double n[3], pos;
-		int axis = PACK_WALL_INDEX(c->j) / 2;
-		contacts_wall_plane(p, PACK_WALL_INDEX(c->j), n, &pos);
-		h = p->r[c->i] - (xi[axis] - pos) * n[axis];
-	} else {
-		const double *xj = p->x + 3 * c->j;
-		double d[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
-		h = p->r[c->i] + p->r[c->j] - vec3_norm(d);
-	}
-	return hertz_force(c->Es, c->Rs, h);
+	contact_between(p, p->x, c->i, c->j, &now);
+	return hertz_force(c->Es, c->Rs, now.h);
 }
 
 int
@@ -386,4 +363,22 @@ fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 			f->nslide++;
 	}
 	return 0;
+}
+
+void
+fr_detach(struct qs_system *s)
+{
+	qs_remove_terms(s);
+	qs_set_rotations(s, 0);
+}
+
+struct qs_friction *
+fr_attached(const struct qs_system *s)
+{
+	int q;
+
+	for (q = 0; q < s->nterms; q++)
+		if (s->term[q].energy == friction_energy)
+			return s->term[q].data;
+	return NULL;
 }

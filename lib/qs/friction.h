@@ -79,12 +79,10 @@ const char *fr_rule_name(enum fr_rule rule);
 int fr_check_history(const struct pack *p);
 
 /* Start an increment from the pack's positions p->x and contact history p->c (friction
- * coefficients p->mu, p->wall_mu).  Attaches f to s: qs_energy then works on 6N unknowns.
+ * coefficients p->mu, p->wall_mu), with the stiffnesses of s->law.  Adds f's term to s's
+ * functional (replacing any other but the normal one): qs_energy then works on 6N unknowns.
  * The caller's x must hold p->x followed by 3N zeros.  0 or -1. */
 int fr_begin(struct qs_friction *f, struct qs_system *s);
-/* Pi's frictional part at x (6N) and its gradient added into g (6N) unless NULL; updates
- * each contact's Q and M.  Called by qs_energy. */
-double fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g);
 /* End the increment at x (6N): evaluate, write the history into p->c, move p->x to x, zero the
  * rotations in x.  Counts the sliding contacts of the increment into f->nslide: those whose
  * elastic trial force reaches the limit of their normal force at the end, |Q^p - k* u_s| >=
@@ -97,8 +95,12 @@ int fr_commit(struct qs_friction *f, struct qs_system *s, double *x);
 /* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
  * |Q| >= Q_max (1 - 1e-9)). */
 size_t fr_sliding(const struct qs_friction *f);
-/* Add each grain's frictional stiffness (k* and k*_t / R_i^2, in N/m per unit of the scaled
- * unknowns) into k (N entries): the minimisers' bound on the Hessian. */
-void fr_add_stiffness(const struct qs_friction *f, const struct qs_system *s, double *k);
+/* The increment's frictional term, once fr_begin has added it to the functional: its
+ * energy at x (6N) with the gradient (updating each contact's Q and M), and each grain's
+ * stiffness k* + k*_t / R_i^2 in the minimisers' bound.  fr_detach removes it and makes the
+ * unknowns the 3N centres again. */
+void fr_detach(struct qs_system *s);
+/* The friction attached to s, or NULL. */
+struct qs_friction *fr_attached(const struct qs_system *s);
 
 #endif

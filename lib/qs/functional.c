@@ -1,11 +1,13 @@
 /* functional: Hertz energy and gradient over a pack (see functional.h). */
 #include "qs/functional.h"
-#include "qs/friction.h"
 #include "base/msg.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+static double normal_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax);
+static void normal_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k);
 
 int
 qs_init(struct qs_system *s, struct pack *p, double skin)
@@ -15,7 +17,12 @@ qs_init(struct qs_system *s, struct pack *p, double skin)
 	memset(s, 0, sizeof *s);
 	s->p = p;
 	s->n = p->n;
-	s->dim = 3 * p->n;
+	qs_set_rotations(s, 0);
+	s->law = &contact_law_hertz_mindlin;
+	s->term[0].name = "normal";
+	s->term[0].energy = normal_energy;
+	s->term[0].stiffness = normal_stiffness;
+	s->nterms = 1;
 	s->comp = malloc((p->n ? p->n : 1) * sizeof *s->comp);
 	if (!s->comp) {
 		msg_seterr("out of memory");
@@ -29,95 +36,214 @@ qs_init(struct qs_system *s, struct pack *p, double skin)
 	}
 	s->wall_comp = (1 - p->wall_nu * p->wall_nu) / p->wall_E;
 	s->skin = skin * s->rmin;
-	nlist_init(&s->nl);
-	return 0;
+	return contact_enum_init(&s->ce, p->n, p->r, p->box, p->box + 3, p->periodic, s->skin, 0);
 }
 
 void
 qs_free(struct qs_system *s)
 {
 	free(s->comp);
-	nlist_free(&s->nl);
+	contact_enum_free(&s->ce);
 	memset(s, 0, sizeof *s);
+}
+
+int
+qs_add_term(struct qs_system *s, const struct qs_term *t)
+{
+	if (s->nterms == QS_MAX_TERMS) {
+		msg_seterr("too many terms in the functional");
+		return -1;
+	}
+	s->term[s->nterms++] = *t;
+	return 0;
+}
+
+void
+qs_remove_terms(struct qs_system *s)
+{
+	s->nterms = 1;
+}
+
+struct qs_term *
+qs_term_named(struct qs_system *s, const char *name)
+{
+	int q;
+
+	for (q = 0; q < s->nterms; q++)
+		if (!strcmp(s->term[q].name, name))
+			return &s->term[q];
+	return NULL;
+}
+
+void
+qs_set_rotations(struct qs_system *s, int rotations)
+{
+	layout_set(&s->layout, s->n, rotations);
+	s->dim = s->layout.dim;
+}
+
+/* What the normal term's callbacks accumulate. */
+struct normal_acc {
+	struct qs_system *s;
+	const double *x;
+	double *g, *fmax, *k;
+	double E, sumf;
+	size_t nc;
+};
+
+/* The normal force P of contact c on grain i (and j), with energy U: gradient, largest
+ * force per grain, wall forces, sums. */
+static inline void
+normal_add(struct normal_acc *a, const struct contact *c, double P, double U)
+{
+	size_t i = c->i;
+
+	a->E += U;
+	a->sumf += P;
+	a->nc++;
+	if (PACK_IS_WALL(c->j)) {
+		int w = PACK_WALL_INDEX(c->j);
+		a->s->wall_force[w] += P;
+		if (a->g)
+			a->g[3 * i + w / 2] += w % 2 ? P : -P;
+		if (a->fmax && P > a->fmax[i])
+			a->fmax[i] = P;
+	} else {
+		size_t j = (size_t)c->j;
+		if (a->g) {
+			double f = P / c->d;
+			a->g[3 * i] -= f * c->dx[0];
+			a->g[3 * i + 1] -= f * c->dx[1];
+			a->g[3 * i + 2] -= f * c->dx[2];
+			a->g[3 * j] += f * c->dx[0];
+			a->g[3 * j + 1] += f * c->dx[1];
+			a->g[3 * j + 2] += f * c->dx[2];
+		}
+		if (a->fmax) {
+			if (P > a->fmax[i])
+				a->fmax[i] = P;
+			if (P > a->fmax[j])
+				a->fmax[j] = P;
+		}
+	}
+}
+
+/* Hertz, inlined: the fast path of every evaluation (E* from the per-grain compliances,
+ * U = 2/5 P h). */
+static inline int
+on_hertz(const struct contact *c, void *vacc)
+{
+	struct normal_acc *a = vacc;
+	const struct qs_system *s = a->s;
+	const double *r = s->p->r;
+	double Es, sRs, P;
+
+	if (PACK_IS_WALL(c->j)) {
+		Es = 1.0 / (s->comp[c->i] + s->wall_comp);
+		sRs = sqrt(r[c->i]);
+	} else {
+		double ri = r[c->i], rj = r[c->j];
+		Es = 1.0 / (s->comp[c->i] + s->comp[c->j]);
+		sRs = sqrt(ri * rj / (ri + rj));
+	}
+	P = 4.0 / 3.0 * Es * sRs * c->h * sqrt(c->h);
+	normal_add(a, c, P, 0.4 * P * c->h);
+	return 0;
+}
+
+/* Any other law, through its interface. */
+static int
+on_law(const struct contact *c, void *vacc)
+{
+	struct normal_acc *a = vacc;
+	const struct contact_law *law = a->s->law;
+	struct law_pair lp;
+	double P, U;
+
+	law->pair(law, a->s->p, c->i, c->j, &lp);
+	U = law->normal(law, &lp, c->h, &P, NULL);
+	normal_add(a, c, P, U);
+	return 0;
+}
+
+static double
+normal_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax)
+{
+	struct normal_acc a = {s, x, g, fmax, NULL, 0, 0, 0};
+
+	(void)t;
+	if (s->law == &contact_law_hertz_mindlin)
+		contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_hertz, &a);
+	else
+		contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_law, &a);
+	s->ncontacts = a.nc;
+	s->sum_force = a.sumf;
+	return a.E;
+}
+
+/* Gershgorin bound on the normal term's Hessian: the per-grain sum of contact stiffnesses
+ * dP/dh, with a margin of 1.5 on grain pairs for the geometric term P/d. */
+static int
+on_stiffness(const struct contact *c, void *vacc)
+{
+	struct normal_acc *a = vacc;
+	const struct qs_system *s = a->s;
+	const double *r = s->p->r;
+
+	if (s->law != &contact_law_hertz_mindlin) {
+		struct law_pair lp;
+		double P, kk;
+		s->law->pair(s->law, s->p, c->i, c->j, &lp);
+		s->law->normal(s->law, &lp, c->h, &P, &kk);
+		a->k[c->i] += PACK_IS_WALL(c->j) ? kk : 1.5 * kk;
+		if (!PACK_IS_WALL(c->j))
+			a->k[c->j] += 1.5 * kk;
+	} else if (PACK_IS_WALL(c->j)) {
+		a->k[c->i] += 2 / (s->comp[c->i] + s->wall_comp) * sqrt(r[c->i] * c->h);
+	} else {
+		double Es = 1 / (s->comp[c->i] + s->comp[c->j]), Rs = r[c->i] * r[c->j] / (r[c->i] + r[c->j]);
+		double kk = 2 * Es * sqrt(Rs * c->h) * 1.5;
+		a->k[c->i] += kk;
+		a->k[c->j] += kk;
+	}
+	return 0;
+}
+
+static void
+normal_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k)
+{
+	struct normal_acc a = {s, x, NULL, NULL, k, 0, 0, 0};
+
+	(void)t;
+	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_stiffness, &a);
+}
+
+void
+qs_stiffness(struct qs_system *s, const double *x, double *k)
+{
+	int q;
+
+	for (q = 0; q < s->nterms; q++)
+		if (s->term[q].stiffness)
+			s->term[q].stiffness(&s->term[q], s, x, k);
 }
 
 double
 qs_energy(struct qs_system *s, const double *x, double *g, double *fmax)
 {
-	const struct pack *p = s->p;
-	const double *r = p->r, *box = p->box;
-	double E = 0, sumf = 0;
-	size_t i, k, n = s->n, nc = 0;
-	int w;
+	double E = 0;
+	int q;
 
-	if (!s->nl.first || nlist_stale(&s->nl, x, box, box + 3))
-		if (nlist_build(&s->nl, x, r, n, box, box + 3, s->rmax, s->skin))
-			return NAN;
+	if (contact_enum_update(&s->ce, x, 0))
+		return NAN;
 	s->evals++;
 	if (g)
 		memset(g, 0, s->dim * sizeof *g);
 	if (fmax)
-		memset(fmax, 0, n * sizeof *fmax);
+		memset(fmax, 0, s->n * sizeof *fmax);
 	memset(s->wall_force, 0, sizeof s->wall_force);
-	for (i = 0; i < n; i++) {
-		const double *xi = x + 3 * i;
-		double ri = r[i], ci = s->comp[i];
-
-		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
-			size_t j = s->nl.nbr[k];
-			const double *xj = x + 3 * j;
-			double d0 = xi[0] - xj[0], d1 = xi[1] - xj[1], d2 = xi[2] - xj[2];
-			double sum = ri + r[j], dd = d0 * d0 + d1 * d1 + d2 * d2, d, h, Es, sRs, sh, P;
-
-			if (dd >= sum * sum)
-				continue;
-			d = sqrt(dd);
-			h = sum - d;
-			Es = 1.0 / (ci + s->comp[j]);
-			sRs = sqrt(ri * r[j] / sum);
-			sh = sqrt(h);
-			P = 4.0 / 3.0 * Es * sRs * h * sh;
-			E += 0.4 * P * h;	/* 8/15 E* sqrt(R*) h^(5/2) = 2/5 P h */
-			sumf += P;
-			nc++;
-			if (g) {
-				double f = P / d;
-				g[3 * i] -= f * d0;
-				g[3 * i + 1] -= f * d1;
-				g[3 * i + 2] -= f * d2;
-				g[3 * j] += f * d0;
-				g[3 * j + 1] += f * d1;
-				g[3 * j + 2] += f * d2;
-			}
-			if (fmax) {
-				if (P > fmax[i])
-					fmax[i] = P;
-				if (P > fmax[j])
-					fmax[j] = P;
-			}
-		}
-		for (w = 0; w < NWALLS; w++) {
-			int a = w / 2;
-			double dist = pack_wall_distance(box, xi, w), h = ri - dist, Es, P;
-
-			if (h <= 0)
-				continue;
-			Es = 1.0 / (ci + s->wall_comp);
-			P = 4.0 / 3.0 * Es * sqrt(ri) * h * sqrt(h);
-			E += 0.4 * P * h;
-			sumf += P;
-			nc++;
-			s->wall_force[w] += P;
-			if (g)
-				g[3 * i + a] += w % 2 ? P : -P;
-			if (fmax && P > fmax[i])
-				fmax[i] = P;
-		}
-	}
-	s->ncontacts = nc;
-	s->sum_force = sumf;
-	if (s->fr)
-		E += fr_energy(s->fr, s, x, g);
+	for (q = 0; q < s->nterms; q++)
+		E += s->term[q].energy(&s->term[q], s, x, g, fmax);
 	return E;
 }
 
@@ -135,11 +261,7 @@ qs_residual(const struct qs_system *s, const double *g, const double *fbig, doub
 		double f;
 		if (!(fbig[i] > 0))
 			continue;
-		f = sqrt(g[3 * i] * g[3 * i] + g[3 * i + 1] * g[3 * i + 1] + g[3 * i + 2] * g[3 * i + 2]);
-		if (s->dim > 3 * s->n) {
-			const double *m = g + 3 * s->n + 3 * i;
-			f = fmax(f, sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]));
-		}
+		f = layout_grain_len(&s->layout, g, i);
 		if (f / fmax(fbig[i], fl) > rmax)
 			rmax = f / fmax(fbig[i], fl);
 		sum += f;
@@ -162,30 +284,22 @@ qs_wall_stress(const struct qs_system *s, double sig[3])
 	}
 }
 
+static int
+on_count(const struct contact *c, void *vcounts)
+{
+	unsigned *counts = vcounts;
+
+	counts[c->i]++;
+	if (!PACK_IS_WALL(c->j))
+		counts[c->j]++;
+	return 0;
+}
+
 void
 qs_coordination(const struct qs_system *s, const double *x, unsigned *counts)
 {
-	const double *r = s->p->r, *box = s->p->box;
-	size_t i, k;
-	int w;
-
 	memset(counts, 0, s->n * sizeof *counts);
-	for (i = 0; i < s->n; i++) {
-		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
-			size_t j = s->nl.nbr[k];
-			double d0 = x[3 * i] - x[3 * j], d1 = x[3 * i + 1] - x[3 * j + 1], d2 = x[3 * i + 2] - x[3 * j + 2];
-			double sum = r[i] + r[j];
-			if (d0 * d0 + d1 * d1 + d2 * d2 < sum * sum) {
-				counts[i]++;
-				counts[j]++;
-			}
-		}
-		for (w = 0; w < NWALLS; w++) {
-			double dist = pack_wall_distance(box, x + 3 * i, w);
-			if (dist < r[i])
-				counts[i]++;
-		}
-	}
+	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_count, counts);
 }
 
 void
@@ -199,8 +313,7 @@ qs_radii_changed(struct qs_system *s)
 		s->rmin = fmin(s->rmin, s->p->r[i]);
 		s->rmax = fmax(s->rmax, s->p->r[i]);
 	}
-	nlist_free(&s->nl);
-	nlist_init(&s->nl);
+	contact_enum_radii_changed(&s->ce);
 }
 
 /* c <= 3 unit normals nc (rows) and overlaps h: the u of least length with nc[k].u = h[k],
@@ -241,77 +354,81 @@ release_move(unsigned c, const double nc[3][3], const double h[3], double u[3])
 	return 0;
 }
 
+/* The contacts of one grain for the release: up to three normals and overlaps, counted
+ * beyond; a coincident neighbour (no normal) counts as too many. */
+struct release_ctx {
+	double nc[3][3], h[3];
+	unsigned c;
+};
+
+static int
+on_release_contact(const struct contact *c, void *vctx)
+{
+	struct release_ctx *r = vctx;
+
+	/* touching by the distance itself (the near pairs come with the gaps) */
+	if (!(c->h > 0))
+		return 0;
+	if (!(c->d > 0) && !PACK_IS_WALL(c->j)) {
+		r->c = 4;	/* coincident centres: no normal; leave it to the minimiser */
+		return 1;
+	}
+	if (r->c < 3) {
+		contact_normal(c, r->nc[r->c]);
+		r->h[r->c] = c->h;
+	}
+	r->c++;
+	return r->c > 3;
+}
+
+/* Is x_i + u free of every neighbour and wall?  Any touching pair at the new position blocks
+ * the move (the first pass); a wall does when the gap from the old position less the move
+ * along its normal is below the radius (the second pass: the move's own arithmetic, so that
+ * a grain released from a wall by exactly its overlap is judged as the move computed it). */
+struct release_check {
+	const double *lo, *hi, *old, *u, *r;
+};
+
+static int
+on_release_check_pair(const struct contact *c, void *vctx)
+{
+	(void)vctx;
+	return !PACK_IS_WALL(c->j);
+}
+
+static int
+on_release_check_wall(const struct contact *c, void *vctx)
+{
+	const struct release_check *k = vctx;
+	int w, a;
+
+	if (!PACK_IS_WALL(c->j))
+		return 0;
+	w = PACK_WALL_INDEX(c->j), a = w / 2;
+	return (w % 2 ? k->hi[a] - k->old[a] - k->u[a] : k->old[a] + k->u[a] - k->lo[a]) < k->r[c->i];
+}
+
 long
 qs_release_unbraced(struct qs_system *s, double *x)
 {
-	const double *r = s->p->r, *box = s->p->box;
-	size_t i, k, n = s->n, *first = NULL, *nbr = NULL, *fill = NULL;
+	size_t i, n = s->n;
 	long moved = 0;
 
-	if (s->fr || n == 0)
+	if (s->layout.rotations || n == 0)
 		return 0;
 	/* a fresh list at x: every pair within the skin is listed, so a move shorter than a
 	 * quarter of it cannot meet an unlisted grain */
-	nlist_free(&s->nl);
-	nlist_init(&s->nl);
-	if (isnan(qs_energy(s, x, NULL, NULL)))
+	if (contact_enum_update(&s->ce, x, 1) || isnan(qs_energy(s, x, NULL, NULL)))
 		return -1;
-	first = calloc(n + 1, sizeof *first);
-	fill = calloc(n, sizeof *fill);
-	nbr = malloc((2 * s->nl.npairs + 1) * sizeof *nbr);
-	if (!first || !fill || !nbr) {
-		msg_seterr("out of memory");
-		moved = -1;
-		goto out;
-	}
-	/* both directions of the half list, rows in ascending order (deterministic) */
-	for (i = 0; i < n; i++)
-		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
-			first[i + 1]++;
-			first[s->nl.nbr[k] + 1]++;
-		}
-	for (i = 0; i < n; i++)
-		first[i + 1] += first[i];
-	for (i = 0; i < n; i++)
-		for (k = s->nl.first[i]; k < s->nl.first[i + 1]; k++) {
-			size_t j = s->nl.nbr[k];
-			nbr[first[i] + fill[i]++] = j;
-			nbr[first[j] + fill[j]++] = i;
-		}
 	for (i = 0; i < n; i++) {
-		double nc[3][3], h[3], u[3], xn[3], uu;
-		unsigned c = 0;
-		int w, ok = 1;
+		struct release_ctx rc;
+		double u[3], old[3], uu;
+		long hit;
 
-		for (k = first[i]; k < first[i + 1] && c <= 3; k++) {
-			size_t j = nbr[k];
-			double d[3] = {x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]};
-			double dist = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-			if (dist >= r[i] + r[j])
-				continue;
-			if (!(dist > 0)) {
-				c = 4;	/* coincident centres: no normal; leave it to the minimiser */
-				break;
-			}
-			if (c < 3) {
-				nc[c][0] = d[0] / dist, nc[c][1] = d[1] / dist, nc[c][2] = d[2] / dist;
-				h[c] = r[i] + r[j] - dist;
-			}
-			c++;
-		}
-		for (w = 0; w < NWALLS && c <= 3; w++) {
-			int a = w / 2;
-			double dist = pack_wall_distance(box, x + 3 * i, w);
-			if (dist >= r[i])
-				continue;
-			if (c < 3) {
-				nc[c][0] = nc[c][1] = nc[c][2] = 0;
-				nc[c][a] = w % 2 ? -1 : 1;
-				h[c] = r[i] - dist;
-			}
-			c++;
-		}
-		if (c == 0 || c > 3 || release_move(c, (const double(*)[3])nc, h, u))
+		rc.c = 0;
+		if (contact_foreach_grain(&s->ce, x, i, CONTACT_NEAR, on_release_contact, &rc) < -1)
+			return -1;
+		if (rc.c == 0 || rc.c > 3 || release_move(rc.c, (const double(*)[3])rc.nc, rc.h, u))
 			continue;
 		uu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
 		if (!(uu <= 0.25 * s->skin))
@@ -319,24 +436,23 @@ qs_release_unbraced(struct qs_system *s, double *x)
 		/* a hair beyond touching: rounding must not leave an overlap of 1e-16 that counts
 		 * as a contact */
 		u[0] *= 1 + 1e-8, u[1] *= 1 + 1e-8, u[2] *= 1 + 1e-8;
-		xn[0] = x[3 * i] + u[0], xn[1] = x[3 * i + 1] + u[1], xn[2] = x[3 * i + 2] + u[2];
 		/* u.n_c = h_c opens each contact to first order and |d + u| >= |d| + h_c exactly
 		 * (u is longer than its projection); what remains is not to touch anything new */
-		for (k = first[i]; k < first[i + 1] && ok; k++) {
-			size_t j = nbr[k];
-			double d[3] = {xn[0] - x[3 * j], xn[1] - x[3 * j + 1], xn[2] - x[3 * j + 2]};
-			ok = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] >= (r[i] + r[j]) * (r[i] + r[j]);
+		memcpy(old, x + 3 * i, sizeof old);
+		x[3 * i] = old[0] + u[0], x[3 * i + 1] = old[1] + u[1], x[3 * i + 2] = old[2] + u[2];
+		hit = contact_foreach_grain(&s->ce, x, i, CONTACT_TOUCHING, on_release_check_pair, NULL);
+		if (hit >= 0)
+			hit = contact_foreach_grain(&s->ce, x, i, CONTACT_NEAR, on_release_check_wall,
+			    &(struct release_check){s->ce.lo, s->ce.hi, old, u, s->p->r});
+		if (hit == -2) {
+			msg_seterr("out of memory");
+			return -1;
 		}
-		for (w = 0; w < NWALLS && ok; w++) {
-			int a = w / 2;
-			ok = (w % 2 ? box[3 + a] - x[3 * i + a] - u[a] : x[3 * i + a] + u[a] - box[a]) >= r[i];
-		}
-		if (!ok)
+		if (hit == -1) {	/* blocked: stay */
+			memcpy(x + 3 * i, old, sizeof old);
 			continue;
-		memcpy(x + 3 * i, xn, sizeof xn);
+		}
 		moved++;
 	}
-out:
-	free(first), free(fill), free(nbr);
 	return moved;
 }

@@ -1,32 +1,53 @@
 /* functional: the total potential energy Pi of a pack and its exact gradient (physics.md §2, §6).
  *
- * Frictionless part: Pi(x) = sum over grain pairs and grain-wall pairs in contact of the Hertz
- * energy U(h) = 8/15 E* sqrt(R*) h^(5/2), at grain centres x (3N, metres) inside the walls
- * of the current box; dPi/dx_i = -F_i, the sum of contact forces on grain i.  The constant
- * U(h0) of the papers' Pi is left out: minimisers only need differences.  Contacts are found
- * through a Verlet list that is rebuilt whenever it may have gone stale, so no contact is
- * missed however far the grains move between evaluations. */
+ * Pi is a sum of terms (struct qs_term), each adding its energy, its gradient and its part
+ * of the minimisers' stiffness bound: the contact law's normal energy over every contact,
+ * installed by qs_init (Hertz: U(h) = 8/15 E* sqrt(R*) h^(5/2) at grain centres x inside the
+ * walls of the current box; dPi/dx_i = -F_i, the sum of contact forces on grain i), and the
+ * friction of an increment (friction.h) when fr_begin adds it; a pore-pressure or growth
+ * term plugs in the same way.  The constant U(h0) of the papers' Pi is left out: minimisers
+ * only need differences.  Contacts come from the contact enumerator (contact/contacts.h),
+ * whose Verlet list is rebuilt whenever it may have gone stale, so no contact is missed
+ * however far the grains move between evaluations.  The order of the unknowns is layout.h's. */
 #ifndef QUSGM_FUNCTIONAL_H
 #define QUSGM_FUNCTIONAL_H
 
-#include "contact/nlist.h"
+#include "contact/contacts.h"
+#include "contact/law.h"
+#include "analysis/measure.h"
 #include "pack/pack.h"
+#include "qs/layout.h"
 
 /* Default floor of a grain's largest contact force in the residual, relative to the mean
  * normal contact force (see qs_residual); packinfo and the minimisers share it. */
-#define QS_RESIDUAL_FLOOR 1e-3
+#define QS_RESIDUAL_FLOOR MEASURE_RESIDUAL_FLOOR
 
-struct qs_friction;	/* friction.h */
+struct qs_system;
+
+/* A term of Pi.  energy adds the term's energy at x (returned), its gradient into g (dim)
+ * unless NULL and each grain's largest contact force into fmax (n) unless NULL; stiffness
+ * adds each grain's stiffness bound (N/m per unit of the scaled unknowns) into k (n). */
+struct qs_term {
+	const char *name;
+	double (*energy)(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax);
+	void (*stiffness)(struct qs_term *t, struct qs_system *s, const double *x, double *k);
+	void *data;
+};
+
+#define QS_MAX_TERMS 4
 
 struct qs_system {
 	struct pack *p;		/* radii, moduli; p->box is the current box */
 	size_t n;
-	size_t dim;		/* unknowns: 3n centres, or 6n with friction (centres, R_i Omega_i) */
-	struct qs_friction *fr;	/* the increment's frictional contacts, or NULL (frictionless) */
+	size_t dim;		/* unknowns: layout.dim, kept here for the minimisers */
+	struct qs_layout layout;
+	const struct contact_law *law;	/* the normal term's law (qs_init: Hertz-Mindlin) */
+	struct qs_term term[QS_MAX_TERMS];	/* term[0]: the normal contact term */
+	int nterms;
 	double *comp;		/* (1 - nu^2) / E per grain (1/Pa) */
 	double wall_comp;
 	double rmin, rmax, skin;
-	struct nlist nl;
+	struct contact_enum ce;
 	long evals;		/* energy/gradient evaluations so far */
 	double force_floor;	/* N: see qs_residual */
 	/* from the last evaluation */
@@ -38,6 +59,16 @@ struct qs_system {
 /* skin: Verlet skin over the smallest radius (0.3 is a good default). 0 or -1. */
 int qs_init(struct qs_system *s, struct pack *p, double skin);
 void qs_free(struct qs_system *s);
+/* Add a term after the ones there (its energy is summed in that order); 0, or -1 when
+ * QS_MAX_TERMS are there.  qs_remove_terms drops every term but the normal one. */
+int qs_add_term(struct qs_system *s, const struct qs_term *t);
+void qs_remove_terms(struct qs_system *s);
+/* The term of that name, or NULL. */
+struct qs_term *qs_term_named(struct qs_system *s, const char *name);
+/* The unknowns: 3N centres, or with rotations 6N (layout.h). */
+void qs_set_rotations(struct qs_system *s, int rotations);
+/* Each grain's stiffness bound from every term at x (after an evaluation there) into k (n). */
+void qs_stiffness(struct qs_system *s, const double *x, double *k);
 
 /* Pi at x (s->dim unknowns); gradient into g (s->dim) unless NULL; per-grain largest contact force into fmax (n)
  * unless NULL.  Returns NAN when the neighbour list cannot be built (slot set). */

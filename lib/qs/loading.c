@@ -124,8 +124,7 @@ begin(struct loader *L)
 	memset(L->x + n3, 0, n3 * sizeof *L->x);
 	if (L->lp.friction)
 		return fr_begin(&L->f, &L->s);
-	L->s.fr = NULL;
-	L->s.dim = n3;
+	fr_detach(&L->s);
 	return 0;
 }
 

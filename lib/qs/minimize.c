@@ -1,6 +1,5 @@
 /* minimize: the papers' modified CG and FIRE (see minimize.h). */
 #include "qs/minimize.h"
-#include "qs/friction.h"
 #include "base/msg.h"
 
 #include <gsl/gsl_errno.h>
@@ -64,32 +63,16 @@ dot(const double *a, const double *b, size_t n)
 	return s;
 }
 
-/* Grain i's part of a vector of unknowns: its translation, or with friction the larger of
- * its translation and its scaled rotation R_i Omega_i (both lengths). */
 static double
 grain_len(const struct work *w, const double *d, size_t i)
 {
-	const double *t = d + 3 * i;
-	double l = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-
-	if (w->n3 > 3 * w->s->n) {
-		const double *o = d + 3 * w->s->n + 3 * i;
-		l = fmax(l, sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
-	}
-	return l;
+	return layout_grain_len(&w->s->layout, d, i);
 }
 
-/* x += f v on grain i's unknowns (translation and, with friction, rotation). */
 static void
 grain_axpy(const struct work *w, double *x, const double *v, size_t i, double f)
 {
-	size_t k, n3 = 3 * w->s->n;
-
-	for (k = 3 * i; k < 3 * i + 3; k++)
-		x[k] += f * v[k];
-	if (w->n3 > n3)
-		for (k = n3 + 3 * i; k < n3 + 3 * i + 3; k++)
-			x[k] += f * v[k];
+	layout_grain_axpy(&w->s->layout, x, v, i, f);
 }
 
 /* Largest alpha such that no grain moves (or turns its surface) more than cap * its radius
@@ -272,43 +255,17 @@ run_cg(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_
 	return 0;
 }
 
-/* Gershgorin bound on the Hessian of Pi: twice the largest per-grain sum of contact
- * stiffnesses dP/dh = 2 E* a (normal) plus P/d (geometric) terms. */
+/* Gershgorin bound on the Hessian of Pi: twice the largest per-grain sum of the terms'
+ * stiffnesses (functional.h). */
 static double
 stiffness_bound(struct qs_system *s, const double *x)
 {
-	const struct pack *p = s->p;
 	double *k = calloc(s->n, sizeof *k), kmax = 0;
-	size_t i, q;
-	int a;
+	size_t i;
 
 	if (!k)
 		return NAN;
-	for (i = 0; i < s->n; i++) {
-		for (q = s->nl.first[i]; q < s->nl.first[i + 1]; q++) {
-			size_t j = s->nl.nbr[q];
-			double dd = 0, sum = p->r[i] + p->r[j], h, Es, Rs, kk;
-			for (a = 0; a < 3; a++)
-				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);
-			if (dd >= sum * sum)
-				continue;
-			h = sum - sqrt(dd);
-			Es = 1 / (s->comp[i] + s->comp[j]);
-			Rs = p->r[i] * p->r[j] / sum;
-			kk = 2 * Es * sqrt(Rs * h) * 1.5;	/* normal plus a margin for the geometric term */
-			k[i] += kk;
-			k[j] += kk;
-		}
-		for (a = 0; a < NWALLS; a++) {
-			int ax = a / 2;
-			double dist = a % 2 ? p->box[3 + ax] - x[3 * i + ax] : x[3 * i + ax] - p->box[ax];
-			double h = p->r[i] - dist;
-			if (h > 0)
-				k[i] += 2 / (s->comp[i] + s->wall_comp) * sqrt(p->r[i] * h);
-		}
-	}
-	if (s->fr)
-		fr_add_stiffness(s->fr, s, k);
+	qs_stiffness(s, x, k);
 	for (i = 0; i < s->n; i++)
 		kmax = fmax(kmax, k[i]);
 	free(k);

@@ -87,7 +87,7 @@ one_case(gsl_rng *rng, size_t n, double phi, double outside, double skin)
 	s.n = n;
 	s.x = x;
 	s.hits = calloc(n * n, 1);
-	CHECK(cell_build(&g, x, n, lo, hi, 2 * rmax + skin) == 0, "cell_build n=%zu phi=%g", n, phi);
+	CHECK(cell_build(&g, x, n, lo, hi, 2 * rmax + skin, NULL) == 0, "cell_build n=%zu phi=%g", n, phi);
 	visited = cell_for_pairs(&g, x, r, skin, on_pair, &s);
 	for (i = 0; i < n; i++)
 		for (j = i + 1; j < n; j++) {
@@ -143,7 +143,7 @@ main(void)
 		long calls = 0, ret;
 
 		cell_init(&g);
-		cell_build(&g, x, 4, lo, hi, 2);
+		cell_build(&g, x, 4, lo, hi, 2, NULL);
 		ret = cell_for_pairs(&g, x, r, 0, stop_at_third, &calls);
 		CHECK(ret == -1 && calls == 3, "callback error: -1 after the third pair (%ld, %ld calls)", ret, calls);
 		cell_free(&g);

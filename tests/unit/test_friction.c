@@ -149,8 +149,8 @@ eval(struct qs_system *s, const double *x, double *g, const char *where)
 {
 	double E = qs_energy(s, x, g, NULL);
 
-	if (s->fr)
-		bounds_record(s->fr, where);
+	if (fr_attached(s))
+		bounds_record(fr_attached(s), where);
 	return E;
 }
 
@@ -1133,7 +1133,10 @@ fd_check(struct qs_system *s, struct qs_friction *f, double *x, const char *tag)
 	Pi = eval(s, x, g, tag);
 	Fmean = s->sum_force / s->ncontacts;
 	/* the frictional gradient alone, and the torsional part alone (to build wrong gradients) */
-	fr_energy(f, s, x, gf);
+	{
+		struct qs_term *ft = qs_term_named(s, "friction");
+		ft->energy(ft, s, x, gf, NULL);
+	}
 	{
 		/* torsion only: the couple part of the rotation gradient, -M n / R */
 		for (k = 0; k < f->n; k++) {
@@ -1343,8 +1346,7 @@ test_mu0(gsl_rng *rng, enum fr_rule rule)
 	E = eval(&s, x, g, t);
 	for (k = 0; k < f.n; k++)
 		qm = fmax(qm, vec3_norm(f.c[k].Q) + fabs(f.c[k].M));
-	s.fr = NULL;
-	s.dim = 3 * n;
+	fr_detach(&s);
 	E0 = qs_energy(&s, x, g0, NULL);
 	for (k = 0; k < 3 * n; k++) {
 		dev = fmax(dev, fabs(g[k] - g0[k]));

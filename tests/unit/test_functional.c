@@ -373,7 +373,7 @@ compare(struct qs_system *s, const double *x, struct ref *rf, const char *what, 
 	size_t n = s->n, i, j, missing = 0, cdiff = 0;
 	double *g = malloc(3 * n * sizeof *g), *fm = malloc(n * sizeof *fm), E, gdev = 0;
 	unsigned *cnt = malloc(n * sizeof *cnt);
-	long builds = s->nl.builds;
+	long builds = s->ce.nl.builds;
 	int a;
 
 	E = qs_energy(s, x, g, fm);
@@ -387,7 +387,7 @@ compare(struct qs_system *s, const double *x, struct ref *rf, const char *what, 
 			double dd = 0, S = p->r[i] + p->r[j];
 			for (a = 0; a < 3; a++)
 				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);
-			if (dd < S * S && !listed(&s->nl, i, j))
+			if (dd < S * S && !listed(&s->ce.nl, i, j))
 				missing++;
 		}
 	}
@@ -397,8 +397,8 @@ compare(struct qs_system *s, const double *x, struct ref *rf, const char *what, 
 	    "grains with other counts, %zu found)", what, rf->ngg, rf->ngw, missing, cdiff, s->ncontacts);
 	CHECK(gdev <= 1e-12, "%s: gradient = O(N^2) gradient (%.3g of the grain's force sum)", what, gdev);
 	if (want_rebuild >= 0)
-		CHECK((s->nl.builds > builds) == (want_rebuild > 0), "%s: the list was %s (as intended)", what,
-		    s->nl.builds > builds ? "rebuilt" : "reused");
+		CHECK((s->ce.nl.builds > builds) == (want_rebuild > 0), "%s: the list was %s (as intended)", what,
+		    s->ce.nl.builds > builds ? "rebuilt" : "reused");
 	free(g), free(fm), free(cnt);
 }
 
@@ -441,7 +441,7 @@ test_nlist(gsl_rng *rng)
 	/* moves that keep 2 max|u| below the skin: the list is reused and must still hold every contact */
 	jiggle(rng, &p, x, 1e-3 * p.r[0]);
 	compare(&s, x, &rf, "nlist: moves of 1e-3 R", 0);
-	memcpy(x, s.nl.xb, 3 * n * sizeof *x);
+	memcpy(x, s.ce.nl.xb, 3 * n * sizeof *x);
 	jiggle(rng, &p, x, 0.45 * skin);
 	compare(&s, x, &rf, "nlist: moves up to 0.45 skin", 0);
 	jiggle(rng, &p, x, 0.8 * skin);
@@ -451,11 +451,11 @@ test_nlist(gsl_rng *rng)
 	 * each grain moving g/2 (1 + 1e-3) towards the other.  Each moves only just over skin/2:
 	 * a staleness test that forgot that two grains close a gap together would keep the list
 	 * and miss this contact. */
-	memcpy(x, s.nl.xb, 3 * n * sizeof *x);
+	memcpy(x, s.ce.nl.xb, 3 * n * sizeof *x);
 	for (i = 0; i < n; i++)
 		for (j = i + 1; j < n; j++) {
 			double dd = 0, gap;
-			if (listed(&s.nl, i, j))
+			if (listed(&s.ce.nl, i, j))
 				continue;
 			for (a = 0; a < 3; a++)
 				dd += (x[3 * i + a] - x[3 * j + a]) * (x[3 * i + a] - x[3 * j + a]);

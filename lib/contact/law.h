@@ -1,0 +1,72 @@
+/* law: a contact law as an interface, so that the enumerator and the engines never name one.
+ *
+ * A law gives, for one contact with its pair parameters (struct law_pair, from the two
+ * grains' materials or a grain and a wall): its quasi-static normal energy, force and
+ * stiffness at an overlap h (the functional and the minimisers' stiffness bound); its
+ * frozen tangential and torsional stiffnesses and sliding limits at a reference state (the
+ * friction of an increment, physics.md §3-5); and its force in an explicit DEM step, with
+ * the history doubles it keeps per contact (the tangential spring).  Two laws:
+ *
+ *  - contact_law_hertz_mindlin: Hertz normal, U = 8/15 E* sqrt(R*) h^(5/2) (hertz.h), with
+ *    Mindlin-Deresiewicz stick stiffness k* = 8 a / ((2-nu_i)/G_i + (2-nu_j)/G_j), sliding
+ *    limit mu P, torsion k*_t = 16/3 a^3 / (1/G_i + 1/G_j) and M_max = 3 pi / 16 a mu P,
+ *    a = sqrt(R* h); in DEM a viscous normal damping 2 zeta sqrt(m* k_n) and a tangential
+ *    spring of kt_ratio k_n with a Coulomb limit.  The functional inlines it (its fast path).
+ *  - contact_law_linear: a linear spring, U = k_n h^2 / 2, tangential k_t = kt_ratio k_n with
+ *    a Coulomb limit, torsion none; the same DEM damping.  For spheroplates' explicit DEM
+ *    (the platy-particle paper uses linear springs); k_n (N/m) is a field of the law.
+ * SI units. */
+#ifndef QUSGM_LAW_H
+#define QUSGM_LAW_H
+
+#include "pack/pack.h"
+
+struct law_pair {
+	double Es;	/* E* (Pa) */
+	double Rs;	/* R* (m) */
+	double Ct;	/* (2 - nu_i)/G_i + (2 - nu_j)/G_j (1/Pa): Mindlin tangential compliance */
+	double Ctor;	/* 1/G_i + 1/G_j (1/Pa): torsional compliance */
+};
+
+/* The frozen tangential state of a contact at its reference overlap. */
+struct law_tangent {
+	double k, qmax;		/* stick stiffness (N/m), sliding limit (N) */
+	double kt, mmax;	/* torsional stiffness (N m), limit (N m) */
+};
+
+/* One explicit step's input for a contact: overlap, unit normal on i, relative velocity
+ * of the contact point (i minus j), reduced mass, time step, friction coefficient. */
+struct law_dem_in {
+	double h, n[3], vr[3], meff, dt, mu;
+};
+
+struct contact_law {
+	const char *name;
+	unsigned history;	/* doubles kept per contact in DEM (the tangential spring) */
+	double kn;		/* linear law: normal stiffness (N/m) */
+	double kt_ratio;	/* DEM: tangential spring over normal stiffness */
+	double zeta;		/* DEM: viscous normal damping ratio */
+	/* Pair parameters of grain i and grain j, or wall w when j = PACK_WALL(w). */
+	void (*pair)(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
+	/* Energy at overlap h > 0; the force dU/dh into *P and the stiffness dP/dh into *k
+	 * unless NULL. */
+	double (*normal)(const struct contact_law *law, const struct law_pair *lp, double h, double *P, double *k);
+	/* The tangential state at overlap h carrying normal force P, with friction mu. */
+	void (*tangent)(const struct contact_law *law, const struct law_pair *lp, double h, double P, double mu,
+	    struct law_tangent *t);
+	/* DEM: the normal force magnitude (returned, >= 0, damping included), its elastic part
+	 * into *fel, and the tangential force on i into ft, updating the contact's history
+	 * (law->history doubles). */
+	double (*dem_force)(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in,
+	    double *hist, double ft[3], double *fel);
+};
+
+extern const struct contact_law contact_law_hertz_mindlin;
+extern const struct contact_law contact_law_linear;
+
+/* The shared pair parameters from the grains' (and walls') moduli and radii. */
+void law_pair_from_pack(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
+/* Find a law by name ("hertz-mindlin", "linear"); NULL when unknown. */
+const struct contact_law *contact_law_find(const char *name);
+
+#endif
