@@ -52,6 +52,26 @@ struct work {
 	double e, et;	/* energy at x and at the trial point xt */
 };
 
+/* The steppable minimiser: the work vectors, the method's state between iterations, and the
+ * caller's x it moves. */
+struct qs_minimizer {
+	struct work w;
+	struct qs_min_params mp;
+	double *x;
+	double scale2;		/* eps2's scale N (E_mean R_mean^2)^2 */
+	long it, evals0;
+	double eprev;
+	gsl_root_fsolver *solver;
+	/* cg */
+	double gg, step;
+	/* fire */
+	double dt, dtmax, alpha;
+	long npos;
+	/* lbfgs */
+	double *S, *Y, *rho, *al;
+	int head, count;
+};
+
 static double
 dot(const double *a, const double *b, size_t n)
 {
@@ -212,49 +232,6 @@ should_stop(struct work *w, const struct qs_min_params *mp, long it, double epre
 	return 0;
 }
 
-static int
-run_cg(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_report *rep, double scale2)
-{
-	gsl_root_fsolver *solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-	double gg, step = 0, eprev = INFINITY;
-	size_t k;
-	long it;
-
-	if (!solver) {
-		msg_seterr("out of memory");
-		return -1;
-	}
-	gg = dot(w->g, w->g, w->n3);
-	for (k = 0; k < w->n3; k++)
-		w->d[k] = -w->g[k];
-	for (it = 0;; it++) {
-		double amax, alpha, gg_new, beta;
-
-		if (should_stop(w, mp, it, eprev, rep, scale2))
-			break;
-		if (gg == 0)
-			break;
-		amax = alpha_cap(w, w->d, mp->cap);
-		alpha = line_search(w, x, step > 0 ? 2 * step : amax, amax, mp->ls_sigma, solver);
-		if (alpha < 0) {
-			gsl_root_fsolver_free(solver);
-			return -1;
-		}
-		step = alpha;
-		eprev = accept_trial(w, x);
-		gg_new = dot(w->g, w->g, w->n3);
-		beta = (it + 1) % mp->k_sd == 0 ? 0 : gg_new / gg;
-		for (k = 0; k < w->n3; k++)
-			w->d[k] = -w->g[k] + beta * w->d[k];
-		if (dot(w->d, w->g, w->n3) >= 0)	/* not a descent direction: restart */
-			for (k = 0; k < w->n3; k++)
-				w->d[k] = -w->g[k];
-		gg = gg_new;
-	}
-	gsl_root_fsolver_free(solver);
-	return 0;
-}
-
 /* Gershgorin bound on the Hessian of Pi: twice the largest per-grain sum of the terms'
  * stiffnesses (functional.h). */
 static double
@@ -272,14 +249,57 @@ stiffness_bound(struct qs_system *s, const double *x)
 	return 2 * kmax;
 }
 
-static int
-run_fire(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_report *rep, double scale2)
+/* --- the papers' modified CG ------------------------------------------------------- */
+
+static void
+cg_restart(struct qs_minimizer *m)
 {
-	const double finc = 1.1, fdec = 0.5, alpha0 = 0.25, falpha = 0.99;
-	const long ndelay = 20;
-	double kb = stiffness_bound(w->s, x), dtmax, dt, alpha = alpha0, eprev = INFINITY;
-	long it, npos = 0;
-	size_t k, i;
+	struct work *w = &m->w;
+	size_t k;
+
+	m->gg = dot(w->g, w->g, w->n3);
+	for (k = 0; k < w->n3; k++)
+		w->d[k] = -w->g[k];
+}
+
+static int
+cg_iterate(struct qs_minimizer *m)
+{
+	struct work *w = &m->w;
+	const struct qs_min_params *mp = &m->mp;
+	double amax, alpha, gg_new, beta;
+	size_t k;
+
+	amax = alpha_cap(w, w->d, mp->cap);
+	alpha = line_search(w, m->x, m->step > 0 ? 2 * m->step : amax, amax, mp->ls_sigma, m->solver);
+	if (alpha < 0)
+		return -1;
+	m->step = alpha;
+	m->eprev = accept_trial(w, m->x);
+	gg_new = dot(w->g, w->g, w->n3);
+	beta = (m->it + 1) % mp->k_sd == 0 ? 0 : gg_new / m->gg;
+	for (k = 0; k < w->n3; k++)
+		w->d[k] = -w->g[k] + beta * w->d[k];
+	if (dot(w->d, w->g, w->n3) >= 0)	/* not a descent direction: restart */
+		for (k = 0; k < w->n3; k++)
+			w->d[k] = -w->g[k];
+	m->gg = gg_new;
+	return 0;
+}
+
+/* --- FIRE 2.0 -------------------------------------------------------------------------- */
+
+#define FIRE_FINC 1.1
+#define FIRE_FDEC 0.5
+#define FIRE_ALPHA0 0.25
+#define FIRE_FALPHA 0.99
+#define FIRE_NDELAY 20
+
+static int
+fire_restart(struct qs_minimizer *m)
+{
+	struct work *w = &m->w;
+	double kb = stiffness_bound(w->s, m->x);
 
 	if (isnan(kb)) {
 		msg_seterr("out of memory");
@@ -287,179 +307,316 @@ run_fire(struct work *w, double *x, const struct qs_min_params *mp, struct qs_mi
 	}
 	if (kb <= 0)
 		kb = 1;
-	dtmax = mp->fire_dt / sqrt(kb);
-	dt = 0.1 * dtmax;
+	m->dtmax = m->mp.fire_dt / sqrt(kb);
+	m->dt = 0.1 * m->dtmax;
+	m->alpha = FIRE_ALPHA0;
+	m->npos = 0;
 	memset(w->v, 0, w->n3 * sizeof *w->v);
-	for (it = 0;; it++) {
-		double P = 0, vn, fn;
-
-		if (should_stop(w, mp, it, eprev, rep, scale2))
-			break;
-		P = -dot(w->g, w->v, w->n3);
-		if (P > 0) {
-			if (++npos > ndelay) {
-				dt = fmin(dt * finc, dtmax);
-				alpha *= falpha;
-			}
-		} else {
-			npos = 0;
-			dt = fmax(dt * fdec, 0.02 * dtmax);
-			alpha = alpha0;
-			/* half a step back, under the same per-grain cap as a forward step */
-			for (i = 0; i < w->s->n; i++) {
-				double l = 0.5 * dt * grain_len(w, w->v, i), lim = mp->cap * w->s->p->r[i],
-				       sc = l > lim ? lim / l : 1;
-				grain_axpy(w, x, w->v, i, -sc * 0.5 * dt);
-			}
-			memset(w->v, 0, w->n3 * sizeof *w->v);
-		}
-		/* semi-implicit Euler with FIRE's mixing of the velocity towards the force */
-		for (k = 0; k < w->n3; k++)
-			w->v[k] -= dt * w->g[k];
-		vn = sqrt(dot(w->v, w->v, w->n3));
-		fn = sqrt(dot(w->g, w->g, w->n3));
-		if (fn > 0)
-			for (k = 0; k < w->n3; k++)
-				w->v[k] = (1 - alpha) * w->v[k] - alpha * vn * w->g[k] / fn;
-		for (i = 0; i < w->s->n; i++) {
-			double l = grain_len(w, w->v, i) * dt, lim = mp->cap * w->s->p->r[i], sc = l > lim ? lim / l : 1;
-			grain_axpy(w, x, w->v, i, sc * dt);
-		}
-		eprev = w->e;
-		w->e = qs_energy(w->s, x, w->g, w->fmax);
-		if (isnan(w->e))
-			return -1;
-	}
 	return 0;
 }
+
+/* Half a step back along v, and a step forward, each grain's under the cap (cap times its
+ * radius). */
+static void
+fire_back(struct work *w, double *x, double cap, double dt)
+{
+	size_t i;
+
+	for (i = 0; i < w->s->n; i++) {
+		double l = 0.5 * dt * grain_len(w, w->v, i), lim = cap * w->s->p->r[i], sc = l > lim ? lim / l : 1;
+		grain_axpy(w, x, w->v, i, -sc * 0.5 * dt);
+	}
+}
+
+static void
+fire_forward(struct work *w, double *x, double cap, double dt)
+{
+	size_t i;
+
+	for (i = 0; i < w->s->n; i++) {
+		double l = grain_len(w, w->v, i) * dt, lim = cap * w->s->p->r[i], sc = l > lim ? lim / l : 1;
+		grain_axpy(w, x, w->v, i, sc * dt);
+	}
+}
+
+static int
+fire_iterate(struct qs_minimizer *m)
+{
+	struct work *w = &m->w;
+	double *x = m->x, P, vn, fn;
+	size_t k;
+
+	P = -dot(w->g, w->v, w->n3);
+	if (P > 0) {
+		if (++m->npos > FIRE_NDELAY) {
+			m->dt = fmin(m->dt * FIRE_FINC, m->dtmax);
+			m->alpha *= FIRE_FALPHA;
+		}
+	} else {
+		m->npos = 0;
+		m->dt = fmax(m->dt * FIRE_FDEC, 0.02 * m->dtmax);
+		m->alpha = FIRE_ALPHA0;
+		/* half a step back, under the same per-grain cap as a forward step */
+		fire_back(w, x, m->mp.cap, m->dt);
+		memset(w->v, 0, w->n3 * sizeof *w->v);
+	}
+	/* semi-implicit Euler with FIRE's mixing of the velocity towards the force */
+	for (k = 0; k < w->n3; k++)
+		w->v[k] -= m->dt * w->g[k];
+	vn = sqrt(dot(w->v, w->v, w->n3));
+	fn = sqrt(dot(w->g, w->g, w->n3));
+	if (fn > 0)
+		for (k = 0; k < w->n3; k++)
+			w->v[k] = (1 - m->alpha) * w->v[k] - m->alpha * vn * w->g[k] / fn;
+	fire_forward(w, x, m->mp.cap, m->dt);
+	m->eprev = w->e;
+	w->e = qs_energy(w->s, x, w->g, w->fmax);
+	return isnan(w->e) ? -1 : 0;
+}
+
+/* --- L-BFGS ---------------------------------------------------------------------------- */
 
 /* L-BFGS: the two-loop recursion over the last m steps, H0 = (s.y / y.y) I, the same capped
  * derivative line search as CG but first trying alpha = 1 and accepting a weak Wolfe point
  * (|dPi/dalpha| <= 0.9 |dPi/dalpha(0)|), as quasi-Newton methods want. */
 static int
-run_lbfgs(struct work *w, double *x, const struct qs_min_params *mp, struct qs_min_report *rep, double scale2)
+lbfgs_alloc(struct qs_minimizer *m)
 {
-	int m = (int)mp->lbfgs_m, head = 0, count = 0, q;
-	size_t n3 = w->n3, k;
-	double *S = malloc((size_t)m * n3 * sizeof *S), *Y = malloc((size_t)m * n3 * sizeof *Y);
-	double *rho = malloc((size_t)m * sizeof *rho), *al = malloc((size_t)m * sizeof *al), eprev = INFINITY;
-	gsl_root_fsolver *solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-	long it;
-	int status = 0;
+	size_t mm = (size_t)m->mp.lbfgs_m, n3 = m->w.n3;
 
-	if (!S || !Y || !rho || !al || !solver) {
+	m->S = malloc(mm * n3 * sizeof *m->S);
+	m->Y = malloc(mm * n3 * sizeof *m->Y);
+	m->rho = malloc(mm * sizeof *m->rho);
+	m->al = malloc(mm * sizeof *m->al);
+	if (!m->S || !m->Y || !m->rho || !m->al) {
 		msg_seterr("out of memory for L-BFGS");
-		status = -1;
-		goto out;
+		return -1;
 	}
-	for (it = 0;; it++) {
-		double amax, alpha, gamma = 1, sy, yy;
-
-		if (should_stop(w, mp, it, eprev, rep, scale2))
-			break;
-		/* d = -H g by the two-loop recursion */
-		for (k = 0; k < n3; k++)
-			w->d[k] = -w->g[k];
-		for (q = 0; q < count; q++) {
-			int c = (head - 1 - q + m) % m;
-			al[c] = rho[c] * dot(S + (size_t)c * n3, w->d, n3);
-			for (k = 0; k < n3; k++)
-				w->d[k] -= al[c] * Y[(size_t)c * n3 + k];
-		}
-		if (count > 0) {
-			int c = (head - 1 + m) % m;
-			gamma = dot(S + (size_t)c * n3, Y + (size_t)c * n3, n3) / dot(Y + (size_t)c * n3, Y + (size_t)c * n3, n3);
-		} else {
-			/* first step: as far as the cap allows along -g */
-			gamma = alpha_cap(w, w->g, mp->cap);
-		}
-		for (k = 0; k < n3; k++)
-			w->d[k] *= gamma;
-		for (q = count - 1; q >= 0; q--) {
-			int c = (head - 1 - q + m) % m;
-			double b = rho[c] * dot(Y + (size_t)c * n3, w->d, n3);
-			for (k = 0; k < n3; k++)
-				w->d[k] += (al[c] - b) * S[(size_t)c * n3 + k];
-		}
-		if (dot(w->d, w->g, n3) >= 0) {	/* not downhill: forget the history */
-			count = 0;
-			for (k = 0; k < n3; k++)
-				w->d[k] = -w->g[k] * alpha_cap(w, w->g, mp->cap);
-		}
-		amax = alpha_cap(w, w->d, mp->cap);
-		alpha = line_search(w, x, 1.0, amax, 0.9, solver);
-		if (alpha < 0) {
-			status = -1;
-			goto out;
-		}
-		/* new pair s = alpha d, y = g_new - g */
-		sy = yy = 0;
-		for (k = 0; k < n3; k++) {
-			double sk = w->xt[k] - x[k], yk = w->gt[k] - w->g[k];
-			S[(size_t)head * n3 + k] = sk;
-			Y[(size_t)head * n3 + k] = yk;
-			sy += sk * yk;
-			yy += yk * yk;
-		}
-		if (sy > 1e-300 && yy > 0) {
-			rho[head] = 1 / sy;
-			head = (head + 1) % m;
-			if (count < m)
-				count++;
-		}
-		eprev = accept_trial(w, x);
-	}
-out:
-	free(S), free(Y), free(rho), free(al);
-	if (solver)
-		gsl_root_fsolver_free(solver);
-	return status;
+	return 0;
 }
 
-int
-qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, struct qs_min_report *rep)
+/* d = -H g by the two-loop recursion over the stored pairs. */
+static void
+lbfgs_direction(struct qs_minimizer *m)
 {
-	struct work w;
-	long evals0 = s->evals;
-	double Em = 0, Rm = 0, scale2;
-	size_t i;
-	int st;
+	struct work *w = &m->w;
+	int mm = (int)m->mp.lbfgs_m, q;
+	size_t n3 = w->n3, k;
+	double gamma;
 
-	memset(rep, 0, sizeof *rep);
-	memset(&w, 0, sizeof w);
-	w.s = s;
-	w.n3 = s->dim;
-	w.g = malloc(w.n3 * sizeof *w.g);
-	w.fmax = malloc(s->n * sizeof *w.fmax);
-	w.d = malloc(w.n3 * sizeof *w.d);
-	w.xt = malloc(w.n3 * sizeof *w.xt);
-	w.gt = malloc(w.n3 * sizeof *w.gt);
-	w.v = malloc(w.n3 * sizeof *w.v);
-	w.ft = malloc(s->n * sizeof *w.ft);
-	if (!w.g || !w.fmax || !w.d || !w.xt || !w.gt || !w.v || !w.ft) {
+	for (k = 0; k < n3; k++)
+		w->d[k] = -w->g[k];
+	for (q = 0; q < m->count; q++) {
+		int c = (m->head - 1 - q + mm) % mm;
+		m->al[c] = m->rho[c] * dot(m->S + (size_t)c * n3, w->d, n3);
+		for (k = 0; k < n3; k++)
+			w->d[k] -= m->al[c] * m->Y[(size_t)c * n3 + k];
+	}
+	if (m->count > 0) {
+		int c = (m->head - 1 + mm) % mm;
+		gamma = dot(m->S + (size_t)c * n3, m->Y + (size_t)c * n3, n3) /
+		    dot(m->Y + (size_t)c * n3, m->Y + (size_t)c * n3, n3);
+	} else {
+		/* first step: as far as the cap allows along -g */
+		gamma = alpha_cap(w, w->g, m->mp.cap);
+	}
+	for (k = 0; k < n3; k++)
+		w->d[k] *= gamma;
+	for (q = m->count - 1; q >= 0; q--) {
+		int c = (m->head - 1 - q + mm) % mm;
+		double b = m->rho[c] * dot(m->Y + (size_t)c * n3, w->d, n3);
+		for (k = 0; k < n3; k++)
+			w->d[k] += (m->al[c] - b) * m->S[(size_t)c * n3 + k];
+	}
+	if (dot(w->d, w->g, n3) >= 0) {	/* not downhill: forget the history */
+		m->count = 0;
+		for (k = 0; k < n3; k++)
+			w->d[k] = -w->g[k] * alpha_cap(w, w->g, m->mp.cap);
+	}
+}
+
+static int
+lbfgs_iterate(struct qs_minimizer *m)
+{
+	struct work *w = &m->w;
+	int mm = (int)m->mp.lbfgs_m;
+	size_t n3 = w->n3, k;
+	double amax, alpha, sy = 0, yy = 0, *x = m->x;
+
+	lbfgs_direction(m);
+	amax = alpha_cap(w, w->d, m->mp.cap);
+	alpha = line_search(w, x, 1.0, amax, 0.9, m->solver);
+	if (alpha < 0)
+		return -1;
+	/* new pair s = alpha d, y = g_new - g */
+	for (k = 0; k < n3; k++) {
+		double sk = w->xt[k] - x[k], yk = w->gt[k] - w->g[k];
+		m->S[(size_t)m->head * n3 + k] = sk;
+		m->Y[(size_t)m->head * n3 + k] = yk;
+		sy += sk * yk;
+		yy += yk * yk;
+	}
+	if (sy > 1e-300 && yy > 0) {
+		m->rho[m->head] = 1 / sy;
+		m->head = (m->head + 1) % mm;
+		if (m->count < mm)
+			m->count++;
+	}
+	m->eprev = accept_trial(w, x);
+	return 0;
+}
+
+/* --- the interface ------------------------------------------------------------------ */
+
+struct qs_minimizer *
+qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp)
+{
+	struct qs_minimizer *m = calloc(1, sizeof *m);
+	struct work *w;
+	double Em = 0, Rm = 0;
+	size_t i;
+
+	if (!m) {
 		msg_seterr("out of memory for the minimiser");
-		st = rep->status = -1;
-		goto out;
+		return NULL;
+	}
+	w = &m->w;
+	m->mp = *mp;
+	w->s = s;
+	w->n3 = s->dim;
+	w->g = malloc(w->n3 * sizeof *w->g);
+	w->fmax = malloc(s->n * sizeof *w->fmax);
+	w->d = malloc(w->n3 * sizeof *w->d);
+	w->xt = malloc(w->n3 * sizeof *w->xt);
+	w->gt = malloc(w->n3 * sizeof *w->gt);
+	w->v = malloc(w->n3 * sizeof *w->v);
+	w->ft = malloc(s->n * sizeof *w->ft);
+	m->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+	if (!w->g || !w->fmax || !w->d || !w->xt || !w->gt || !w->v || !w->ft || !m->solver ||
+	    (mp->method == QS_LBFGS && lbfgs_alloc(m))) {
+		qs_minimizer_free(m);
+		msg_seterr("out of memory for the minimiser");
+		return NULL;
 	}
 	for (i = 0; i < s->n; i++) {
 		Em += s->p->E[i] / s->n;
 		Rm += s->p->r[i] / s->n;
 	}
-	scale2 = (double)s->n * (Em * Rm * Rm) * (Em * Rm * Rm);
-	w.e = qs_energy(s, x, w.g, w.fmax);
-	if (isnan(w.e)) {
-		st = rep->status = -1;
-		goto out;
+	m->scale2 = (double)s->n * (Em * Rm * Rm) * (Em * Rm * Rm);
+	return m;
+}
+
+void
+qs_minimizer_free(struct qs_minimizer *m)
+{
+	struct work *w;
+
+	if (!m)
+		return;
+	w = &m->w;
+	free(w->g), free(w->fmax), free(w->d), free(w->xt), free(w->gt), free(w->v), free(w->ft);
+	free(m->S), free(m->Y), free(m->rho), free(m->al);
+	if (m->solver)
+		gsl_root_fsolver_free(m->solver);
+	free(m);
+}
+
+/* Evaluate at the caller's x. */
+static int
+evaluate(struct qs_minimizer *m)
+{
+	m->w.e = qs_energy(m->w.s, m->x, m->w.g, m->w.fmax);
+	return isnan(m->w.e) ? -1 : 0;
+}
+
+int
+qs_minimizer_set(struct qs_minimizer *m, double *x)
+{
+	m->x = x;
+	m->it = 0;
+	m->eprev = INFINITY;
+	m->evals0 = m->w.s->evals;
+	m->step = 0;
+	m->head = m->count = 0;
+	if (evaluate(m))
+		return -1;
+	if (m->mp.method == QS_CG)
+		cg_restart(m);
+	else if (m->mp.method == QS_FIRE)
+		return fire_restart(m);
+	return 0;
+}
+
+int
+qs_minimizer_moved(struct qs_minimizer *m)
+{
+	if (evaluate(m))
+		return -1;
+	m->eprev = INFINITY;	/* Pi jumped: no energy criterion across the move */
+	if (m->mp.method == QS_CG)
+		cg_restart(m);
+	else if (m->mp.method == QS_FIRE)
+		memset(m->w.v, 0, m->w.n3 * sizeof *m->w.v);
+	return 0;
+}
+
+int
+qs_minimizer_test(struct qs_minimizer *m, struct qs_min_report *rep)
+{
+	rep->energy = m->w.e;
+	rep->evals = m->w.s->evals - m->evals0;
+	if (should_stop(&m->w, &m->mp, m->it, m->eprev, rep, m->scale2))
+		return rep->status == 1 ? QS_MIN_MAXITER : QS_MIN_SUCCESS;
+	if (m->mp.method == QS_CG && m->gg == 0)
+		return QS_MIN_SUCCESS;	/* a zero gradient: nothing to move along */
+	return QS_MIN_CONTINUE;
+}
+
+int
+qs_minimizer_iterate(struct qs_minimizer *m)
+{
+	int st = m->mp.method == QS_FIRE ? fire_iterate(m) : m->mp.method == QS_LBFGS ? lbfgs_iterate(m) : cg_iterate(m);
+
+	m->it++;
+	return st;
+}
+
+const double *
+qs_minimizer_gradient(const struct qs_minimizer *m)
+{
+	return m->w.g;
+}
+
+void
+qs_minimizer_set_max_iter(struct qs_minimizer *m, long max_iter)
+{
+	m->mp.max_iter = max_iter;
+}
+
+int
+qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, struct qs_min_report *rep)
+{
+	struct qs_minimizer *m;
+	int st = -1;
+
+	memset(rep, 0, sizeof *rep);
+	m = qs_minimizer_alloc(s, mp);
+	if (m && qs_minimizer_set(m, x) == 0) {
+		while ((st = qs_minimizer_test(m, rep)) == QS_MIN_CONTINUE)
+			if (qs_minimizer_iterate(m)) {
+				st = -1;
+				break;
+			}
 	}
-	st = mp->method == QS_FIRE ? run_fire(&w, x, mp, rep, scale2) :
-	    mp->method == QS_LBFGS ? run_lbfgs(&w, x, mp, rep, scale2) : run_cg(&w, x, mp, rep, scale2);
-	if (st < 0)
+	if (st < 0) {
 		rep->status = -1;
-	else
+		if (m)
+			rep->evals = s->evals - m->evals0;
+	} else {
+		rep->energy = m->w.e;
+		rep->evals = s->evals - m->evals0;
 		st = rep->status;
-	rep->energy = w.e;
-out:
-	rep->evals = s->evals - evals0;
-	free(w.g), free(w.fmax), free(w.d), free(w.xt), free(w.gt), free(w.v), free(w.ft);
+	}
+	qs_minimizer_free(m);
 	return st;
 }

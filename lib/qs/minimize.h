@@ -51,7 +51,34 @@ void qs_min_params_default(struct qs_min_params *mp);
 int qs_method_parse(const char *name, enum qs_method *m);
 const char *qs_method_name(enum qs_method m);
 
-/* Minimise from x (3n, updated in place).  Returns the report's status. */
+/* Minimise from x (3n, updated in place).  Returns the report's status.  It is the loop
+ * below: alloc, set, then test and iterate until the test says stop. */
 int qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, struct qs_min_report *rep);
+
+/* The steppable minimiser, in the shape of GSL's multimin: INITIALIZE (alloc, set),
+ * ITERATE, TEST.  The caller owns x, which the minimiser moves in place; between
+ * iterations the caller may change x itself (densify releases unbraced grains) and call
+ * qs_minimizer_moved, which evaluates there and keeps the method's memory (L-BFGS's stored
+ * pairs; CG restarts along the steepest descent, FIRE from rest).  The objective, its
+ * gradient, the per-grain step cap (mp->cap times the radius) and the stiffness bound come
+ * from the functional (functional.h) and its layout of the unknowns (layout.h). */
+enum { QS_MIN_CONTINUE = 2, QS_MIN_SUCCESS = 0, QS_MIN_MAXITER = 1 };
+struct qs_minimizer;
+
+/* NULL when out of memory (msg_seterr).  The method and every parameter are copied. */
+struct qs_minimizer *qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp);
+void qs_minimizer_free(struct qs_minimizer *m);
+/* Start from x: evaluate, iteration count and method state reset.  0 or -1. */
+int qs_minimizer_set(struct qs_minimizer *m, double *x);
+/* x was moved by the caller: evaluate there, keep the iteration count and memory.  0 or -1. */
+int qs_minimizer_moved(struct qs_minimizer *m);
+/* One iteration.  0 or -1 (msg_seterr). */
+int qs_minimizer_iterate(struct qs_minimizer *m);
+/* QS_MIN_CONTINUE, or why to stop (QS_MIN_SUCCESS: a criterion of mp met; QS_MIN_MAXITER),
+ * with rep's iter, energy, evals (since set), residuals and stopped_by filled in. */
+int qs_minimizer_test(struct qs_minimizer *m, struct qs_min_report *rep);
+/* The gradient at x (dim), and a new iteration limit (counted from set). */
+const double *qs_minimizer_gradient(const struct qs_minimizer *m);
+void qs_minimizer_set_max_iter(struct qs_minimizer *m, long max_iter);
 
 #endif
