@@ -151,6 +151,12 @@ cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, doub
 							int ox = cx + dx, oy = cy + dy, oz = cz + dz;
 							size_t o, p, q;
 
+							if (g->periodic[0])
+								ox = (ox + nx) % nx;
+							if (g->periodic[1])
+								oy = (oy + ny) % ny;
+							if (g->periodic[2])
+								oz = oz % nz;
 							if (ox < 0 || oy < 0 || ox >= nx || oy >= ny || oz >= nz)
 								continue;
 							o = ((size_t)oz * ny + oy) * nx + ox;

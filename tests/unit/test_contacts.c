@@ -1,0 +1,294 @@
+/* test_contacts: the contact seam.  The enumerator (contact/contacts.h) against a brute-force
+ * O(N^2) search written here, with walls and with periodic axes (nearest images); its history
+ * slots carried over a rebuild; the contact-law interface (contact/law.h) against the
+ * functional's inlined Hertz, bit for bit, and the linear law's energy against its closed
+ * form and its gradient against central differences; the functional as a sum of terms; and
+ * the steppable minimiser, whose loop is qs_minimize to the bit and which keeps converging
+ * when the caller moves grains between iterations. */
+#include "unit.h"
+#include "unit_pack.h"
+#include "contact/contacts.h"
+#include "contact/law.h"
+#include "qs/functional.h"
+#include "qs/minimize.h"
+
+#include <gsl/gsl_randist.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Brute force: every touching pair with the nearest image along the periodic axes, and every
+ * wall nearer than the radius on the others; checks them against the enumerator's records. */
+struct seen {
+	const struct pack *p;
+	long pairs, walls, bad;
+	double hmax_err;
+};
+
+static int
+on_seen(const struct contact *c, void *v)
+{
+	struct seen *s = v;
+	const struct pack *p = s->p;
+
+	if (PACK_IS_WALL(c->j)) {
+		int w = PACK_WALL_INDEX(c->j), a = w / 2;
+		double dist = w % 2 ? p->box[3 + a] - p->x[3 * c->i + a] : p->x[3 * c->i + a] - p->box[a];
+		s->walls++;
+		if (p->periodic[a] || !(dist < p->r[c->i]))
+			s->bad++;
+		s->hmax_err = fmax(s->hmax_err, fabs(c->h - (p->r[c->i] - dist)));
+	} else {
+		double dd = 0, h;
+		int a;
+		for (a = 0; a < 3; a++) {
+			double e = p->x[3 * c->i + a] - p->x[3 * c->j + a], L = p->box[3 + a] - p->box[a];
+			if (p->periodic[a])
+				e -= L * round(e / L);
+			dd += e * e;
+		}
+		h = p->r[c->i] + p->r[c->j] - sqrt(dd);
+		s->pairs++;
+		if (!(h > 0) || (size_t)c->j <= c->i)
+			s->bad++;
+		s->hmax_err = fmax(s->hmax_err, fabs(c->h - h));
+	}
+	return 0;
+}
+
+static void
+brute_counts(const struct pack *p, long *pairs, long *walls)
+{
+	size_t i, j;
+	int a;
+
+	*pairs = *walls = 0;
+	for (i = 0; i < p->n; i++) {
+		for (j = i + 1; j < p->n; j++) {
+			double dd = 0, s = p->r[i] + p->r[j];
+			for (a = 0; a < 3; a++) {
+				double e = p->x[3 * i + a] - p->x[3 * j + a], L = p->box[3 + a] - p->box[a];
+				if (p->periodic[a])
+					e -= L * round(e / L);
+				dd += e * e;
+			}
+			*pairs += sqrt(dd) < s;
+		}
+		for (a = 0; a < 6; a++)
+			if (!p->periodic[a / 2] && pack_wall_distance(p->box, p->x + 3 * i, a) < p->r[i])
+				(*walls)++;
+	}
+}
+
+static void
+test_enumerator(gsl_rng *rng, const int periodic[3], const char *tag)
+{
+	struct pack p;
+	struct contact_enum e;
+	struct seen s;
+	long bp, bw, calls;
+	size_t i;
+	int a;
+
+	random_pack(&p, rng, 600, 1e-4, 0.6, 0.02);
+	memcpy(p.periodic, periodic, sizeof p.periodic);
+	/* on a periodic axis, grains anywhere along it: some wander out of the box, which the
+	 * images must still find */
+	for (i = 0; i < p.n; i++)
+		for (a = 0; a < 3; a++)
+			if (periodic[a] && i % 7 == 0)
+				p.x[3 * i + a] += (i % 2 ? 1 : -1) * (p.box[3 + a] - p.box[a]);
+	CHECK(contact_enum_init(&e, p.n, p.r, p.box, p.box + 3, p.periodic, 0.3e-4, 0) == 0 &&
+	    contact_enum_update(&e, p.x, 1) == 0, "%s: enumerator built", tag);
+	memset(&s, 0, sizeof s);
+	s.p = &p;
+	calls = contact_foreach(&e, p.x, CONTACT_TOUCHING, on_seen, &s);
+	brute_counts(&p, &bp, &bw);
+	CHECK(s.pairs == bp && s.walls == bw && calls == bp + bw, "%s: %ld pairs and %ld wall contacts, as brute force (%ld, %ld)",
+	    tag, s.pairs, s.walls, bp, bw);
+	CHECK(s.bad == 0, "%s: every record touches, i < j, no wall on a periodic axis (%ld bad)", tag, s.bad);
+	CHECK(s.hmax_err <= 1e-18, "%s: overlaps as computed directly (largest difference %.3g m)", tag, s.hmax_err);
+	if (periodic[0] || periodic[1] || periodic[2])
+		CHECK(bp > 0 && s.walls < 600, "%s: the periodic case has contacts across the boundary to find", tag);
+	contact_enum_free(&e);
+	pack_free(&p);
+}
+
+/* History slots: values written into the slots of touching pairs survive a rebuild of the
+ * list; a slot of a pair that came apart reads zero. */
+static int
+on_mark(const struct contact *c, void *v)
+{
+	(void)v;
+	c->hist[0] = (double)c->i + 1;
+	c->hist[1] = (double)c->j;
+	return 0;
+}
+
+static int
+on_check(const struct contact *c, void *v)
+{
+	long *bad = v;
+
+	if (c->hist[0] != (double)c->i + 1 || c->hist[1] != (double)c->j)
+		(*bad)++;
+	return 0;
+}
+
+static void
+test_history(gsl_rng *rng)
+{
+	struct pack p;
+	struct contact_enum e;
+	long bad = 0, calls;
+	size_t i;
+
+	random_pack(&p, rng, 400, 1e-4, 0.6, 0.02);
+	contact_enum_init(&e, p.n, p.r, p.box, p.box + 3, NULL, 0.3e-4, 3);
+	contact_enum_update(&e, p.x, 1);
+	calls = contact_foreach(&e, p.x, CONTACT_TOUCHING, on_mark, NULL);
+	/* a small move (the same contacts), then a rebuild */
+	for (i = 0; i < 3 * p.n; i++)
+		p.x[i] += 1e-12 * (gsl_rng_uniform(rng) - 0.5);
+	contact_enum_update(&e, p.x, 1);
+	contact_foreach(&e, p.x, CONTACT_TOUCHING, on_check, &bad);
+	CHECK(calls > 0 && bad == 0, "history: %ld contacts keep their slots over a rebuild (%ld lost)", calls, bad);
+	/* pull grain 0 away from everything: its slots are zeroed, and read zero later */
+	p.x[0] += 1e-3;
+	contact_enum_update(&e, p.x, 1);
+	{
+		struct contact c;
+		size_t k;
+		long nonzero = 0;
+		contact_foreach(&e, p.x, CONTACT_TOUCHING, on_check, &bad);
+		for (k = e.nl.first[0]; k < e.nl.first[1]; k++) {
+			contact_pair(&e, p.x, 0, k, CONTACT_NEAR, &c);
+			nonzero += c.hist[0] != 0 || c.hist[1] != 0;
+		}
+		CHECK(nonzero == 0, "history: the slots of a grain moved apart read zero (%ld not)", nonzero);
+	}
+	contact_enum_free(&e);
+	pack_free(&p);
+}
+
+/* The law interface: Hertz through it equals the inlined fast path bit for bit; the linear
+ * law's energy is sum k h^2 / 2 and its gradient agrees with central differences. */
+static void
+test_laws(gsl_rng *rng)
+{
+	struct pack p;
+	struct qs_system s;
+	struct contact_law lin = contact_law_linear, hertz_copy = contact_law_hertz_mindlin;
+	double *x, *g, *g2, E1, E2, Ek = 0, dev = 0, gmax = 0;
+	size_t i, n3, k;
+
+	random_pack(&p, rng, 300, 1e-4, 0.6, 0.02);
+	n3 = 3 * p.n;
+	x = malloc(n3 * sizeof *x), g = malloc(n3 * sizeof *g), g2 = malloc(n3 * sizeof *g2);
+	memcpy(x, p.x, n3 * sizeof *x);
+	qs_init(&s, &p, 0.3);
+	E1 = qs_energy(&s, x, g, NULL);
+	s.law = &hertz_copy;	/* the same law, not the fast path's pointer: through the interface */
+	E2 = qs_energy(&s, x, g2, NULL);
+	CHECK(E1 == E2 && memcmp(g, g2, n3 * sizeof *g) == 0, "laws: Hertz through the interface equals the fast path to the bit (Pi %.17g, %.17g)",
+	    E1, E2);
+	lin.kn = 2e4;
+	s.law = &lin;
+	E2 = qs_energy(&s, x, g, NULL);
+	{
+		struct geo_contacts gc;
+		contacts_init(&gc);
+		contacts_find(&p, &gc);
+		for (k = 0; k < gc.n; k++)
+			Ek += 0.5 * lin.kn * gc.c[k].h * gc.c[k].h;
+		contacts_free(&gc);
+	}
+	CHECK(unit_close(E2, Ek, 1e-12, 0), "laws: the linear law's Pi is sum k h^2 / 2 (%.12g, %.12g)", E2, Ek);
+	for (i = 0; i < 40; i++) {
+		size_t q = gsl_rng_uniform_int(rng, n3);
+		double hstep = 1e-9 * p.r[q / 3], save = x[q], ep, em;
+		x[q] = save + hstep;
+		ep = qs_energy(&s, x, NULL, NULL);
+		x[q] = save - hstep;
+		em = qs_energy(&s, x, NULL, NULL);
+		x[q] = save;
+		/* central differences: error O(h^2) from the smooth part; the energy's rounding is
+		 * 1e-16 Pi / h */
+		dev = fmax(dev, fabs((ep - em) / (2 * hstep) - g[q]));
+		gmax = fmax(gmax, fabs(g[q]));
+	}
+	qs_energy(&s, x, g, NULL);
+	CHECK(dev <= 1e-5 * gmax + 1e-16 * fabs(E2) / (1e-9 * 1e-4) * 10, "laws: the linear law's gradient agrees with central differences (%.3g against %.3g)",
+	    dev, gmax);
+	CHECK(qs_term_named(&s, "normal") == &s.term[0] && qs_term_named(&s, "friction") == NULL,
+	    "terms: the frictionless functional is the normal term alone");
+	qs_free(&s);
+	free(x), free(g), free(g2);
+	pack_free(&p);
+}
+
+/* The steppable minimiser: the loop of qs_minimize, to the bit; and moving grains between
+ * iterations (qs_minimizer_moved) still ends in equilibrium. */
+static void
+test_steppable(gsl_rng *rng)
+{
+	struct pack p;
+	struct qs_system s;
+	struct qs_min_params mp;
+	struct qs_min_report r1, r2;
+	struct qs_minimizer *m;
+	double *x1, *x2;
+	size_t n3;
+	int st, moves = 0;
+
+	random_pack(&p, rng, 300, 1e-4, 0.75, 0.05);
+	n3 = 3 * p.n;
+	x1 = malloc(n3 * sizeof *x1), x2 = malloc(n3 * sizeof *x2);
+	memcpy(x1, p.x, n3 * sizeof *x1);
+	memcpy(x2, p.x, n3 * sizeof *x2);
+	qs_min_params_default(&mp);
+	mp.max_iter = 20000;
+	qs_init(&s, &p, 0.3);
+	qs_minimize(&s, x1, &mp, &r1);
+	m = qs_minimizer_alloc(&s, &mp);
+	qs_minimizer_set(m, x2);
+	memset(&r2, 0, sizeof r2);
+	while ((st = qs_minimizer_test(m, &r2)) == QS_MIN_CONTINUE)
+		qs_minimizer_iterate(m);
+	CHECK(memcmp(x1, x2, n3 * sizeof *x1) == 0 && r1.iter == r2.iter && r1.evals == r2.evals,
+	    "steppable: the manual loop is qs_minimize to the bit (%ld iterations, %ld evaluations)", r2.iter, r2.evals);
+	/* again, now knocking grain 5 by 1 % of its radius every 50 iterations, 4 times */
+	memcpy(x2, p.x, n3 * sizeof *x2);
+	qs_minimizer_set(m, x2);
+	while ((st = qs_minimizer_test(m, &r2)) == QS_MIN_CONTINUE) {
+		qs_minimizer_iterate(m);
+		if (moves < 4 && r2.iter % 50 == 49) {
+			x2[15] += 0.01 * p.r[5];
+			qs_minimizer_moved(m);
+			moves++;
+		}
+	}
+	CHECK(st == QS_MIN_SUCCESS && moves == 4 && r2.res_max <= mp.tol && s.ncontacts > p.n,
+	    "steppable: moved grains between iterations, still converged (residual %.3g, %ld iterations, %zu contacts)",
+	    r2.res_max, r2.iter, s.ncontacts);
+	qs_minimizer_free(m);
+	qs_free(&s);
+	free(x1), free(x2);
+	pack_free(&p);
+}
+
+int
+main(void)
+{
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	static const int walls[3] = {0, 0, 0}, xz[3] = {1, 0, 1}, all[3] = {1, 1, 1};
+
+	gsl_rng_set(rng, 11);
+	test_enumerator(rng, walls, "six walls");
+	test_enumerator(rng, xz, "periodic x and z");
+	test_enumerator(rng, all, "periodic x y z");
+	test_history(rng);
+	test_laws(rng);
+	test_steppable(rng);
+	gsl_rng_free(rng);
+	return unit_summary();
+}
