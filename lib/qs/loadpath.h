@@ -57,6 +57,8 @@ struct path_defaults {
  * 0, or -1 with msg_seterr naming the segment and the word that does not parse. */
 int path_parse(const char *spec, const struct path_defaults *def, struct load_path *path);
 const char *path_kind_name(enum path_kind k);
+/* "x", "y" or "z" to 0, 1 or 2 (the axis= of a segment, and a tool's --axis); 0 or -1. */
+int path_parse_axis(const char *s, int *axis);
 
 struct path_limits {
 	long max_steps;		/* per segment */
