@@ -1,5 +1,6 @@
 /* loadpath: parsing and walking loading paths (see loadpath.h). */
 #include "qs/loadpath.h"
+#include "analysis/measure.h"
 #include "base/msg.h"
 
 #include <ctype.h>
@@ -264,6 +265,28 @@ control_strain(const struct path_seg *sg, const double eps[3])
 	if (sg->kind == PATH_ISOTROPIC)
 		return (eps[0] + eps[1] + eps[2]) / 3;
 	return eps[sg->axis];
+}
+
+int
+path_check_pack(const struct pack *p, size_t *stale)
+{
+	struct geo_contacts gc;
+	struct pack_measures m;
+	int r;
+
+	if (!p->has_refbox) {
+		msg_seterr("no reference box: densify the pack first");
+		return 1;
+	}
+	if (fr_check_history(p))
+		return 1;
+	contacts_init(&gc);
+	r = measure_pack(p, &gc, &m);
+	contacts_free(&gc);
+	if (r)
+		return -1;
+	*stale = m.stale_history;
+	return 0;
 }
 
 /* Whether a segment has reached its stop at the state prev, after n increments. */
