@@ -178,11 +178,7 @@ read_pack(const char *input, const char *in, struct pack *p)
 	size_t stale;
 	int r;
 
-	if (pack_read_path(input, p))
-		msg_die_err(EXIT_DATA);
-	if (p->n < 5)
-		msg_die(EXIT_DATA, "%s: %zu grains: loadtest needs at least 5", in, p->n);
-	if ((r = path_check_pack(p, &stale)) > 0)
+	if ((r = path_read_pack(input, tool.name, p, &stale)) > 0)
 		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
 	if (r < 0)
 		msg_die_err(EXIT_DATA);
@@ -259,17 +255,6 @@ check_stop(int r, const struct cli_state *st)
 		msg_die(EXIT_DATA, "writing the table failed");
 }
 
-static void
-write_pack(struct pack *p, const struct cli_state *st)
-{
-	char *hist = cli_history_line(&tool, st);
-
-	pack_add_history(p, hist);
-	free(hist);
-	if (pack_write_path(p, st->output))
-		msg_die_err(EXIT_DATA);
-}
-
 int
 main(int argc, char **argv)
 {
@@ -278,6 +263,7 @@ main(int argc, char **argv)
 	struct out_ctx oc = {&path, 0, 0, -1, 0};
 	struct pack p;
 	const char *in;
+	char *hist;
 
 	msg_init(argv[0]);
 	parse_args(argc, argv, &st, &path);
@@ -286,8 +272,13 @@ main(int argc, char **argv)
 	oc.grains = p.n;
 	set_friction(&p);
 	check_stop(run_test(&p, &path, in, &oc), &st);
-	if (st.output)
-		write_pack(&p, &st);
+	if (st.output) {
+		hist = cli_history_line(&tool, &st);
+		pack_add_history(&p, hist);
+		free(hist);
+		if (pack_write_path(&p, st.output))
+			msg_die_err(EXIT_DATA);
+	}
 	msg_info(1, "%ld rows", oc.rows);
 	pack_free(&p);
 	return 0;

@@ -2,6 +2,7 @@
 #include "qs/loadpath.h"
 #include "analysis/measure.h"
 #include "base/msg.h"
+#include "pack/packio.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -268,12 +269,18 @@ control_strain(const struct path_seg *sg, const double eps[3])
 }
 
 int
-path_check_pack(const struct pack *p, size_t *stale)
+path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale)
 {
 	struct geo_contacts gc;
 	struct pack_measures m;
 	int r;
 
+	if (pack_read_path(input, p))
+		return -1;
+	if (p->n < 5) {
+		msg_seterr("%zu grains: %s needs at least 5", p->n, who);
+		return 1;
+	}
 	if (!p->has_refbox) {
 		msg_seterr("no reference box: densify the pack first");
 		return 1;

@@ -66,12 +66,14 @@ struct path_limits {
 };
 
 /* Called with each row: segment index (-1 for the starting row) and the row. */
-/* Check that p can start a loading (loadtest's path, frictionalize's uniaxial run): it has
- * a reference box and a contact history its friction coefficients allow (fr_check_history).
- * *stale gets the number of history lines that name grains which do not touch, which the
- * first increment drops.  0; 1 with msg_seterr saying what is wrong with the pack (the tool
- * prefixes its name); -1 when measuring the pack fails. */
-int path_check_pack(const struct pack *p, size_t *stale);
+/* Read the pack a loading starts from (loadtest's path, frictionalize's uniaxial run; input
+ * NULL or "-" is stdin) and check it: at least 5 grains (who, the tool, is named in that
+ * message), a reference box, and a contact history its friction coefficients allow
+ * (fr_check_history).  *stale gets the number of history lines that name grains which do not
+ * touch, which the first increment drops.  0; 1 with msg_seterr saying what is wrong with the
+ * pack, for the tool to prefix the input's name; -1 with msg_seterr when reading (the message
+ * names the input) or measuring fails. */
+int path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale);
 
 typedef int (*path_row_fn)(int seg, const struct load_row *row, void *ctx);
 
