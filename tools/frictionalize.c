@@ -110,22 +110,6 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	o.fp.lp.friction = 1;
 }
 
-/* History written by a tool satisfies the sliding limit of the pack's own coefficients: a
- * line far above it is corrupt, not something to repair silently (path_read_pack refuses it). */
-static void
-read_pack(const char *input, const char *in, struct pack *p)
-{
-	size_t stale;
-	int r;
-
-	if ((r = path_read_pack(input, tool.name, p, &stale)) > 0)
-		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
-	if (r < 0)
-		msg_die_err(EXIT_DATA);
-	if (stale)
-		msg_warn("%s: %zu history lines name grains that do not touch: dropped", in, stale);
-}
-
 /* --mu alone sets the wall's coefficient too. */
 static void
 set_friction(struct pack *p, const char *in)
@@ -180,12 +164,17 @@ main(int argc, char **argv)
 	struct pack p;
 	const char *in;
 	char *hist;
+	size_t stale;
 	int r;
 
 	msg_init(argv[0]);
 	parse_args(argc, argv, &st);
 	in = st.input ? st.input : "<stdin>";
-	read_pack(st.input, in, &p);
+	/* a fault of the pack is named by the input; a read error names its place itself */
+	if ((r = path_read_pack(st.input, tool.name, &p, &stale)))
+		msg_die(EXIT_DATA, "%s%s%s", r > 0 ? in : "", r > 0 ? ": " : "", msg_geterr());
+	if (stale)
+		msg_warn("%s: %zu history lines name grains that do not touch: dropped", in, stale);
 	lc.axis = o.fp.axis;
 	lc.grains = p.n;
 	set_friction(&p, in);

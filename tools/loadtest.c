@@ -172,20 +172,6 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 	o.lp.nsub = (int)o.nsub;
 }
 
-static void
-read_pack(const char *input, const char *in, struct pack *p)
-{
-	size_t stale;
-	int r;
-
-	if ((r = path_read_pack(input, tool.name, p, &stale)) > 0)
-		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
-	if (r < 0)
-		msg_die_err(EXIT_DATA);
-	if (stale)
-		msg_warn("%s: %zu history lines name grains that do not touch: dropped", in, stale);
-}
-
 /* --mu alone sets the wall's coefficient too; with both 0 the test runs frictionless, on
  * 3N unknowns. */
 static void
@@ -264,11 +250,17 @@ main(int argc, char **argv)
 	struct pack p;
 	const char *in;
 	char *hist;
+	size_t stale;
+	int r;
 
 	msg_init(argv[0]);
 	parse_args(argc, argv, &st, &path);
 	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
-	read_pack(st.input, in, &p);
+	/* a fault of the pack is named by the input; a read error names its place itself */
+	if ((r = path_read_pack(st.input, tool.name, &p, &stale)))
+		msg_die(EXIT_DATA, "%s%s%s", r > 0 ? in : "", r > 0 ? ": " : "", msg_geterr());
+	if (stale)
+		msg_warn("%s: %zu history lines name grains that do not touch: dropped", in, stale);
 	oc.grains = p.n;
 	set_friction(&p);
 	check_stop(run_test(&p, &path, in, &oc), &st);

@@ -285,6 +285,8 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 		msg_seterr("no reference box: densify the pack first");
 		return 1;
 	}
+	/* History written by a tool satisfies the sliding limit of the pack's own coefficients:
+	 * a line far above it is corrupt, not something to repair silently. */
 	if (fr_check_history(p))
 		return 1;
 	contacts_init(&gc);
