@@ -11,35 +11,40 @@
 #include <stdlib.h>
 #include <string.h>
 
-static struct densify_params dp;
-static const char *log_path;
-static int allow_limit;
-static long min_coord = 4, nsub = 1;
+/* The options; the table below points into it. */
+static struct opts {
+	struct densify_params dp;
+	const char *log;
+	int allow_limit;
+	long min_coord, nsub;
+} o = {
+	.min_coord = 4, .nsub = 1,
+};
 
-static struct cli_opt opts[] = {
-	{"stress", 'p', CLI_DOUBLE, &dp.stress, "PA", "target confining stress sigma_c = tr(sigma)/3", "Pa"},
-	{"log", 'l', CLI_STRING, &log_path, "FILE", "write a TSV row per stage to FILE", NULL},
-	{"onset", 0, CLI_DOUBLE, &dp.onset, "PA", "stress that marks the reference box for strains; 0: 1e5, or --stress/10 if lower", "Pa"},
-	{"stress-tol", 0, CLI_DOUBLE, &dp.stress_tol, "RATIO", "relative tolerance on the final sigma_c", NULL},
-	{"strain-step", 0, CLI_DOUBLE, &dp.strain_step, "EPS", "largest isotropic strain per step", NULL},
-	{"max-growth", 0, CLI_DOUBLE, &dp.max_growth, "RATIO", "largest growth of a radius per round / radius", NULL},
-	{"grow-tol", 0, CLI_DOUBLE, &dp.grow_tol, "RATIO", "residual target of growth rounds below the onset (unjammed)", NULL},
-	{"grow-max-iter", 0, CLI_LONG, &dp.grow_max_iter, "N", "iteration limit of those rounds (reaching it is not an error)", NULL},
-	{"release-after", 0, CLI_LONG, &dp.release_after, "N", "iterations between releases of grains with 1-3 contacts; 0: never", NULL},
-	{"min-coord", 0, CLI_LONG, &min_coord, "N", "grains with fewer contacts (grains and walls) are expanded", NULL},
-	{"max-rounds", 0, CLI_LONG, &dp.max_rounds, "N", "limit on growth rounds and on compaction steps", NULL},
-	{"sub-increments", 0, CLI_LONG, &nsub, "N", "sub-increments per strain step (affine guess each)", NULL},
-	{"k-inc", 0, CLI_LONG, &dp.k_inc, "N", "minimiser iterations between sub-increments", NULL},
-	{"skin", 0, CLI_DOUBLE, &dp.skin, "RATIO", "Verlet skin / smallest radius", NULL},
-	{"allow-limit", 0, CLI_FLAG, &allow_limit, NULL, "write the pack even if a minimisation hit --max-iter (exit 0)", NULL},
-	QS_MIN_OPTS(dp.min),
+static struct cli_opt opt_table[] = {
+	{"stress", 'p', CLI_DOUBLE, &o.dp.stress, "PA", "target confining stress sigma_c = tr(sigma)/3", "Pa"},
+	{"log", 'l', CLI_STRING, &o.log, "FILE", "write a TSV row per stage to FILE", NULL},
+	{"onset", 0, CLI_DOUBLE, &o.dp.onset, "PA", "stress that marks the reference box for strains; 0: 1e5, or --stress/10 if lower", "Pa"},
+	{"stress-tol", 0, CLI_DOUBLE, &o.dp.stress_tol, "RATIO", "relative tolerance on the final sigma_c", NULL},
+	{"strain-step", 0, CLI_DOUBLE, &o.dp.strain_step, "EPS", "largest isotropic strain per step", NULL},
+	{"max-growth", 0, CLI_DOUBLE, &o.dp.max_growth, "RATIO", "largest growth of a radius per round / radius", NULL},
+	{"grow-tol", 0, CLI_DOUBLE, &o.dp.grow_tol, "RATIO", "residual target of growth rounds below the onset (unjammed)", NULL},
+	{"grow-max-iter", 0, CLI_LONG, &o.dp.grow_max_iter, "N", "iteration limit of those rounds (reaching it is not an error)", NULL},
+	{"release-after", 0, CLI_LONG, &o.dp.release_after, "N", "iterations between releases of grains with 1-3 contacts; 0: never", NULL},
+	{"min-coord", 0, CLI_LONG, &o.min_coord, "N", "grains with fewer contacts (grains and walls) are expanded", NULL},
+	{"max-rounds", 0, CLI_LONG, &o.dp.max_rounds, "N", "limit on growth rounds and on compaction steps", NULL},
+	{"sub-increments", 0, CLI_LONG, &o.nsub, "N", "sub-increments per strain step (affine guess each)", NULL},
+	{"k-inc", 0, CLI_LONG, &o.dp.k_inc, "N", "minimiser iterations between sub-increments", NULL},
+	{"skin", 0, CLI_DOUBLE, &o.dp.skin, "RATIO", "Verlet skin / smallest radius", NULL},
+	{"allow-limit", 0, CLI_FLAG, &o.allow_limit, NULL, "write the pack even if a minimisation hit --max-iter (exit 0)", NULL},
+	QS_MIN_OPTS(o.dp.min),
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
 static const struct cli_tool tool = {
 	"densify", "[options] [FILE]",
 	"Frictionless isotropic compaction: expand grains with fewer than 4 contacts, shrink, minimise; then compress to --stress.",
-	opts, 1,
+	opt_table, 1,
 };
 
 struct log_ctx {
@@ -60,6 +65,91 @@ on_stage(const struct densify_stage *st, void *vctx)
 	    st->iterations, st->res_max);
 }
 
+static void
+parse_args(int argc, char **argv, struct cli_state *st)
+{
+	densify_params_default(&o.dp);
+	cli_parse(&tool, argc, argv, st);
+	qs_min_opts_check(&o.dp.min);
+	if (!(o.dp.stress > 0))
+		cli_usage_error("--stress: must be positive");
+	if (!(o.dp.onset >= 0))
+		cli_usage_error("--onset: must be positive (or 0 for the default)");
+	if (!(o.dp.stress_tol > 0 && o.dp.stress_tol < 0.5))
+		cli_usage_error("--stress-tol: must be in (0, 0.5)");
+	if (!(o.dp.strain_step > 0 && o.dp.strain_step <= 0.05))
+		cli_usage_error("--strain-step: must be in (0, 0.05]");
+	if (o.dp.grow_max_iter < 1 || o.dp.grow_max_iter > 100000000)
+		cli_usage_error("--grow-max-iter: must be in 1..1e8");
+	if (o.dp.release_after < 0 || o.dp.release_after > 100000000)
+		cli_usage_error("--release-after: must be in 0..1e8");
+	if (!(o.dp.grow_tol > 0 && o.dp.grow_tol < 1))
+		cli_usage_error("--grow-tol: must be in (0, 1)");
+	if (!(o.dp.max_growth > 0 && o.dp.max_growth <= 0.5))
+		cli_usage_error("--max-growth: must be in (0, 0.5]");
+	if (o.min_coord < 0 || o.min_coord > 4)
+		cli_usage_error("--min-coord: must be in [0, 4]");
+	if (o.dp.max_rounds < 1 || o.nsub < 1 || o.nsub > 1000 || o.dp.k_inc < 1)
+		cli_usage_error("--max-rounds, --sub-increments (<= 1000) and --k-inc must be positive");
+	if (!(o.dp.skin > 0 && o.dp.skin <= 2))
+		cli_usage_error("--skin: must be in (0, 2]");
+	cli_usage_done();
+	if (o.dp.onset == 0)
+		o.dp.onset = densify_onset_default(o.dp.stress);	/* the history line records the value used */
+	o.dp.min_coord = (unsigned)o.min_coord;
+	o.dp.nsub = (int)o.nsub;
+}
+
+static void
+read_pack(const char *input, struct pack *p)
+{
+	size_t i;
+	int a;
+
+	if (pack_read_path(input, p))
+		msg_die_err(EXIT_DATA);
+	if (p->n < 5)
+		msg_die(EXIT_DATA, "%s: %zu grains: densify needs at least 5", input ? input : "<stdin>", p->n);
+	for (a = 0; a < 3; a++)
+		for (i = 0; i < p->n; i++)
+			if (pack_box_length(p->box, a) < 2 * p->r[i])
+				msg_die(EXIT_DATA, "the box is thinner than grain %ld along %c", p->id[i], 'x' + a);
+}
+
+/* Hertz theory is for small strains: overlaps ~ (sigma/E)^(2/3) R reach 5 % near E/100, with
+ * E the grains' mean modulus.  --stress is checked against it here, where the pack is known. */
+static void
+check_stress(const struct pack *p)
+{
+	double Emean = 0;
+	size_t i;
+
+	for (i = 0; i < p->n; i++)
+		Emean += p->E[i] / p->n;
+	if (o.dp.stress >= 0.01 * Emean)
+		msg_die(EXIT_USAGE, "--stress %g Pa is beyond the small-strain range of Hertz contacts (E/100 = %g Pa)",
+		    o.dp.stress, 0.01 * Emean);
+	if (o.dp.stress <= o.dp.onset)
+		msg_die(EXIT_USAGE, "--stress %g Pa must exceed --onset %g Pa", o.dp.stress, o.dp.onset);
+}
+
+/* A minimisation at its limit fails the run unless --allow-limit; a failed run leaves no log. */
+static void
+check_stop(int r, struct cli_out *logout, const struct densify_stage *last)
+{
+	if (r < 0 || (r == 1 && !o.allow_limit)) {
+		if (o.log)
+			cli_out_abort(logout);
+		if (r == 1)
+			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
+		msg_die_err(EXIT_DATA);
+	}
+	if (r == 1)
+		msg_warn("%s (kept: --allow-limit)", msg_geterr());
+	msg_info(1, "sigma_c %.6g Pa, porosity %.4f, coordination %.3f, under4 %zu, residual %.2e", last->sigma_c,
+	    last->porosity, last->coordination, last->under4, last->res_max);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -69,77 +159,21 @@ main(int argc, char **argv)
 	struct densify_stage last;
 	struct pack p;
 	char *hist, buf[40];
-	double Emean = 0;
-	size_t i;
-	int a, r;
+	int r;
 
 	msg_init(argv[0]);
-	densify_params_default(&dp);
-	cli_parse(&tool, argc, argv, &st);
-	qs_min_opts_check(&dp.min);
-	if (!(dp.stress > 0))
-		cli_usage_error("--stress: must be positive");
-	if (!(dp.onset >= 0))
-		cli_usage_error("--onset: must be positive (or 0 for the default)");
-	if (!(dp.stress_tol > 0 && dp.stress_tol < 0.5))
-		cli_usage_error("--stress-tol: must be in (0, 0.5)");
-	if (!(dp.strain_step > 0 && dp.strain_step <= 0.05))
-		cli_usage_error("--strain-step: must be in (0, 0.05]");
-	if (dp.grow_max_iter < 1 || dp.grow_max_iter > 100000000)
-		cli_usage_error("--grow-max-iter: must be in 1..1e8");
-	if (dp.release_after < 0 || dp.release_after > 100000000)
-		cli_usage_error("--release-after: must be in 0..1e8");
-	if (!(dp.grow_tol > 0 && dp.grow_tol < 1))
-		cli_usage_error("--grow-tol: must be in (0, 1)");
-	if (!(dp.max_growth > 0 && dp.max_growth <= 0.5))
-		cli_usage_error("--max-growth: must be in (0, 0.5]");
-	if (min_coord < 0 || min_coord > 4)
-		cli_usage_error("--min-coord: must be in [0, 4]");
-	if (dp.max_rounds < 1 || nsub < 1 || nsub > 1000 || dp.k_inc < 1)
-		cli_usage_error("--max-rounds, --sub-increments (<= 1000) and --k-inc must be positive");
-	if (!(dp.skin > 0 && dp.skin <= 2))
-		cli_usage_error("--skin: must be in (0, 2]");
-	cli_usage_done();
-	if (dp.onset == 0)
-		dp.onset = densify_onset_default(dp.stress);	/* the history line records the value used */
-	dp.min_coord = (unsigned)min_coord;
-	dp.nsub = (int)nsub;
-
-	if (pack_read_path(st.input, &p))
-		msg_die_err(EXIT_DATA);
-	if (p.n < 5)
-		msg_die(EXIT_DATA, "%s: %zu grains: densify needs at least 5", st.input ? st.input : "<stdin>", p.n);
-	for (i = 0; i < p.n; i++)
-		Emean += p.E[i] / p.n;
-	for (a = 0; a < 3; a++)
-		for (i = 0; i < p.n; i++)
-			if (pack_box_length(p.box, a) < 2 * p.r[i])
-				msg_die(EXIT_DATA, "the box is thinner than grain %ld along %c", p.id[i], 'x' + a);
-	/* Hertz theory is for small strains: overlaps ~ (sigma/E)^(2/3) R reach 5 % near E/100. */
-	if (dp.stress >= 0.01 * Emean)
-		msg_die(EXIT_USAGE, "--stress %g Pa is beyond the small-strain range of Hertz contacts (E/100 = %g Pa)",
-		    dp.stress, 0.01 * Emean);
-	if (dp.stress <= dp.onset)
-		msg_die(EXIT_USAGE, "--stress %g Pa must exceed --onset %g Pa", dp.stress, dp.onset);
-	if (log_path) {
-		if (cli_out_open(&logout, log_path))
+	parse_args(argc, argv, &st);
+	read_pack(st.input, &p);
+	check_stress(&p);
+	if (o.log) {
+		if (cli_out_open(&logout, o.log))
 			msg_die_err(EXIT_DATA);
 		lc.fp = logout.fp;
 		densify_log_header(lc.fp);
 	}
-	r = densify_run(&p, &dp, on_stage, &lc, &last);
+	r = densify_run(&p, &o.dp, on_stage, &lc, &last);
 	cli_progress_end();
-	if (r < 0 || (r == 1 && !allow_limit)) {
-		if (log_path)
-			cli_out_abort(&logout);
-		if (r == 1)
-			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
-		msg_die_err(EXIT_DATA);
-	}
-	if (r == 1)
-		msg_warn("%s (kept: --allow-limit)", msg_geterr());
-	msg_info(1, "sigma_c %.6g Pa, porosity %.4f, coordination %.3f, under4 %zu, residual %.2e", last.sigma_c,
-	    last.porosity, last.coordination, last.under4, last.res_max);
+	check_stop(r, &logout, &last);
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
 	hist = cli_history_line(&tool, &st);
@@ -147,7 +181,7 @@ main(int argc, char **argv)
 	free(hist);
 	if (pack_write_path(&p, st.output))
 		msg_die_err(EXIT_DATA);
-	if (log_path && cli_out_commit(&logout))
+	if (o.log && cli_out_commit(&logout))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;

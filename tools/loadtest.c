@@ -3,7 +3,6 @@
 #include "base/cli.h"
 #include "qs/friction.h"
 #include "qs/loadpath.h"
-#include "analysis/measure.h"
 #include "qs/minopts.h"
 #include "base/msg.h"
 #include "pack/packio.h"
@@ -13,40 +12,49 @@
 #include <stdlib.h>
 #include <string.h>
 
-static struct load_params lp;
-static struct path_defaults def = {1e-4, 0, NAN, NAN, 2};
-static struct path_limits lim = {100000, 0.05};
 #define DEFAULT_STEPS 100	/* a segment's stop when no stop is given at all */
 
-static const char *path_arg = "uniaxial", *axis_arg = "z", *rule_arg = "return-map";
-static double mu = NAN, wall_mu = NAN;
-static long nsub = 1;
-static int allow_limit;
+/* The options; the table below points into it. */
+static struct opts {
+	struct load_params lp;
+	struct path_defaults def;
+	struct path_limits lim;
+	const char *path, *axis, *rule;
+	double mu, wall_mu;
+	long nsub;
+	int allow_limit;
+} o = {
+	.def = {1e-4, 0, NAN, NAN, 2},
+	.lim = {100000, 0.05},
+	.path = "uniaxial", .axis = "z", .rule = "return-map",
+	.mu = NAN, .wall_mu = NAN,
+	.nsub = 1,
+};
 
-static struct cli_opt opts[] = {
-	{"path", 'p', CLI_STRING, &path_arg, "SPEC", "loading path: uniaxial, isotropic, triaxial, polyaxial, or segments 'A; B' (see loadtest(1))", NULL},
-	{"strain-step", 'd', CLI_DOUBLE, &def.step, "D", "strain per increment (negative: unloading)", NULL},
-	{"steps", 'n', CLI_LONG, &def.steps, "N", "stop after N increments (100 when no stop is given at all)", NULL},
-	{"to-stress", 's', CLI_DOUBLE, &def.to_stress, "PA", "stop when sigma_c reaches PA", "Pa"},
-	{"to-strain", 'e', CLI_DOUBLE, &def.to_strain, "E", "stop when the axial strain reaches E", NULL},
-	{"axis", 'a', CLI_STRING, &axis_arg, "x|y|z", "axis of uniaxial and triaxial paths", NULL},
-	{"mu", 'm', CLI_DOUBLE, &mu, "M", "grain-grain friction (default: the pack's; 0: frictionless)", NULL},
-	{"wall-mu", 0, CLI_DOUBLE, &wall_mu, "M", "grain-wall friction (default: the pack's, or --mu when given)", NULL},
-	{"rule", 0, CLI_STRING, &rule_arg, "NAME", "sliding rule: return-map (exact potential) or paper (F (6)-(7b))", NULL},
-	{"sub-increments", 0, CLI_LONG, &nsub, "N", "sub-increments per increment (affine guess each)", NULL},
-	{"k-inc", 0, CLI_LONG, &lp.k_inc, "N", "minimiser iterations between sub-increments", NULL},
-	{"skin", 0, CLI_DOUBLE, &lp.skin, "RATIO", "Verlet skin / smallest radius", NULL},
-	{"max-steps", 0, CLI_LONG, &lim.max_steps, "N", "limit on the increments of one segment", NULL},
-	{"max-strain", 0, CLI_DOUBLE, &lim.max_strain, "E", "limit on |strain| along any axis", NULL},
-	{"allow-limit", 0, CLI_FLAG, &allow_limit, NULL, "write -o and exit 0 even if a limit stopped the test", NULL},
-	QS_MIN_OPTS(lp.min),
+static struct cli_opt opt_table[] = {
+	{"path", 'p', CLI_STRING, &o.path, "SPEC", "loading path: uniaxial, isotropic, triaxial, polyaxial, or segments 'A; B' (see loadtest(1))", NULL},
+	{"strain-step", 'd', CLI_DOUBLE, &o.def.step, "D", "strain per increment (negative: unloading)", NULL},
+	{"steps", 'n', CLI_LONG, &o.def.steps, "N", "stop after N increments (100 when no stop is given at all)", NULL},
+	{"to-stress", 's', CLI_DOUBLE, &o.def.to_stress, "PA", "stop when sigma_c reaches PA", "Pa"},
+	{"to-strain", 'e', CLI_DOUBLE, &o.def.to_strain, "E", "stop when the axial strain reaches E", NULL},
+	{"axis", 'a', CLI_STRING, &o.axis, "x|y|z", "axis of uniaxial and triaxial paths", NULL},
+	{"mu", 'm', CLI_DOUBLE, &o.mu, "M", "grain-grain friction (default: the pack's; 0: frictionless)", NULL},
+	{"wall-mu", 0, CLI_DOUBLE, &o.wall_mu, "M", "grain-wall friction (default: the pack's, or --mu when given)", NULL},
+	{"rule", 0, CLI_STRING, &o.rule, "NAME", "sliding rule: return-map (exact potential) or paper (F (6)-(7b))", NULL},
+	{"sub-increments", 0, CLI_LONG, &o.nsub, "N", "sub-increments per increment (affine guess each)", NULL},
+	{"k-inc", 0, CLI_LONG, &o.lp.k_inc, "N", "minimiser iterations between sub-increments", NULL},
+	{"skin", 0, CLI_DOUBLE, &o.lp.skin, "RATIO", "Verlet skin / smallest radius", NULL},
+	{"max-steps", 0, CLI_LONG, &o.lim.max_steps, "N", "limit on the increments of one segment", NULL},
+	{"max-strain", 0, CLI_DOUBLE, &o.lim.max_strain, "E", "limit on |strain| along any axis", NULL},
+	{"allow-limit", 0, CLI_FLAG, &o.allow_limit, NULL, "write -o and exit 0 even if a limit stopped the test", NULL},
+	QS_MIN_OPTS(o.lp.min),
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
 static const struct cli_tool tool = {
 	"loadtest", "[options] [FILE]",
 	"Load a pack quasi-statically along a path of wall displacements; a TSV row per increment on stdout, the final pack to -o.",
-	opts, 1,
+	opt_table, 1,
 };
 
 struct out_ctx {
@@ -109,14 +117,14 @@ print_header(const struct pack *p, const struct load_path *path)
 	}
 	printf("\n## equilibrium: residual <= %g (largest per-grain max(|F_i|, |M_i|/R_i) / largest contact force on i, "
 	       "floored at %g x the mean contact force)",
-	    lp.min.tol, lp.min.tol_floor);
-	if (lp.min.eps1 > 0)
-		printf(" or eps1 %g", lp.min.eps1);
-	if (lp.min.eps2 > 0)
-		printf(" or eps2 %g", lp.min.eps2);
-	printf("; method %s; max-iter %ld\n", qs_method_name(lp.min.method), lp.min.max_iter);
-	if (lp.friction)
-		printf("## friction: mu %g, wall_mu %g, rule %s\n", p->mu, p->wall_mu, fr_rule_name(lp.rule));
+	    o.lp.min.tol, o.lp.min.tol_floor);
+	if (o.lp.min.eps1 > 0)
+		printf(" or eps1 %g", o.lp.min.eps1);
+	if (o.lp.min.eps2 > 0)
+		printf(" or eps2 %g", o.lp.min.eps2);
+	printf("; method %s; max-iter %ld\n", qs_method_name(o.lp.min.method), o.lp.min.max_iter);
+	if (o.lp.friction)
+		printf("## friction: mu %g, wall_mu %g, rule %s\n", p->mu, p->wall_mu, fr_rule_name(o.lp.rule));
 	else
 		printf("## friction: none (mu 0)\n");
 	printf("## stress: sig_* from the normal forces on the walls, sig_lw_* volume-averaged (Love-Weber), "
@@ -124,115 +132,138 @@ print_header(const struct pack *p, const struct load_path *path)
 	load_table_header(stdout, 0);
 }
 
-int
-main(int argc, char **argv)
+/* Every option is checked before the path, so that the path is parsed with valid defaults. */
+static void
+parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 {
-	struct cli_state st;
-	struct out_ctx oc = {NULL, 0, 0, -1, 0};
-	struct load_path path;
-	struct loader L;
-	struct pack p;
-	const char *in;
-	char *hist;
-	int r;
-
-	msg_init(argv[0]);
-	load_params_default(&lp);
-	cli_parse(&tool, argc, argv, &st);
-	qs_min_opts_check(&lp.min);
-	if (strlen(axis_arg) != 1 || axis_arg[0] < 'x' || axis_arg[0] > 'z')
+	load_params_default(&o.lp);
+	cli_parse(&tool, argc, argv, st);
+	qs_min_opts_check(&o.lp.min);
+	if (path_parse_axis(o.axis, &o.def.axis))
 		cli_usage_error("--axis: must be x, y or z");
-	if (!(def.step != 0 && fabs(def.step) <= 0.01))
+	if (!(o.def.step != 0 && fabs(o.def.step) <= 0.01))
 		cli_usage_error("--strain-step: must be nonzero, |D| <= 0.01");
-	if (def.steps < 0)
+	if (o.def.steps < 0)
 		cli_usage_error("--steps: must be positive");
-	if (!isnan(def.to_stress) && !(def.to_stress > 0))
+	if (!isnan(o.def.to_stress) && !(o.def.to_stress > 0))
 		cli_usage_error("--to-stress: must be positive");
-	if (!isnan(mu) && !(mu >= 0 && mu <= 10))
+	if (!isnan(o.mu) && !(o.mu >= 0 && o.mu <= 10))
 		cli_usage_error("--mu: must be in [0, 10]");
-	if (!isnan(wall_mu) && !(wall_mu >= 0 && wall_mu <= 10))
+	if (!isnan(o.wall_mu) && !(o.wall_mu >= 0 && o.wall_mu <= 10))
 		cli_usage_error("--wall-mu: must be in [0, 10]");
-	if (fr_rule_parse(rule_arg, &lp.rule))
+	if (fr_rule_parse(o.rule, &o.lp.rule))
 		cli_usage_error("--rule: must be return-map or paper");
-	if (nsub < 1 || nsub > 1000 || lp.k_inc < 1)
+	if (o.nsub < 1 || o.nsub > 1000 || o.lp.k_inc < 1)
 		cli_usage_error("--sub-increments (<= 1000) and --k-inc must be positive");
-	if (!(lp.skin > 0 && lp.skin <= 2))
+	if (!(o.lp.skin > 0 && o.lp.skin <= 2))
 		cli_usage_error("--skin: must be in (0, 2]");
-	if (lim.max_steps < 1 || !(lim.max_strain > 0 && lim.max_strain <= 0.5))
+	if (o.lim.max_steps < 1 || !(o.lim.max_strain > 0 && o.lim.max_strain <= 0.5))
 		cli_usage_error("--max-steps must be positive and --max-strain in (0, 0.5]");
-	if (!isnan(def.to_strain) && !(fabs(def.to_strain) <= 0.5))
+	if (!isnan(o.def.to_strain) && !(fabs(o.def.to_strain) <= 0.5))
 		cli_usage_error("--to-strain: must be in [-0.5, 0.5]");
-	cli_usage_done();	/* the path is parsed only with valid defaults */
+	cli_usage_done();
 	/* no stop anywhere (a bare loadtest in a pipe): 100 increments, 1 % strain at the
 	 * default step, about 9 -> 18 MPa on the default pack after frictionalize */
-	if (def.steps == 0 && isnan(def.to_stress) && isnan(def.to_strain))
-		def.steps = DEFAULT_STEPS;
-	def.axis = axis_arg[0] - 'x';
-	if (path_parse(path_arg, &def, &path))
+	if (o.def.steps == 0 && isnan(o.def.to_stress) && isnan(o.def.to_strain))
+		o.def.steps = DEFAULT_STEPS;
+	if (path_parse(o.path, &o.def, path))
 		cli_usage_error("--path: %s", msg_geterr());
 	cli_usage_done();
-	oc.path = &path;
-	lp.nsub = (int)nsub;
+	o.lp.nsub = (int)o.nsub;
+}
 
-	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
-	if (pack_read_path(st.input, &p))
-		msg_die_err(EXIT_DATA);
-	oc.grains = p.n;
-	if (p.n < 5)
-		msg_die(EXIT_DATA, "%s: %zu grains: loadtest needs at least 5", in, p.n);
-	if (!p.has_refbox)
-		msg_die(EXIT_DATA, "%s: no reference box: densify the pack first", in);
-	if (fr_check_history(&p))
-		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
-	{
-		struct geo_contacts gc;
-		struct pack_measures m;
-		contacts_init(&gc);
-		if (measure_pack(&p, &gc, &m))
-			msg_die_err(EXIT_DATA);
-		contacts_free(&gc);
-		if (m.stale_history)
-			msg_warn("%s: %zu history lines name grains that do not touch: dropped", in, m.stale_history);
-	}
-	if (!isnan(mu)) {
-		p.mu = mu;
-		p.wall_mu = isnan(wall_mu) ? mu : wall_mu;
-	} else if (!isnan(wall_mu))
-		p.wall_mu = wall_mu;
-	lp.friction = p.mu > 0 || p.wall_mu > 0;
-	if (!lp.friction)
-		p.mu = p.wall_mu = 0;
+/* --mu alone sets the wall's coefficient too; with both 0 the test runs frictionless, on
+ * 3N unknowns. */
+static void
+set_friction(struct pack *p)
+{
+	if (!isnan(o.mu)) {
+		p->mu = o.mu;
+		p->wall_mu = isnan(o.wall_mu) ? o.mu : o.wall_mu;
+	} else if (!isnan(o.wall_mu))
+		p->wall_mu = o.wall_mu;
+	o.lp.friction = p->mu > 0 || p->wall_mu > 0;
+	if (!o.lp.friction)
+		p->mu = p->wall_mu = 0;
+}
 
-	if (loader_open(&L, &p, &lp))
+/* A test continued from a pack that loadtest wrote numbers its increments on. */
+static void
+continue_increments(struct loader *L, const struct pack *p, const char *in)
+{
+	const char *done = pack_get_meta(p, "increments");
+	char *end;
+
+	if (!done)
+		return;
+	L->inc = strtol(done, &end, 10);
+	if (*end || L->inc < 0)
+		msg_die(EXIT_DATA, "%s: meta increments: '%s' is not a count", in, done);
+}
+
+/* The table on stdout as the path runs; the pack keeps the count of increments for a
+ * continuation.  Returns path_run's code. */
+static int
+run_test(struct pack *p, const struct load_path *path, const char *in, struct out_ctx *oc)
+{
+	struct loader L;
+	char buf[32];
+	int r;
+
+	if (loader_open(&L, p, &o.lp))
 		msg_die_err(EXIT_DATA);
-	/* a test continued from a pack that loadtest wrote numbers its increments on */
-	if (pack_get_meta(&p, "increments")) {
-		char *end;
-		L.inc = strtol(pack_get_meta(&p, "increments"), &end, 10);
-		if (*end || L.inc < 0)
-			msg_die(EXIT_DATA, "%s: meta increments: '%s' is not a count", in, pack_get_meta(&p, "increments"));
-	}
-	print_header(&p, &path);
-	r = path_run(&L, &path, &lim, on_row, &oc);
+	continue_increments(&L, p, in);
+	print_header(p, path);
+	r = path_run(&L, path, &o.lim, on_row, oc);
 	cli_progress_end();
-	{
-		char buf[32];
-		snprintf(buf, sizeof buf, "%ld", L.inc);
-		pack_set_meta(&p, "increments", buf);
-	}
+	snprintf(buf, sizeof buf, "%ld", L.inc);
+	pack_set_meta(p, "increments", buf);
 	loader_close(&L);
+	return r;
+}
+
+/* A limit that stopped the test fails it unless --allow-limit; the rows written so far stay
+ * on stdout either way. */
+static void
+check_stop(int r, const struct cli_state *st)
+{
 	if (r == 3)
 		msg_die(EXIT_DATA, "writing the table failed");
-	if (r < 0 || (r > 0 && !allow_limit)) {
+	if (r < 0 || (r > 0 && !o.allow_limit)) {
 		if (r > 0)
 			msg_die(EXIT_DATA, "%s; the rows computed so far are kept%s", msg_geterr(),
-			    st.output ? ", the pack is not written (--allow-limit writes it)" : "");
+			    st->output ? ", the pack is not written (--allow-limit writes it)" : "");
 		msg_die_err(EXIT_DATA);
 	}
 	if (r > 0)
 		msg_warn("%s (kept: --allow-limit)", msg_geterr());
 	if (fflush(stdout) || ferror(stdout))
 		msg_die(EXIT_DATA, "writing the table failed");
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_state st;
+	struct load_path path;
+	struct out_ctx oc = {&path, 0, 0, -1, 0};
+	struct pack p;
+	const char *in;
+	char *hist;
+	size_t stale;
+	int r;
+
+	msg_init(argv[0]);
+	parse_args(argc, argv, &st, &path);
+	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
+	/* a fault of the pack is named by the input; a read error names its place itself */
+	if ((r = path_read_pack(st.input, tool.name, &p, &stale)))
+		msg_die(EXIT_DATA, "%s%s%s", r > 0 ? in : "", r > 0 ? ": " : "", msg_geterr());
+	if (stale)
+		msg_warn("%s: %zu history lines name grains that do not touch: dropped", in, stale);
+	oc.grains = p.n;
+	set_friction(&p);
+	check_stop(run_test(&p, &path, in, &oc), &st);
 	if (st.output) {
 		hist = cli_history_line(&tool, &st);
 		pack_add_history(&p, hist);

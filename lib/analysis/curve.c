@@ -40,86 +40,143 @@ val(const struct table *t, size_t row, int col)
 	return col < 0 ? NAN : t->v[row * t->ncol + col];
 }
 
+/* What curve_moduli works on: the table, the rows of the curve, and the increments of the
+ * interval being fitted. */
+struct work {
+	const struct table *t;
+	const struct curve_cols *c;
+	const char *display;
+	size_t *keep, nk;		/* table rows of the curve, in increment order */
+	double (*de)[3], (*ds)[3];	/* one interval's strain and stress increments */
+};
+
+static int
+keep_rows(struct work *w)
+{
+	const struct table *t = w->t;
+	const struct curve_cols *c = w->c;
+	size_t r;
+	int a;
+
+	for (r = 0; r < t->nrow; r++) {
+		for (a = 0; a < 3; a++)
+			if (!isfinite(val(t, r, c->eps[a])) || !isfinite(val(t, r, c->sig[a]))) {
+				msg_seterr("%s:%ld: strains and stresses must be finite numbers", w->display, t->line[r]);
+				return -1;
+			}
+		if (w->nk > 0 && c->inc >= 0) {
+			double prev = val(t, w->keep[w->nk - 1], c->inc), cur = val(t, r, c->inc);
+			if (cur == prev && c->seg >= 0 && val(t, r, c->seg) == 0)
+				continue;	/* the start row of a continued test repeats the last one */
+			if (!(cur > prev)) {
+				msg_seterr("%s:%ld: rows out of order (inc %g after %g)", w->display, t->line[r], cur, prev);
+				return -1;
+			}
+		}
+		w->keep[w->nk++] = r;
+	}
+	if (w->nk < 2) {
+		msg_seterr("%s: %zu rows: a curve needs at least two", w->display, w->nk);
+		return -1;
+	}
+	return 0;
+}
+
+/* The increments into kept rows q, q+1, ... of segment seg, k at most, into w->de and
+ * w->ds; *m gets their number.  Returns the kept row after the interval. */
+static size_t
+gather_increments(struct work *w, size_t q, int seg, long k, size_t *m)
+{
+	const struct table *t = w->t;
+	const struct curve_cols *c = w->c;
+	int a;
+
+	*m = 0;
+	while (q < w->nk && (long)*m < k && (c->seg < 0 || (int)val(t, w->keep[q], c->seg) == seg)) {
+		for (a = 0; a < 3; a++) {
+			w->de[*m][a] = val(t, w->keep[q], c->eps[a]) - val(t, w->keep[q - 1], c->eps[a]);
+			w->ds[*m][a] = val(t, w->keep[q], c->sig[a]) - val(t, w->keep[q - 1], c->sig[a]);
+		}
+		++*m;
+		q++;
+	}
+	return q;
+}
+
+/* The interval from kept row first - 1 to kept row end - 1, whose m increments are in w. */
+static int
+fit_interval(const struct work *w, size_t first, size_t end, int seg, size_t m, struct curve_interval *I)
+{
+	const struct table *t = w->t;
+	const struct curve_cols *c = w->c;
+	size_t from = w->keep[first - 1], to = w->keep[end - 1];
+
+	I->seg = seg;
+	I->n = (long)m;
+	I->inc_from = c->inc >= 0 ? (long)val(t, from, c->inc) : (long)(first - 1);
+	I->inc_to = c->inc >= 0 ? (long)val(t, to, c->inc) : (long)(end - 1);
+	I->row_to = to;
+	I->sigma_c = 0.5 * (val(t, from, c->sigma_c) + val(t, to, c->sigma_c));
+	I->sig_lat = 0.5 * (val(t, from, c->sig_lat) + val(t, to, c->sig_lat));
+	if (hooke_fit((const double(*)[3])w->de, (const double(*)[3])w->ds, m, &I->hk)) {
+		char why[256];
+		snprintf(why, sizeof why, "%s", msg_geterr());
+		msg_seterr("%s:%ld: %s", w->display, t->line[to], why);
+		return -1;
+	}
+	return 0;
+}
+
+/* Room for interval n, doubling the array; NULL when out of memory. */
+static struct curve_interval *
+next_slot(struct curve_interval **iv, size_t n, size_t *cap)
+{
+	if (n == *cap) {
+		size_t nc = *cap ? 2 * *cap : 64;
+		struct curve_interval *p = realloc(*iv, nc * sizeof *p);
+		if (!p) {
+			msg_seterr("out of memory");
+			return NULL;
+		}
+		*iv = p;
+		*cap = nc;
+	}
+	return &(*iv)[n];
+}
+
 int
 curve_moduli(const struct table *t, const struct curve_cols *c, const char *display, long k,
     struct curve_interval **out, size_t *nout)
 {
-	size_t *keep = malloc((t->nrow ? t->nrow : 1) * sizeof *keep), nk = 0, r, q, cap = 0, n = 0;
-	struct curve_interval *iv = NULL;
-	double (*de)[3] = malloc((k > 0 ? k : 1) * sizeof *de), (*ds)[3] = malloc((k > 0 ? k : 1) * sizeof *ds);
-	int a;
+	struct work w = {t, c, display, NULL, 0, NULL, NULL};
+	struct curve_interval *iv = NULL, *I;
+	size_t q, n = 0, cap = 0;
 
 	*out = NULL;
 	*nout = 0;
-	if (!keep || !de || !ds) {
+	w.keep = malloc((t->nrow ? t->nrow : 1) * sizeof *w.keep);
+	w.de = malloc((k > 0 ? k : 1) * sizeof *w.de);
+	w.ds = malloc((k > 0 ? k : 1) * sizeof *w.ds);
+	if (!w.keep || !w.de || !w.ds) {
 		msg_seterr("out of memory");
 		goto fail;
 	}
-	for (r = 0; r < t->nrow; r++) {
-		for (a = 0; a < 3; a++)
-			if (!isfinite(val(t, r, c->eps[a])) || !isfinite(val(t, r, c->sig[a]))) {
-				msg_seterr("%s:%ld: strains and stresses must be finite numbers", display, t->line[r]);
-				goto fail;
-			}
-		if (nk > 0 && c->inc >= 0) {
-			double prev = val(t, keep[nk - 1], c->inc), cur = val(t, r, c->inc);
-			if (cur == prev && c->seg >= 0 && val(t, r, c->seg) == 0)
-				continue;	/* the start row of a continued test repeats the last one */
-			if (!(cur > prev)) {
-				msg_seterr("%s:%ld: rows out of order (inc %g after %g)", display, t->line[r], cur, prev);
-				goto fail;
-			}
-		}
-		keep[nk++] = r;
-	}
-	if (nk < 2) {
-		msg_seterr("%s: %zu rows: a curve needs at least two", display, nk);
+	if (keep_rows(&w))
 		goto fail;
-	}
-	for (q = 1; q < nk;) {
-		int seg = c->seg >= 0 ? (int)val(t, keep[q], c->seg) : 0;
-		size_t first = q, m = 0;
-		struct curve_interval *I;
+	for (q = 1; q < w.nk;) {
+		int seg = c->seg >= 0 ? (int)val(t, w.keep[q], c->seg) : 0;
+		size_t first = q, m;
 
-		while (q < nk && (long)m < k && (c->seg < 0 || (int)val(t, keep[q], c->seg) == seg)) {
-			for (a = 0; a < 3; a++) {
-				de[m][a] = val(t, keep[q], c->eps[a]) - val(t, keep[q - 1], c->eps[a]);
-				ds[m][a] = val(t, keep[q], c->sig[a]) - val(t, keep[q - 1], c->sig[a]);
-			}
-			m++;
-			q++;
-		}
-		if (n == cap) {
-			size_t nc = cap ? 2 * cap : 64;
-			struct curve_interval *p = realloc(iv, nc * sizeof *p);
-			if (!p) {
-				msg_seterr("out of memory");
-				goto fail;
-			}
-			iv = p;
-			cap = nc;
-		}
-		I = &iv[n];
-		I->seg = seg;
-		I->n = (long)m;
-		I->inc_from = c->inc >= 0 ? (long)val(t, keep[first - 1], c->inc) : (long)(first - 1);
-		I->inc_to = c->inc >= 0 ? (long)val(t, keep[q - 1], c->inc) : (long)(q - 1);
-		I->row_to = keep[q - 1];
-		I->sigma_c = 0.5 * (val(t, keep[first - 1], c->sigma_c) + val(t, keep[q - 1], c->sigma_c));
-		I->sig_lat = 0.5 * (val(t, keep[first - 1], c->sig_lat) + val(t, keep[q - 1], c->sig_lat));
-		if (hooke_fit((const double(*)[3])de, (const double(*)[3])ds, m, &I->hk)) {
-			char why[256];
-			snprintf(why, sizeof why, "%s", msg_geterr());
-			msg_seterr("%s:%ld: %s", display, t->line[keep[q - 1]], why);
+		q = gather_increments(&w, q, seg, k, &m);
+		if (!(I = next_slot(&iv, n, &cap)) || fit_interval(&w, first, q, seg, m, I))
 			goto fail;
-		}
 		n++;
 	}
-	free(keep), free(de), free(ds);
+	free(w.keep), free(w.de), free(w.ds);
 	*out = iv;
 	*nout = n;
 	return 0;
 fail:
-	free(keep), free(de), free(ds), free(iv);
+	free(w.keep), free(w.de), free(w.ds), free(iv);
 	return -1;
 }

@@ -57,6 +57,8 @@ struct path_defaults {
  * 0, or -1 with msg_seterr naming the segment and the word that does not parse. */
 int path_parse(const char *spec, const struct path_defaults *def, struct load_path *path);
 const char *path_kind_name(enum path_kind k);
+/* "x", "y" or "z" to 0, 1 or 2 (the axis= of a segment, and a tool's --axis); 0 or -1. */
+int path_parse_axis(const char *s, int *axis);
 
 struct path_limits {
 	long max_steps;		/* per segment */
@@ -64,6 +66,15 @@ struct path_limits {
 };
 
 /* Called with each row: segment index (-1 for the starting row) and the row. */
+/* Read the pack a loading starts from (loadtest's path, frictionalize's uniaxial run; input
+ * NULL or "-" is stdin) and check it: at least 5 grains (who, the tool, is named in that
+ * message), a reference box, and a contact history its friction coefficients allow
+ * (fr_check_history).  *stale gets the number of history lines that name grains which do not
+ * touch, which the first increment drops.  0; 1 with msg_seterr saying what is wrong with the
+ * pack, for the tool to prefix the input's name; -1 with msg_seterr when reading (the message
+ * names the input) or measuring fails. */
+int path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale);
+
 typedef int (*path_row_fn)(int seg, const struct load_row *row, void *ctx);
 
 /* Walk the path from the loader's current state.  Returns 0 when every segment reached its
