@@ -1,5 +1,6 @@
 /* densify: frictionless isotropic compaction of a loose pack to a confining stress. */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "qs/densify.h"
 #include "qs/minopts.h"
 #include "base/msg.h"
@@ -64,7 +65,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct cli_out logout = {0};
+	struct file_out logout = {0};
 	struct log_ctx lc = {NULL};
 	struct densify_stage last;
 	struct pack p;
@@ -122,7 +123,7 @@ main(int argc, char **argv)
 	if (dp.stress <= dp.onset)
 		msg_die(EXIT_USAGE, "--stress %g Pa must exceed --onset %g Pa", dp.stress, dp.onset);
 	if (log_path) {
-		if (cli_out_open(&logout, log_path))
+		if (file_out_open(&logout, log_path))
 			msg_die_err(EXIT_DATA);
 		lc.fp = logout.fp;
 		densify_log_header(lc.fp);
@@ -131,7 +132,7 @@ main(int argc, char **argv)
 	cli_progress_end();
 	if (r < 0 || (r == 1 && !allow_limit)) {
 		if (log_path)
-			cli_out_abort(&logout);
+			file_out_abort(&logout);
 		if (r == 1)
 			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
 		msg_die_err(EXIT_DATA);
@@ -147,7 +148,7 @@ main(int argc, char **argv)
 	free(hist);
 	if (pack_write_path(&p, st.output))
 		msg_die_err(EXIT_DATA);
-	if (log_path && cli_out_commit(&logout))
+	if (log_path && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;

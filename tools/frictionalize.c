@@ -1,6 +1,7 @@
 /* frictionalize: switch Mindlin-Deresiewicz friction on by uniaxial loading until the sliding
  * ratio saturates (phase (b), physics.md §9). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "qs/friction.h"
 #include "qs/frictionalize.h"
 #include "analysis/measure.h"
@@ -70,7 +71,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct cli_out logout = {0};
+	struct file_out logout = {0};
 	struct log_ctx lc = {NULL, 2, 0};
 	struct load_row last;
 	struct pack p;
@@ -150,7 +151,7 @@ main(int argc, char **argv)
 		msg_info(1, "mu %g, wall_mu %g; saturation window %ld increments of %g", mu, wall_mu, w, fp.strain_step);
 	}
 	if (log_path) {
-		if (cli_out_open(&logout, log_path))
+		if (file_out_open(&logout, log_path))
 			msg_die_err(EXIT_DATA);
 		lc.fp = logout.fp;
 		load_table_header(lc.fp, 1);
@@ -159,7 +160,7 @@ main(int argc, char **argv)
 	cli_progress_end();
 	if (r < 0 || (r > 0 && !allow_limit)) {
 		if (log_path)
-			cli_out_abort(&logout);
+			file_out_abort(&logout);
 		if (r > 0)
 			msg_die(EXIT_DATA, "%s; --allow-limit keeps the pack", msg_geterr());
 		msg_die_err(EXIT_DATA);
@@ -173,7 +174,7 @@ main(int argc, char **argv)
 	free(hist);
 	if (pack_write_path(&p, st.output))
 		msg_die_err(EXIT_DATA);
-	if (log_path && cli_out_commit(&logout))
+	if (log_path && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;

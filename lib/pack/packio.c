@@ -1,6 +1,6 @@
 /* packio: the strict pack reader and the round-trip-exact writer (see packio.h). */
 #include "pack/packio.h"
-#include "base/cli.h"
+#include "base/fileio.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
 
@@ -626,7 +626,7 @@ int
 pack_read_path(const char *path, struct pack *p)
 {
 	const char *name;
-	FILE *fp = cli_in_open(path, &name);
+	FILE *fp = file_in_open(path, &name);
 	struct pack_reader *rd;
 	struct pack extra;
 	int r;
@@ -822,26 +822,18 @@ pack_write_stream(const struct pack *p, FILE *fp, int gz)
 }
 
 int
-path_is_gz(const char *path)
-{
-	size_t n = path ? strlen(path) : 0;
-
-	return n > 3 && strcmp(path + n - 3, ".gz") == 0;
-}
-
-int
 pack_write_path(const struct pack *p, const char *path)
 {
-	struct cli_out o;
+	struct file_out o;
 
-	if (cli_out_open(&o, path))
+	if (file_out_open(&o, path))
 		return -1;
-	if (pack_write_stream(p, o.fp, 0)) {	/* cli_out_commit gzips a *.gz output */
+	if (pack_write_stream(p, o.fp, 0)) {	/* file_out_commit gzips a *.gz output */
 		msg_seterr("%s: write error", path ? path : "<stdout>");
-		cli_out_abort(&o);
+		file_out_abort(&o);
 		return -1;
 	}
-	return cli_out_commit(&o);
+	return file_out_commit(&o);
 }
 
 int

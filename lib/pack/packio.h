@@ -36,6 +36,4 @@ int pack_write_path(const struct pack *p, const char *path);
  * rule the reader enforces; otherwise fills the slot (without a line number). */
 int pack_validate(const struct pack *p);
 
-int path_is_gz(const char *path);
-
 #endif
