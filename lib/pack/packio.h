@@ -1,9 +1,9 @@
 /* packio: reading and writing qusgm-pack version 1 (share/doc/pack-format.md).
  *
  * The reader is strict and reports the first problem as "file:line: what is wrong" in the
- * error slot (msg_geterr).  Input goes through zlib, so gzip-compressed and plain packs share
- * one code path and a truncated .gz is an error.  A stream may hold several packs back to
- * back.  The writer prints every number with num_format, so write(read(f)) == f byte for
+ * error slot (msg_geterr).  Input goes through the line reader (base/lines.h), so
+ * gzip-compressed and plain packs share one code path and a truncated .gz is an error.  A
+ * stream may hold several packs back to back.  The writer prints every number with num_format, so write(read(f)) == f byte for
  * byte, and compresses when the output name ends in ".gz". */
 #ifndef QUSGM_PACKIO_H
 #define QUSGM_PACKIO_H
@@ -19,10 +19,6 @@ void pack_reader_close(struct pack_reader *rd);
 /* 1: a pack was read into p (initialised here); 0: clean end of input; -1: error. */
 int pack_read_next(struct pack_reader *rd, struct pack *p);
 const char *pack_reader_name(const struct pack_reader *rd);
-/* The next text line of the stream (plain or gzip), for readers of other line formats (the
- * tables): 1 with *line (newline stripped, valid until the next call), its number and whether
- * it ended with a newline; 0 at the end; -1 with msg_seterr (a corrupt or truncated .gz). */
-int pack_reader_line(struct pack_reader *rd, const char **line, long *lineno, int *newline);
 
 /* Read exactly one pack from path (NULL or "-" = stdin).  0 on success, -1 with the slot set. */
 int pack_read_path(const char *path, struct pack *p);
