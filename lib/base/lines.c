@@ -259,3 +259,21 @@ lines_unread(struct lines *in)
 		in->line--;
 	}
 }
+
+int
+lines_split(char *s, const char *blanks, char **tok, int max)
+{
+	int n = 0;
+
+	for (;;) {
+		s += strspn(s, blanks);
+		if (!*s)
+			return n;
+		if (n < max)
+			tok[n] = s;
+		n++;
+		s += strcspn(s, blanks);
+		if (*s)
+			*s++ = 0;
+	}
+}

@@ -41,6 +41,10 @@ long lines_lineno(const struct lines *in);
 int lines_newline(const struct lines *in);
 const char *lines_name(const struct lines *in);
 
+/* Split s in place into the fields separated by runs of the characters in blanks (leading
+ * and trailing ones ignored); returns the number of fields, storing the first max in tok. */
+int lines_split(char *s, const char *blanks, char **tok, int max);
+
 /* Fill the slot with "NAME:LINE: what" and return -1: at the last line returned (line 1
  * before the first), or at the given line. */
 int lines_error(const struct lines *in, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -103,25 +103,11 @@ line_after_last(const struct pack_reader *rd)
 	return lines_lineno(rd->in) + 1;
 }
 
-/* Split s in place at blanks; returns the number of fields, storing at most max. */
+/* Fields are separated by spaces and tabs. */
 static int
 split(char *s, char **tok, int max)
 {
-	int n = 0;
-
-	for (;;) {
-		while (*s == ' ' || *s == '\t')
-			s++;
-		if (!*s)
-			return n;
-		if (n < max)
-			tok[n] = s;
-		n++;
-		while (*s && *s != ' ' && *s != '\t')
-			s++;
-		if (*s)
-			*s++ = 0;
-	}
+	return lines_split(s, " \t", tok, max);
 }
 
 static int
