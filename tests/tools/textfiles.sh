@@ -1,12 +1,12 @@
 # textfiles: the small text inputs read through the line reader (lib/base/lines.c): a
-# material preset file (packgen --material FILE) and a size table (packgen --psd
-# table:FILE).  Their readers used 512- and 256-byte fgets buffers, which split a longer
+# material preset file (packgen --material FILE), a size table (packgen --psd
+# table:FILE), and packimport's "x y z r" lines.  Their readers used 512- and 256-byte fgets buffers, which split a longer
 # line in two and read the second half as a line of its own; lines of any length must now
 # be read whole, or refused as one line with its right number.
 . "$TOP/tests/tools/lib.sh"
 
 # long N: N characters "0"
-long() { awk -v n="$1" 'BEGIN { s = sprintf("%*s", n, ""); gsub(/ /, "0", s); print s }'; }
+long() { head -c "$1" /dev/zero | tr '\0' 0; }
 z600=$(long 600)
 z300=$(long 300)
 
@@ -65,3 +65,15 @@ expect_same "size table with CRLF lines: the same pack" tc.body ts.body
 : >empty.txt
 expect_error "size table: empty" 2 '^packgen: empty\.txt: the size table is empty \(try' packgen --psd table:empty.txt
 expect_error "size table: missing" 2 '^packgen: none\.txt: cannot open size table \(try' packgen --psd table:none.txt
+
+# --- packimport's x y z r lines ------------------------------------------------------------
+printf '0.001 0.001 0.001 0.0005\n0.002 0.002 0.002 0.0005\n' >short.xyzr
+{ echo "0.001 0.001 0.001 0.0005"; echo "0.002 $(printf '%70000s' '')0.002 0.002 0.0005$(printf '%70000s' '')"; } >wide.xyzr
+packimport short.xyzr >short-imp.pack 2>/dev/null
+packimport wide.xyzr >wide-imp.pack 2>wide.err
+sed '/^history /d' short-imp.pack >short-imp.body
+sed '/^history /d' wide-imp.pack >wide-imp.body
+expect_same "x y z r: a 140000-character line is one sphere" wide-imp.body short-imp.body
+{ echo "# $(long 70000)"; echo "0.001 0.001 0.001 0.0005 $(long 70000)"; } >wide5.xyzr
+expect_error "x y z r: five columns after a 70000-character comment, refused at line 2" 1 \
+    '^packimport: wide5\.xyzr:2: expected 4 columns \(x y z r\), found 5$' packimport wide5.xyzr
