@@ -239,15 +239,66 @@ find_duplicate_contact(const struct pack *p)
 	return found;
 }
 
+/* ---- the grain columns ---- */
+
+/* The grain columns a pack may have, in the order writers put them.  The required ones are
+ * in every pack, first on each grain line and in this order, so that a script reading a
+ * column by its position reads it from every pack; a version-1 pack has exactly these and
+ * no columns line.  A later optional column (a phase tag, a shape, an orientation) is a row
+ * with required 0, plus the storage of its values in struct pack, their parsing in
+ * read_grain_line, and the test in pack_format_version that the pack has it. */
+static const struct column {
+	const char *name;
+	int required;
+} columns[] = {
+	{"id", 1}, {"x", 1}, {"y", 1}, {"z", 1}, {"r", 1}, {"E", 1}, {"nu", 1}, {"rho", 1},
+};
+#define NCOLUMNS ((int)(sizeof columns / sizeof columns[0]))
+
+/* A columns line naming every known column once, and one more name, fits in tok[]: so the
+ * unknown or repeated name of a longer line is among the fields kept. */
+_Static_assert(MAXTOK >= NCOLUMNS + 2, "MAXTOK too small for the columns line");
+
+static int
+column_index(const char *name)
+{
+	int k;
+
+	for (k = 0; k < NCOLUMNS; k++)
+		if (strcmp(name, columns[k].name) == 0)
+			return k;
+	return -1;
+}
+
 /* ---- the header ---- */
 
-/* The header being read: what it declares, and which keywords it has had. */
+/* The header being read: the version, what it declares, which keywords it has had, and
+ * the grain columns (col[k]: the row of columns[] of the k-th column of a grain line). */
 struct header {
 	struct pack_reader *rd;
 	struct pack *p;
+	long version;
 	long ngr, nco;
 	unsigned seen;	/* bit k: keywords[k] has been read */
+	int ncol, col[NCOLUMNS];
+	char colnames[256];	/* "id x y z r E nu rho", for messages */
 };
+
+/* Until a columns line says otherwise: the required columns (a version-1 pack). */
+static void
+standard_columns(struct header *h)
+{
+	int k;
+
+	h->ncol = 0;
+	h->colnames[0] = 0;
+	for (k = 0; k < NCOLUMNS; k++)
+		if (columns[k].required) {
+			h->col[h->ncol++] = k;
+			snprintf(h->colnames + strlen(h->colnames), sizeof h->colnames - strlen(h->colnames),
+			    "%s%s", h->colnames[0] ? " " : "", columns[k].name);
+		}
+}
 
 static int
 kw_units(struct header *h, char **tok, int n)
@@ -325,19 +376,77 @@ kw_count(struct header *h, char **tok, int n)
 	return 0;
 }
 
-/* The header keywords other than history, meta and end, each allowed once. */
+/* "columns NAME ...": known names, each once, the required ones first and in order. */
+static int
+kw_columns(struct header *h, char **tok, int n)
+{
+	unsigned named = 0;
+	int k, c;
+
+	if (n < 2)
+		return rd_error(h->rd, "columns: expected the names of the grain columns (%s ...)", h->colnames);
+	for (k = 1; k < n; k++) {
+		if ((c = column_index(tok[k])) < 0)
+			return rd_error(h->rd, "columns: unknown column '%s'", tok[k]);
+		if (named & 1u << c)
+			return rd_error(h->rd, "columns: column '%s' named twice", tok[k]);
+		named |= 1u << c;
+	}
+	for (c = 0; c < NCOLUMNS; c++)
+		if (columns[c].required && !(named & 1u << c))
+			return rd_error(h->rd, "columns: the required column '%s' is missing", columns[c].name);
+	for (c = 0, k = 1; c < NCOLUMNS; c++) {
+		if (!columns[c].required)
+			continue;
+		if (strcmp(tok[k], columns[c].name) != 0)
+			return rd_error(h->rd, "columns: column %d must be '%s' (the required columns come first, in the order %s)",
+			    k, columns[c].name, h->colnames);
+		k++;
+	}
+	for (k = 1; k < n; k++)
+		h->col[k - 1] = column_index(tok[k]);
+	h->ncol = n - 1;
+	return 0;
+}
+
+/* "boundary X Y Z": along each axis, "walls" (two rigid walls, the box faces) or
+ * "periodic" (the box length is the period; no walls). */
+static int
+kw_boundary(struct header *h, char **tok, int n)
+{
+	int a;
+
+	if (n != 4)
+		return rd_error(h->rd, "boundary: expected 3 words (x y z, each 'walls' or 'periodic'), found %d",
+		    n - 1);
+	for (a = 0; a < 3; a++) {
+		if (strcmp(tok[1 + a], "walls") == 0)
+			h->p->periodic[a] = 0;
+		else if (strcmp(tok[1 + a], "periodic") == 0)
+			h->p->periodic[a] = 1;
+		else
+			return rd_error(h->rd, "boundary: '%s' for axis %c is neither 'walls' nor 'periodic'",
+			    tok[1 + a], 'x' + a);
+	}
+	return 0;
+}
+
+/* The header keywords other than history, meta and end, each allowed once: from format
+ * version since on, and then required or not. */
 static const struct keyword {
 	const char *name;
-	int required;
+	int since, required;
 	int (*parse)(struct header *h, char **tok, int n);
 } keywords[] = {
-	{"units", 1, kw_units},
-	{"box", 1, kw_box},
-	{"refbox", 0, kw_box},
-	{"walls", 1, kw_walls},
-	{"friction", 1, kw_friction},
-	{"grains", 1, kw_count},
-	{"contacts", 1, kw_count},
+	{"units", 1, 1, kw_units},
+	{"box", 1, 1, kw_box},
+	{"refbox", 1, 0, kw_box},
+	{"walls", 1, 1, kw_walls},
+	{"friction", 1, 1, kw_friction},
+	{"grains", 1, 1, kw_count},
+	{"contacts", 1, 1, kw_count},
+	{"columns", 2, 1, kw_columns},
+	{"boundary", 2, 1, kw_boundary},
 };
 #define NKEYWORDS (sizeof keywords / sizeof keywords[0])
 
@@ -351,6 +460,9 @@ header_keyword(struct header *h, char **tok, int n)
 			break;
 	if (k == NKEYWORDS)
 		return rd_error(h->rd, "unknown header keyword '%s'", tok[0]);
+	if (h->version < keywords[k].since)
+		return rd_error(h->rd, "%s: not in version %ld of the format (a pack with a %s line starts '%s %d')",
+		    tok[0], h->version, tok[0], PACK_FORMAT_NAME, keywords[k].since);
 	if (h->seen & 1u << k)
 		return rd_error(h->rd, "duplicate '%s' line (the header must contain exactly one)", tok[0]);
 	h->seen |= 1u << k;
@@ -417,6 +529,7 @@ read_header(struct header *h)
 	char *s;
 	int r;
 
+	standard_columns(h);
 	do {
 		r = next_line(h->rd, &s);
 		if (r < 0)
@@ -429,52 +542,56 @@ read_header(struct header *h)
 			return -1;
 	} while (r == 0);
 	for (k = 0; k < NKEYWORDS; k++)
-		if (keywords[k].required && !(h->seen & 1u << k))
+		if (keywords[k].required && h->version >= keywords[k].since && !(h->seen & 1u << k))
 			return rd_error(h->rd, "missing '%s' line in the header", keywords[k].name);
 	return 0;
 }
 
 /* ---- grains and contacts ---- */
 
+/* A grain line of the header's columns: the required ones come first, in columns[] order. */
 static int
-read_grain_line(struct pack_reader *rd, struct pack *p, char *s)
+read_grain_line(const struct header *h, char *s)
 {
+	struct pack_reader *rd = h->rd;
 	char *tok[MAXTOK], why[256];
 	double v[7];
 	long id;
 	int n = split(s, tok, MAXTOK);
 
-	if (n != 8)
-		return rd_error(rd, "grain line: expected 8 columns (id x y z r E nu rho), found %d", n);
+	if (n != h->ncol)
+		return rd_error(rd, "grain line: expected %d columns (%s), found %d", h->ncol, h->colnames, n);
 	if (num_parse_long(tok[0], &id))
 		return rd_error(rd, "grain id '%s' is not an integer", tok[0]);
 	if (parse_numbers(rd, tok + 1, 7, v, "grain"))
 		return -1;
-	if (pack_add_grain(p, id, v, v[3], v[4], v[5], v[6]) == (size_t)-1)
+	if (pack_add_grain(h->p, id, v, v[3], v[4], v[5], v[6]) == (size_t)-1)
 		return rd_error(rd, "out of memory");
-	if (check_grain_values(p, p->n - 1, why, sizeof why))
+	if (check_grain_values(h->p, h->p->n - 1, why, sizeof why))
 		return rd_error(rd, "%s", why);
 	return 0;
 }
 
 static int
-read_grains(struct pack_reader *rd, struct pack *p, long ngr, size_t **sorted)
+read_grains(const struct header *h, size_t **sorted)
 {
+	struct pack_reader *rd = h->rd;
+	struct pack *p = h->p;
 	long k, first = lines_lineno(rd->in) + 1;
 	size_t dup;
 	char *s;
 
-	if (pack_reserve(p, (size_t)ngr))
-		return rd_error(rd, "out of memory for %ld grains", ngr);
-	for (k = 0; k < ngr; k++) {
+	if (pack_reserve(p, (size_t)h->ngr))
+		return rd_error(rd, "out of memory for %ld grains", h->ngr);
+	for (k = 0; k < h->ngr; k++) {
 		int r = next_line(rd, &s);
 
 		if (r < 0)
 			return -1;
 		if (r == 0)
 			return rd_error_at(rd, line_after_last(rd),
-			    "unexpected end of input: %ld grains declared, %ld found", ngr, k);
-		if (read_grain_line(rd, p, s))
+			    "unexpected end of input: %ld grains declared, %ld found", h->ngr, k);
+		if (read_grain_line(h, s))
 			return -1;
 	}
 	*sorted = sort_by_id(p, &dup);
@@ -485,6 +602,8 @@ read_grains(struct pack_reader *rd, struct pack *p, long ngr, size_t **sorted)
 	return 0;
 }
 
+/* One end of a contact: a grain id, or (allow_wall) the name of a wall, which a periodic
+ * axis does not have. */
 static int
 parse_end(struct pack_reader *rd, const struct pack *p, const size_t *sorted, const char *s,
     long *out, int allow_wall)
@@ -495,6 +614,9 @@ parse_end(struct pack_reader *rd, const struct pack *p, const size_t *sorted, co
 	if (allow_wall)
 		for (w = 0; w < NWALLS; w++)
 			if (strcmp(s, pack_wall_names[w]) == 0) {
+				if (p->periodic[w / 2])
+					return rd_error(rd, "contact: wall '%s' on axis %c, which is periodic (no walls)",
+					    s, 'x' + w / 2);
 				*out = PACK_WALL(w);
 				return 0;
 			}
@@ -536,24 +658,25 @@ read_contact_line(struct pack_reader *rd, struct pack *p, const size_t *sorted, 
 }
 
 static int
-read_contacts(struct pack_reader *rd, struct pack *p, long nco, const size_t *sorted)
+read_contacts(const struct header *h, const size_t *sorted)
 {
+	struct pack_reader *rd = h->rd;
 	long k, first = lines_lineno(rd->in) + 1;
 	size_t dup;
 	char *s;
 
-	for (k = 0; k < nco; k++) {
+	for (k = 0; k < h->nco; k++) {
 		int r = next_line(rd, &s);
 
 		if (r < 0)
 			return -1;
 		if (r == 0)
 			return rd_error_at(rd, line_after_last(rd),
-			    "unexpected end of input: %ld contacts declared, %ld found", nco, k);
-		if (read_contact_line(rd, p, sorted, s))
+			    "unexpected end of input: %ld contacts declared, %ld found", h->nco, k);
+		if (read_contact_line(rd, h->p, sorted, s))
 			return -1;
 	}
-	dup = find_duplicate_contact(p);
+	dup = find_duplicate_contact(h->p);
 	if (dup != (size_t)-1)
 		return rd_error_at(rd, first + (long)dup, "contact pair listed twice");
 	return 0;
@@ -561,24 +684,27 @@ read_contacts(struct pack_reader *rd, struct pack *p, long nco, const size_t *so
 
 /* ---- a whole pack ---- */
 
-/* The magic line, already read into s: 0 when it names a version this reader knows. */
+/* The oldest format version read; PACK_FORMAT_VERSION (pack.h) is the newest. */
+#define OLDEST_VERSION 1
+
+/* The magic line, already read into s: 0 with *version when it names a version this
+ * reader knows. */
 static int
-read_magic(struct pack_reader *rd, char *s)
+read_magic(struct pack_reader *rd, char *s, long *version)
 {
 	char *tok[MAXTOK];
-	long version;
 	int n = split(s, tok, MAXTOK);
 
 	if (n < 1 || strcmp(tok[0], PACK_FORMAT_NAME) != 0)
-		return rd_error(rd, "not a qusgm pack (first line must be '%s %d')", PACK_FORMAT_NAME,
-		    PACK_FORMAT_VERSION);
-	if (n != 2 || num_parse_long(tok[1], &version))
+		return rd_error(rd, "not a qusgm pack (first line must be '%s %d' or '%s %d')", PACK_FORMAT_NAME,
+		    OLDEST_VERSION, PACK_FORMAT_NAME, PACK_FORMAT_VERSION);
+	if (n != 2 || num_parse_long(tok[1], version))
 		return rd_error(rd, "%s: missing or malformed version", PACK_FORMAT_NAME);
-	if (version > PACK_FORMAT_VERSION)
+	if (*version > PACK_FORMAT_VERSION)
 		return rd_error(rd, "pack format version %ld is newer than this qusgm reads (%d); upgrade qusgm",
-		    version, PACK_FORMAT_VERSION);
-	if (version != PACK_FORMAT_VERSION)
-		return rd_error(rd, "unknown pack format version %ld", version);
+		    *version, PACK_FORMAT_VERSION);
+	if (*version < OLDEST_VERSION)
+		return rd_error(rd, "unknown pack format version %ld", *version);
 	return 0;
 }
 
@@ -604,28 +730,31 @@ read_pack_end(struct pack_reader *rd, const struct header *h)
 int
 pack_read_next(struct pack_reader *rd, struct pack *p)
 {
-	struct header h = {rd, p, 0, 0, 0};
+	struct header h;
 	size_t *sorted = NULL;
 	char *s;
 	int r, status;
 
 	pack_init(p);
+	memset(&h, 0, sizeof h);
+	h.rd = rd;
+	h.p = p;
 	if (rd->failed)
 		return -1;
 	r = next_line(rd, &s);
 	if (r <= 0) {
 		if (r == 0 && lines_lineno(rd->in) == 0)
-			return rd_error_at(rd, 1, "empty input (expected '%s %d')", PACK_FORMAT_NAME,
-			    PACK_FORMAT_VERSION);
+			return rd_error_at(rd, 1, "empty input (expected '%s %d' or '%s %d')", PACK_FORMAT_NAME,
+			    OLDEST_VERSION, PACK_FORMAT_NAME, PACK_FORMAT_VERSION);
 		return r;
 	}
-	status = read_magic(rd, s);
+	status = read_magic(rd, s, &h.version);
 	if (status == 0)
 		status = read_header(&h);
 	if (status == 0)
-		status = read_grains(rd, p, h.ngr, &sorted);
+		status = read_grains(&h, &sorted);
 	if (status == 0)
-		status = read_contacts(rd, p, h.nco, sorted);
+		status = read_contacts(&h, sorted);
 	free(sorted);
 	if (status == 0)
 		status = read_pack_end(rd, &h);
@@ -743,19 +872,56 @@ sb_printf(struct sbuf *b, const char *fmt, ...)
 	b->len += (size_t)n;
 }
 
+int
+pack_format_version(const struct pack *p)
+{
+	/* every column of columns[] is required, so the columns are the standard ones */
+	return p->periodic[0] || p->periodic[1] || p->periodic[2] ? 2 : 1;
+}
+
+/* The version-2 lines: the boundary along x y z, and the grain columns. */
 static void
-format_pack(const struct pack *p, struct sbuf *b)
+format_boundary(const struct pack *p, struct sbuf *b)
+{
+	int a;
+
+	sb_puts(b, "boundary");
+	for (a = 0; a < 3; a++)
+		sb_puts(b, p->periodic[a] ? " periodic" : " walls");
+	sb_puts(b, "\n");
+}
+
+static void
+format_columns(struct sbuf *b)
+{
+	int k;
+
+	sb_puts(b, "columns");
+	for (k = 0; k < NCOLUMNS; k++)
+		if (columns[k].required) {
+			sb_puts(b, " ");
+			sb_puts(b, columns[k].name);
+		}
+	sb_puts(b, "\n");
+}
+
+/* magic, history, meta, units, box, [boundary], [refbox], walls, friction, grains,
+ * contacts, [columns], end: the order of share/doc/pack-format.md. */
+static void
+format_header(const struct pack *p, int version, struct sbuf *b)
 {
 	size_t k;
-	double v[7];
+	double v[3];
 
-	sb_printf(b, "%s %d\n", PACK_FORMAT_NAME, PACK_FORMAT_VERSION);
+	sb_printf(b, "%s %d\n", PACK_FORMAT_NAME, version);
 	for (k = 0; k < p->nhist; k++)
 		sb_printf(b, "history %s\n", p->history[k]);
 	for (k = 0; k < p->nmeta; k++)
 		sb_printf(b, "meta %s %s\n", p->meta[k].key, p->meta[k].value);
 	sb_puts(b, "units SI\nbox ");
 	sb_nums(b, p->box, 6);
+	if (version >= 2)
+		format_boundary(p, b);
 	if (p->has_refbox) {
 		sb_puts(b, "refbox ");
 		sb_nums(b, p->refbox, 6);
@@ -767,7 +933,19 @@ format_pack(const struct pack *p, struct sbuf *b)
 	sb_nums(b, v, 3);
 	sb_puts(b, "friction ");
 	sb_nums(b, &p->mu, 1);
-	sb_printf(b, "grains %zu\ncontacts %zu\nend\n", p->n, p->nc);
+	sb_printf(b, "grains %zu\ncontacts %zu\n", p->n, p->nc);
+	if (version >= 2)
+		format_columns(b);
+	sb_puts(b, "end\n");
+}
+
+static void
+format_pack(const struct pack *p, struct sbuf *b)
+{
+	size_t k;
+	double v[7];
+
+	format_header(p, pack_format_version(p), b);
 	for (k = 0; k < p->n && !b->oom; k++) {
 		sb_printf(b, "%ld ", p->id[k]);
 		memcpy(v, p->x + 3 * k, 3 * sizeof *v);
@@ -841,6 +1019,27 @@ pack_write_path(const struct pack *p, const char *path)
 	return file_out_commit(&o);
 }
 
+/* The boundary flags are 0 or 1, and no contact names a wall of a periodic axis. */
+static int
+validate_boundary(const struct pack *p)
+{
+	size_t k;
+	int a;
+
+	for (a = 0; a < 3; a++)
+		if (p->periodic[a] != 0 && p->periodic[a] != 1) {
+			msg_seterr("boundary: periodic[%d] = %d is neither 0 (walls) nor 1 (periodic)", a, p->periodic[a]);
+			return -1;
+		}
+	for (k = 0; k < p->nc; k++)
+		if (PACK_IS_WALL(p->c[k].j) && p->periodic[PACK_WALL_INDEX(p->c[k].j) / 2]) {
+			msg_seterr("contact of grain %ld with wall '%s', on a periodic axis", p->id[p->c[k].i],
+			    pack_wall_names[PACK_WALL_INDEX(p->c[k].j)]);
+			return -1;
+		}
+	return 0;
+}
+
 int
 pack_validate(const struct pack *p)
 {
@@ -871,5 +1070,5 @@ pack_validate(const struct pack *p)
 		msg_seterr("duplicate grain id %ld", p->id[dup]);
 		return -1;
 	}
-	return 0;
+	return validate_boundary(p);
 }

@@ -1,4 +1,4 @@
-/* packio: reading and writing qusgm-pack version 1 (share/doc/pack-format.md).
+/* packio: reading and writing qusgm-pack versions 1 and 2 (share/doc/pack-format.md).
  *
  * The reader is strict and reports the first problem as "file:line: what is wrong" in the
  * error slot (msg_geterr).  Input goes through the line reader (base/lines.h), so
@@ -22,6 +22,11 @@ const char *pack_reader_name(const struct pack_reader *rd);
 
 /* Read exactly one pack from path (NULL or "-" = stdin).  0 on success, -1 with the slot set. */
 int pack_read_path(const char *path, struct pack *p);
+
+/* The version a writer emits for p: the lowest that represents it, 1 for the standard
+ * grain columns and six walls (byte for byte what qusgm wrote before version 2 existed,
+ * readable by older readers), 2 for a periodic axis. */
+int pack_format_version(const struct pack *p);
 
 /* Write one pack to an open stream, compressed if gz; 0 on success. */
 int pack_write_stream(const struct pack *p, FILE *fp, int gz);
