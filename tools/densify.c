@@ -1,5 +1,6 @@
 /* densify: frictionless isotropic compaction of a loose pack to a confining stress. */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "qs/densify.h"
 #include "qs/minopts.h"
 #include "base/msg.h"
@@ -135,11 +136,11 @@ check_stress(const struct pack *p)
 
 /* A minimisation at its limit fails the run unless --allow-limit; a failed run leaves no log. */
 static void
-check_stop(int r, struct cli_out *logout, const struct densify_stage *last)
+check_stop(int r, struct file_out *logout, const struct densify_stage *last)
 {
 	if (r < 0 || (r == 1 && !o.allow_limit)) {
 		if (o.log)
-			cli_out_abort(logout);
+			file_out_abort(logout);
 		if (r == 1)
 			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
 		msg_die_err(EXIT_DATA);
@@ -154,7 +155,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct cli_out logout = {0};
+	struct file_out logout = {0};
 	struct log_ctx lc = {NULL};
 	struct densify_stage last;
 	struct pack p;
@@ -166,7 +167,7 @@ main(int argc, char **argv)
 	read_pack(st.input, &p);
 	check_stress(&p);
 	if (o.log) {
-		if (cli_out_open(&logout, o.log))
+		if (file_out_open(&logout, o.log))
 			msg_die_err(EXIT_DATA);
 		lc.fp = logout.fp;
 		densify_log_header(lc.fp);
@@ -181,7 +182,7 @@ main(int argc, char **argv)
 	free(hist);
 	if (pack_write_path(&p, st.output))
 		msg_die_err(EXIT_DATA);
-	if (o.log && cli_out_commit(&logout))
+	if (o.log && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;

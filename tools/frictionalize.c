@@ -1,6 +1,7 @@
 /* frictionalize: switch Mindlin-Deresiewicz friction on by uniaxial loading until the sliding
  * ratio saturates (phase (b), physics.md §9). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "qs/friction.h"
 #include "qs/frictionalize.h"
 #include "qs/loadpath.h"
@@ -139,11 +140,11 @@ check_window(const struct pack *p, const char *in)
 /* Not saturated, or a minimisation at its limit, fails the run unless --allow-limit; a failed
  * run leaves no log. */
 static void
-check_stop(int r, struct cli_out *logout, const struct load_row *last)
+check_stop(int r, struct file_out *logout, const struct load_row *last)
 {
 	if (r < 0 || (r > 0 && !o.allow_limit)) {
 		if (o.log)
-			cli_out_abort(logout);
+			file_out_abort(logout);
 		if (r > 0)
 			msg_die(EXIT_DATA, "%s; --allow-limit keeps the pack", msg_geterr());
 		msg_die_err(EXIT_DATA);
@@ -158,7 +159,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct cli_out logout = {0};
+	struct file_out logout = {0};
 	struct log_ctx lc = {NULL, 2, 0};
 	struct load_row last;
 	struct pack p;
@@ -180,7 +181,7 @@ main(int argc, char **argv)
 	set_friction(&p, in);
 	check_window(&p, in);
 	if (o.log) {
-		if (cli_out_open(&logout, o.log))
+		if (file_out_open(&logout, o.log))
 			msg_die_err(EXIT_DATA);
 		lc.fp = logout.fp;
 		load_table_header(lc.fp, 1);
@@ -193,7 +194,7 @@ main(int argc, char **argv)
 	free(hist);
 	if (pack_write_path(&p, st.output))
 		msg_die_err(EXIT_DATA);
-	if (o.log && cli_out_commit(&logout))
+	if (o.log && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;

@@ -1,5 +1,6 @@
 /* moduli: Hooke's-law moduli of each interval of a loadtest curve (physics.md §8). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "analysis/curve.h"
 #include "analysis/emt.h"
 #include "pack/material.h"
@@ -38,7 +39,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct cli_out out;
+	struct file_out out;
 	struct table t;
 	struct curve_cols cols;
 	struct curve_interval *iv;
@@ -60,7 +61,7 @@ main(int argc, char **argv)
 	if (!emt_arg)
 		ncol -= 5;
 
-	if (!(in = cli_in_open(st.input, &display)))
+	if (!(in = file_in_open(st.input, &display)))
 		msg_die_err(EXIT_DATA);
 	if (table_read(in, display, &t))
 		msg_die_err(EXIT_DATA);
@@ -71,7 +72,7 @@ main(int argc, char **argv)
 		msg_die_err(EXIT_DATA);
 	if (emt_arg && ((cphi = table_find(&t, "porosity")) < 0 || (cz = table_find(&t, "coordination")) < 0))
 		msg_die(EXIT_DATA, "%s: --emt needs the porosity and coordination columns", display);
-	if (cli_out_open(&out, st.output))
+	if (file_out_open(&out, st.output))
 		msg_die_err(EXIT_DATA);
 	table_header(out.fp, out_cols, ncol);
 	for (k = 0; k < n; k++) {
@@ -91,7 +92,7 @@ main(int argc, char **argv)
 		}
 		table_row(out.fp, v, ncol);
 	}
-	if (cli_out_commit(&out))
+	if (file_out_commit(&out))
 		msg_die_err(EXIT_DATA);
 	free(iv);
 	table_free(&t);

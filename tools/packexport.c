@@ -1,5 +1,6 @@
 /* packexport: write a pack for ParaView/OVITO (VTK), LAMMPS or YADE. */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "analysis/export.h"
 #include "base/msg.h"
 #include "pack/packio.h"
@@ -51,23 +52,23 @@ text_close(struct text *t)
 		msg_die(EXIT_DATA, "out of memory");
 }
 
-/* Write t to path (NULL or "-": stdout) atomically; cli_out_commit gzips a .gz name. */
+/* Write t to path (NULL or "-": stdout) atomically; file_out_commit gzips a .gz name. */
 static void
 emit(const char *path, struct text *t)
 {
-	struct cli_out out;
+	struct file_out out;
 	int bad;
 
-	if (cli_out_open(&out, path))
+	if (file_out_open(&out, path))
 		msg_die_err(EXIT_DATA);
 	bad = fwrite(t->s, 1, t->len, out.fp) != t->len;
 	free(t->s);
 	t->s = NULL;
 	if (bad) {
-		cli_out_abort(&out);
+		file_out_abort(&out);
 		msg_die(EXIT_DATA, "%s: write error", path ? path : "<stdout>");
 	}
-	if (cli_out_commit(&out))
+	if (file_out_commit(&out))
 		msg_die_err(EXIT_DATA);
 }
 
@@ -124,7 +125,7 @@ write_lammps_frames(const char *input, struct text *t)
 	long frame = 0;
 	int r;
 
-	if (!(in = cli_in_open(input, &name)) || !(rd = pack_reader_open(in, name)))
+	if (!(in = file_in_open(input, &name)) || !(rd = pack_reader_open(in, name)))
 		msg_die_err(EXIT_DATA);
 	text_open(t);
 	while ((r = pack_read_next(rd, &p)) == 1) {

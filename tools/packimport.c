@@ -1,5 +1,6 @@
 /* packimport: make a qusgm pack from "x y z r" lines (YADE, LAMMPS scripts, anything). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "analysis/export.h"
 #include "pack/material.h"
 #include "base/msg.h"
@@ -119,7 +120,7 @@ main(int argc, char **argv)
 	cli_parse(&tool, argc, argv, &st);
 	check_options(box, &m, &wall_E, &wall_mu);
 
-	if (!(in = cli_in_open(st.input, &name)) || xyzr_read(in, name, box_arg ? box : NULL, &p))
+	if (!(in = file_in_open(st.input, &name)) || xyzr_read(in, name, box_arg ? box : NULL, &p))
 		msg_die_err(EXIT_DATA);
 	if (in != stdin)
 		fclose(in);

@@ -1,5 +1,6 @@
 /* packinfo: describe packs as "key value" lines (or one TSV row per pack with --tsv). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "analysis/measure.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
@@ -108,7 +109,7 @@ int
 main(int argc, char **argv)
 {
 	struct cli_state st;
-	struct cli_out out;
+	struct file_out out;
 	struct pack_reader *rd;
 	struct geo_contacts gc;
 	struct pack p;
@@ -123,7 +124,7 @@ main(int argc, char **argv)
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
 	cli_usage_done();
-	if (!(in = cli_in_open(st.input, &name)) || !(rd = pack_reader_open(in, name)))
+	if (!(in = file_in_open(st.input, &name)) || !(rd = pack_reader_open(in, name)))
 		msg_die_err(EXIT_DATA);
 	/* Everything is formatted in memory first: a bad pack later in the stream must not
 	 * leave the rows of the earlier ones behind. */
@@ -153,11 +154,11 @@ main(int argc, char **argv)
 	pack_reader_close(rd);
 	contacts_free(&gc);
 	fclose(mem);
-	if (cli_out_open(&out, st.output))
+	if (file_out_open(&out, st.output))
 		msg_die_err(EXIT_DATA);
 	fwrite(text, 1, textlen, out.fp);
 	free(text);
-	if (cli_out_commit(&out))
+	if (file_out_commit(&out))
 		msg_die_err(EXIT_DATA);
 	return 0;
 }

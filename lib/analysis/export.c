@@ -1,14 +1,13 @@
 /* export: VTK, LAMMPS and YADE writers and the "x y z r" reader (see export.h). */
 #include "analysis/export.h"
 #include "contact/contacts.h"
+#include "base/lines.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
-#include <zlib.h>
 
 /* Print v with num_format, then the separator. */
 static void
@@ -313,128 +312,33 @@ export_xyzr(const struct pack *p, FILE *fp, int periodic)
 	return finish(fp);
 }
 
-/* The "x y z r" reader.  Lines come from gzgets, so plain and gzip input share one path. */
-struct xyzr_in {
-	gzFile gz;
-	const char *name;
-	long line;
-	char *buf;
-	size_t cap;
-};
-
+/* The "x y z r" reader, on base/lines (plain and gzip input share one path). */
 static int
-in_error(const struct xyzr_in *in, long line, const char *fmt, const char *arg)
-{
-	char what[256];
-
-	snprintf(what, sizeof what, fmt, arg);
-	msg_seterr("%s:%ld: %s", in->name, line, what);
-	return -1;
-}
-
-/* 1: the next line is in in->buf, end of line stripped; 0: end of input; -1: error. */
-static int
-in_line(struct xyzr_in *in)
-{
-	size_t len = 0, n;
-	z_off_t start = gztell(in->gz);
-	const char *zmsg;
-	int err, got = 0;
-
-	for (;;) {
-		if (in->cap - len < 128) {
-			size_t cap = 2 * in->cap + 256;
-			char *b = realloc(in->buf, cap);
-			if (!b)
-				return in_error(in, in->line + 1, "%s", "out of memory");
-			in->buf = b;
-			in->cap = cap;
-		}
-		if (!gzgets(in->gz, in->buf + len, (int)(in->cap - len)))
-			in->buf[len] = 0;
-		else
-			got = 1;
-		n = strlen(in->buf + len);
-		len += n;
-		if (len > 0 && in->buf[len - 1] == '\n')
-			break;
-		if (len + 1 < in->cap) {
-			/* The end of the data.  zlib flags a truncated .gz as soon as it reads
-			 * the end of the compressed bytes but keeps serving the lines decoded
-			 * before it, so the error is reported here, where the data stops, and
-			 * the fragment of a line is not parsed. */
-			zmsg = gzerror(in->gz, &err);
-			if (err == Z_BUF_ERROR)
-				zmsg = "unexpected end of compressed data";
-			else if (strstr(zmsg, ">: "))
-				zmsg = strstr(zmsg, ">: ") + 3;	/* drop zlib's "<fd:N>: " */
-			if (err != Z_OK && err != Z_STREAM_END)
-				return in_error(in, in->line + 1, "corrupt or truncated input (%s)", zmsg);
-			break;
-		}
-	}
-	if (!got)
-		return 0;
-	in->line++;
-	/* gzgets copies NUL bytes too; the stream position shows what strlen cannot. */
-	if (start >= 0 && gztell(in->gz) - start != (z_off_t)len)
-		return in_error(in, in->line, "%s", "binary data (NUL byte) in a text file");
-	if (len > 0 && in->buf[len - 1] == '\n')
-		in->buf[--len] = 0;
-	if (len > 0 && in->buf[len - 1] == '\r')
-		in->buf[--len] = 0;
-	return 1;
-}
-
-/* Split s in place at blanks; returns the number of fields, storing at most max. */
-static int
-fields(char *s, char **tok, int max)
-{
-	int n = 0;
-
-	for (;;) {
-		s += strspn(s, " \t");
-		if (!*s)
-			return n;
-		if (n < max)
-			tok[n] = s;
-		n++;
-		s += strcspn(s, " \t");
-		if (*s)
-			*s++ = 0;
-	}
-}
-
-static int
-in_sphere(struct xyzr_in *in, const double *box, struct pack *p)
+in_sphere(struct lines *in, char *s, const double *box, struct pack *p)
 {
 	char *tok[4];
 	double v[4];
 	int n, k;
 
-	n = fields(in->buf, tok, 4);
-	if (n != 4) {
-		char cnt[16];
-		snprintf(cnt, sizeof cnt, "%d", n);
-		return in_error(in, in->line, "expected 4 columns (x y z r), found %s", cnt);
-	}
+	n = lines_split(s, " \t", tok, 4);
+	if (n != 4)
+		return lines_error(in, "expected 4 columns (x y z r), found %d", n);
 	for (k = 0; k < 4; k++)
 		if (num_parse(tok[k], &v[k]))
-			return in_error(in, in->line, "'%s' is not a finite number", tok[k]);
+			return lines_error(in, "'%s' is not a finite number", tok[k]);
 	if (!(v[3] > 0))
-		return in_error(in, in->line, "radius %s is not positive", tok[3]);
+		return lines_error(in, "radius %s is not positive", tok[3]);
 	if (box)
 		for (k = 0; k < 3; k++)
 			if (v[k] < box[k] || v[k] > box[k + 3]) {
-				char why[160], lo[40], hi[40];
+				char lo[40], hi[40];
 				num_format(lo, box[k]);
 				num_format(hi, box[k + 3]);
-				snprintf(why, sizeof why, "centre %c = %s is outside the box [%s, %s]",
-				    'x' + k, tok[k], lo, hi);
-				return in_error(in, in->line, "%s", why);
+				return lines_error(in, "centre %c = %s is outside the box [%s, %s]", 'x' + k, tok[k],
+				    lo, hi);
 			}
 	if (pack_add_grain(p, (long)p->n + 1, v, v[3], 0, 0, 0) == (size_t)-1)
-		return in_error(in, in->line, "%s", "out of memory");
+		return lines_error(in, "out of memory");
 	return 0;
 }
 
@@ -472,33 +376,28 @@ fit_box(struct pack *p)
 int
 xyzr_read(FILE *fp, const char *name, const double *box, struct pack *p)
 {
-	struct xyzr_in in = {NULL, name, 0, NULL, 0};
-	int fd, r;
+	struct lines *in;
+	char *s;
+	int r;
 
 	pack_init(p);
-	fd = dup(fileno(fp));
-	if (fd < 0 || !(in.gz = gzdopen(fd, "rb"))) {
-		if (fd >= 0)
-			close(fd);
-		msg_seterr("%s: cannot open for reading", name);
+	if (!(in = lines_open(fp, name)))
 		return -1;
-	}
-	while ((r = in_line(&in)) == 1) {
-		char *s = in.buf + strspn(in.buf, " \t");
+	while ((r = lines_next(in, &s, NULL)) == 1) {
+		s += strspn(s, " \t");
 		if (*s == 0 || *s == '#')
 			continue;	/* blank, comment, or YADE's ##PERIODIC:: cell line */
-		if ((r = in_sphere(&in, box, p)) < 0)
+		if ((r = in_sphere(in, s, box, p)) < 0)
 			break;
 	}
-	gzclose(in.gz);
-	free(in.buf);
 	if (r == 0 && p->n == 0) {
-		if (in.line == 0)
-			in_error(&in, 1, "%s", "empty input");
+		if (lines_lineno(in) == 0)
+			lines_error_at(in, 1, "empty input");
 		else
-			in_error(&in, in.line + 1, "%s", "no spheres (only blank and comment lines)");
+			lines_error_at(in, lines_lineno(in) + 1, "no spheres (only blank and comment lines)");
 		r = -1;
 	}
+	lines_close(in);
 	if (r < 0) {
 		pack_free(p);
 		return -1;

@@ -6,8 +6,8 @@
  *  - LAMMPS: a dump frame (ITEM: ... ATOMS id type x y z radius) and a data file
  *    (atom_style sphere);
  *  - YADE's SpherePack text: "x y z r" lines, optionally after "##PERIODIC:: Lx Ly Lz";
- *  - the reader of such "x y z r" text, strict like packio (file:line errors, zlib, so .gz
- *    works and a truncated .gz is an error).
+ *  - the reader of such "x y z r" text, strict like packio (file:line errors; through
+ *    base/lines.h, so lines of any length, .gz works and a truncated .gz is an error).
  * Every number goes through num_format, so the output is a function of the pack alone.
  * Writers return 0, or -1 with the error slot set (a write error, a value the target format
  * cannot hold).  SI units throughout, as in the pack. */

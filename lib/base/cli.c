@@ -1,18 +1,13 @@
-/* cli: option tables, help, atomic output, progress (see cli.h). */
+/* cli: option tables, help, history line, progress (see cli.h). */
 #include "base/cli.h"
 #include "base/msg.h"
-#include "pack/packio.h"
 
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
-#include <signal.h>
 #include <stdarg.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <zlib.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 static int usage_errors;
@@ -27,33 +22,6 @@ free_argv_text(void)
 static int help_flag, version_flag;
 static const char *output_path;
 static int verbose_count, quiet_flag;
-
-/* The temporary file in flight, removed by the signal handler and at exit. */
-/* The temporary files in flight (a tool may write a pack and a log at once), removed by
- * the signal handler and at exit unless committed. */
-#define MAX_TMP 8
-static volatile sig_atomic_t tmp_live[MAX_TMP];
-static char tmp_pending[MAX_TMP][4096];
-
-static void
-remove_all_tmp(void)
-{
-	int k;
-
-	for (k = 0; k < MAX_TMP; k++)
-		if (tmp_live[k])
-			unlink(tmp_pending[k]);
-}
-
-static void
-forget_tmp(const char *path)
-{
-	int k;
-
-	for (k = 0; k < MAX_TMP; k++)
-		if (tmp_live[k] && strcmp(tmp_pending[k], path) == 0)
-			tmp_live[k] = 0;
-}
 
 static struct cli_opt common_opts[] = {
 	{"output", 'o', CLI_STRING, &output_path, "FILE", "write to FILE (atomically) instead of stdout; .gz compresses", NULL},
@@ -242,41 +210,58 @@ shell_quote_argv(int argc, char **argv)
 	return s;
 }
 
-void
-cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
-{
-	size_t n = count_opts(t->opts), nc = count_opts(common_opts), i;
-	struct option *lo = calloc(n + nc + 1, sizeof *lo);
-	const struct cli_opt **map = calloc(n + nc, sizeof *map);
-	char shortopts[256] = ":";
-	int c, idx;
+/* getopt_long's view of the tool's table followed by the common options: lo[i] returns
+ * 256 + i, map[i] is the option it stands for, and shortopts lists the short names. */
+struct getopt_table {
+	struct option *lo;
+	const struct cli_opt **map;
+	size_t n;
+	char shortopts[256];
+};
 
-	if (!lo || !map)
+static void
+getopt_table_build(struct getopt_table *g, const struct cli_tool *t)
+{
+	size_t n = count_opts(t->opts), i;
+
+	g->n = n + count_opts(common_opts);
+	g->lo = calloc(g->n + 1, sizeof *g->lo);
+	g->map = calloc(g->n, sizeof *g->map);
+	if (!g->lo || !g->map)
 		msg_die(EXIT_DATA, "out of memory");
-	for (i = 0; i < n + nc; i++) {
+	strcpy(g->shortopts, ":");
+	for (i = 0; i < g->n; i++) {
 		const struct cli_opt *o = i < n ? &t->opts[i] : &common_opts[i - n];
 		int has_arg = o->type == CLI_FLAG ? no_argument : required_argument;
 
-		map[i] = o;
-		lo[i].name = o->name;
-		lo[i].has_arg = has_arg;
-		lo[i].flag = NULL;
-		lo[i].val = 256 + (int)i;
+		g->map[i] = o;
+		g->lo[i].name = o->name;
+		g->lo[i].has_arg = has_arg;
+		g->lo[i].flag = NULL;
+		g->lo[i].val = 256 + (int)i;
 		if (o->shortname) {
-			size_t l = strlen(shortopts);
-			shortopts[l] = (char)o->shortname;
+			size_t l = strlen(g->shortopts);
+			g->shortopts[l] = (char)o->shortname;
 			if (has_arg == required_argument)
-				shortopts[++l] = ':';
-			shortopts[l + 1] = 0;
+				g->shortopts[++l] = ':';
+			g->shortopts[l + 1] = 0;
 		}
 	}
-	memset(st, 0, sizeof *st);
+}
+
+/* Every option of argv stored through its table entry; each bad one reported. */
+static void
+getopt_table_run(const struct getopt_table *g, int argc, char **argv)
+{
+	int c, idx;
+	size_t i;
+
 	opterr = 0;
-	while ((c = getopt_long(argc, argv, shortopts, lo, &idx)) != -1) {
+	while ((c = getopt_long(argc, argv, g->shortopts, g->lo, &idx)) != -1) {
 		const struct cli_opt *o = NULL;
 
 		if (c >= 256) {
-			o = map[c - 256];
+			o = g->map[c - 256];
 		} else if (c == '?') {
 			if (optopt >= 256 || optopt == 0)
 				cli_usage_error("unknown option '%s'", argv[optind - 1]);
@@ -287,15 +272,25 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 			cli_usage_error("option '%s' needs an argument", argv[optind - 1]);
 			continue;
 		} else {
-			for (i = 0; i < n + nc; i++)
-				if (map[i]->shortname == c)
-					o = map[i];
+			for (i = 0; i < g->n; i++)
+				if (g->map[i]->shortname == c)
+					o = g->map[i];
 		}
 		if (o)
 			parse_value(o, optarg);
 	}
-	free(lo);	/* before the exits below: LeakSanitizer counts them otherwise */
-	free(map);
+}
+
+void
+cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
+{
+	struct getopt_table g;
+
+	getopt_table_build(&g, t);
+	memset(st, 0, sizeof *st);
+	getopt_table_run(&g, argc, argv);
+	free(g.lo);	/* before the exits below: LeakSanitizer counts them otherwise */
+	free(g.map);
 	if (help_flag) {
 		print_help(t);
 		exit(0);
@@ -350,225 +345,6 @@ cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 	snprintf(s, len, "%s %s: %s ; %s", t->name, QUSGM_VERSION, st->argv_text, res);
 	free(res);
 	return s;
-}
-
-static void
-remove_tmp_on_signal(int sig)
-{
-	remove_all_tmp();
-	signal(sig, SIG_DFL);
-	raise(sig);
-}
-
-static void
-remove_tmp_at_exit(void)
-{
-	remove_all_tmp();
-}
-
-int
-cli_out_open(struct cli_out *o, const char *path)
-{
-	static int hooked;
-	const char *slash;
-	size_t dirlen;
-	int fd;
-
-	memset(o, 0, sizeof *o);
-	if (!path || strcmp(path, "-") == 0) {
-		o->fp = stdout;
-		return 0;
-	}
-	{
-		/* a device or a pipe (-o /dev/null, -o /dev/stderr, a FIFO): write into it.  The
-		 * temporary file and rename would replace the device node with a regular file (as
-		 * root, /dev/null itself) */
-		struct stat sb;
-		if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
-			if (S_ISDIR(sb.st_mode)) {
-				msg_seterr("%s: is a directory", path);
-				return -1;
-			}
-			o->fp = fopen(path, "w");
-			if (!o->fp) {
-				msg_seterr("%s: %s", path, strerror(errno));
-				return -1;
-			}
-			o->path = strdup(path);
-			if (!o->path) {
-				fclose(o->fp);
-				o->fp = NULL;
-				msg_seterr("out of memory");
-				return -1;
-			}
-			return 0;
-		}
-	}
-	if (strlen(path) + 16 >= sizeof tmp_pending[0]) {
-		msg_seterr("%s: path too long", path);
-		return -1;
-	}
-	slash = strrchr(path, '/');
-	dirlen = slash ? (size_t)(slash - path) + 1 : 0;
-	o->path = strdup(path);
-	o->tmp = malloc(strlen(path) + 16);
-	if (!o->path || !o->tmp) {
-		msg_seterr("out of memory");
-		return -1;
-	}
-	memcpy(o->tmp, path, dirlen);
-	sprintf(o->tmp + dirlen, ".%s.XXXXXX", path + dirlen);
-	if (!hooked) {
-		atexit(remove_tmp_at_exit);
-		signal(SIGINT, remove_tmp_on_signal);
-		signal(SIGTERM, remove_tmp_on_signal);
-		signal(SIGHUP, remove_tmp_on_signal);
-		signal(SIGPIPE, remove_tmp_on_signal);
-		hooked = 1;
-	}
-	fd = mkstemp(o->tmp);
-	if (fd < 0) {
-		msg_seterr("%s: cannot create temporary file: %s", path, strerror(errno));
-		return -1;
-	}
-	{
-		int k;
-		for (k = 0; k < MAX_TMP && tmp_live[k]; k++)
-			;
-		if (k == MAX_TMP) {
-			close(fd);
-			unlink(o->tmp);
-			msg_seterr("%s: too many outputs at once", path);
-			return -1;
-		}
-		strcpy(tmp_pending[k], o->tmp);
-		tmp_live[k] = 1;
-	}
-	{
-		mode_t mask = umask(0);
-
-		umask(mask);
-		fchmod(fd, 0666 & ~mask);
-	}
-	o->fp = fdopen(fd, "w");
-	if (!o->fp) {
-		msg_seterr("%s: %s", path, strerror(errno));
-		close(fd);
-		cli_out_abort(o);
-		return -1;
-	}
-	return 0;
-}
-
-/* Compress the finished temporary file of an output named *.gz: the tables are written as
- * text and gzipped whole at the commit, so that the rename stays the one atomic step. */
-static int
-gzip_in_place(const char *tmp)
-{
-	char buf[1 << 15], *ztmp = malloc(strlen(tmp) + 4);
-	FILE *in = fopen(tmp, "rb");
-	gzFile z = NULL;
-	size_t n;
-	int bad = 0;
-
-	if (ztmp)
-		sprintf(ztmp, "%s.z", tmp);
-	if (!ztmp || !in || !(z = gzopen(ztmp, "wb6"))) {
-		if (in)
-			fclose(in);
-		free(ztmp);
-		return -1;
-	}
-	while ((n = fread(buf, 1, sizeof buf, in)) > 0)
-		if (gzwrite(z, buf, (unsigned)n) != (int)n)
-			bad = 1;
-	bad |= ferror(in) != 0;
-	fclose(in);
-	bad |= gzclose(z) != Z_OK;
-	if (bad || rename(ztmp, tmp) != 0) {
-		unlink(ztmp);
-		free(ztmp);
-		return -1;
-	}
-	free(ztmp);
-	return 0;
-}
-
-int
-cli_out_commit(struct cli_out *o)
-{
-	int bad;
-
-	if (!o->fp)
-		return -1;
-	bad = fflush(o->fp) != 0 || ferror(o->fp);
-	if (o->fp == stdout) {
-		o->fp = NULL;
-		if (bad) {
-			msg_seterr("<stdout>: write error: %s", strerror(errno));
-			return -1;
-		}
-		return 0;
-	}
-	if (fclose(o->fp) != 0)
-		bad = 1;
-	o->fp = NULL;
-	if (bad) {
-		msg_seterr("%s: write error: %s", o->path, strerror(errno));
-		cli_out_abort(o);
-		return -1;
-	}
-	if (!o->tmp) {	/* written straight into a device or pipe */
-		free(o->path);
-		o->path = NULL;
-		return 0;
-	}
-	if (path_is_gz(o->path) && gzip_in_place(o->tmp)) {
-		msg_seterr("%s: cannot compress: %s", o->path, strerror(errno));
-		cli_out_abort(o);
-		return -1;
-	}
-	if (rename(o->tmp, o->path) != 0) {
-		msg_seterr("%s: cannot rename temporary file: %s", o->path, strerror(errno));
-		cli_out_abort(o);
-		return -1;
-	}
-	forget_tmp(o->tmp);
-	free(o->tmp);
-	free(o->path);
-	o->tmp = o->path = NULL;
-	return 0;
-}
-
-void
-cli_out_abort(struct cli_out *o)
-{
-	if (o->fp && o->fp != stdout)
-		fclose(o->fp);
-	o->fp = NULL;
-	if (o->tmp) {
-		unlink(o->tmp);
-		forget_tmp(o->tmp);
-	}
-	free(o->tmp);
-	free(o->path);
-	o->tmp = o->path = NULL;
-}
-
-FILE *
-cli_in_open(const char *path, const char **display)
-{
-	FILE *fp;
-
-	if (!path || strcmp(path, "-") == 0) {
-		*display = "<stdin>";
-		return stdin;
-	}
-	*display = path;
-	fp = fopen(path, "rb");
-	if (!fp)
-		msg_seterr("%s: %s", path, strerror(errno));
-	return fp;
 }
 
 static int progress_shown;

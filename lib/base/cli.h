@@ -4,8 +4,7 @@
  * the table drives getopt_long, --help (with defaults in brackets), the resolved-options
  * string recorded in a pack's history line, and the man-page test.  The common options
  * -o/--output, -v/--verbose, -q/--quiet, -h/--help and -V/--version are added here.
- * Output files are written atomically: to a temporary file in the same directory, renamed
- * over the target only after a checked close, removed on failure or on a signal. */
+ * Opening the input and writing the output atomically are base/fileio.h's. */
 #ifndef QUSGM_CLI_H
 #define QUSGM_CLI_H
 
@@ -54,19 +53,6 @@ char *cli_resolved(const struct cli_tool *t);
 
 /* A history line: "tool VERSION: argv ; resolved options". Caller frees. */
 char *cli_history_line(const struct cli_tool *t, const struct cli_state *st);
-
-/* Atomic output.  cli_out_open returns stdout for NULL or "-". */
-struct cli_out {
-	FILE *fp;
-	char *path;	/* final path, NULL for stdout */
-	char *tmp;	/* temporary path */
-};
-int cli_out_open(struct cli_out *o, const char *path);
-int cli_out_commit(struct cli_out *o);	/* checked close + rename; 0 on success */
-void cli_out_abort(struct cli_out *o);	/* remove the temporary file */
-
-/* Open an input stream; NULL or "-" is stdin.  Sets *display to the name used in messages. */
-FILE *cli_in_open(const char *path, const char **display);
 
 /* Progress on stderr: shown when stderr is a terminal or with -v, never with -q. */
 int cli_progress_enabled(void);

@@ -2,7 +2,7 @@
 #include "base/table.h"
 #include "base/numfmt.h"
 #include "base/msg.h"
-#include "pack/packio.h"
+#include "base/lines.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -79,95 +79,88 @@ parse_header(struct table *t, char *s)
 	return 0;
 }
 
+/* One data row "v\tv\t..." with exactly ncol fields, appended to t. */
+static int
+parse_row(struct lines *in, struct table *t, char *p)
+{
+	char *end;
+	int k;
+
+	if (t->nrow == t->cap) {
+		size_t cap = t->cap ? 2 * t->cap : 256;
+		double *v = realloc(t->v, cap * t->ncol * sizeof *v);
+		long *ln = v ? realloc(t->line, cap * sizeof *ln) : NULL;
+		if (v)
+			t->v = v;
+		if (!v || !ln) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		t->line = ln;
+		t->cap = cap;
+	}
+	for (k = 0; k < t->ncol; k++) {
+		double x;
+		char *tab = strchr(p, '\t');
+		if (tab)
+			*tab = '\0';
+		else if (k + 1 < t->ncol)
+			return lines_error(in, "%d fields, the header has %d", k + 1, t->ncol);
+		x = strtod(p, &end);
+		if (end == p || *end)
+			return lines_error(in, "column %s: '%s' is not a number", t->names[k], p);
+		t->v[t->nrow * t->ncol + k] = x;
+		p = tab ? tab + 1 : p + strlen(p);
+		if (!tab && k + 1 == t->ncol)
+			break;
+		if (tab && k + 1 == t->ncol)
+			return lines_error(in, "more fields than the header's %d", t->ncol);
+	}
+	t->line[t->nrow++] = lines_lineno(in);
+	return 0;
+}
+
+/* A '#' line: the header the first time, then only repeats of it. */
+static int
+header_line(struct lines *in, struct table *t, char **header, char *s)
+{
+	if (!*header) {
+		if (strncmp(s, "# ", 2) != 0 || !(*header = strdup(s)) || parse_header(t, s + 2))
+			return lines_error(in, "bad header line (expected '# name\\tname...')");
+	} else if (strcmp(s, *header) != 0) {
+		return lines_error(in, "a second, different header line");
+	}
+	return 0;
+}
+
 int
 table_read(FILE *fp, const char *display, struct table *t)
 {
-	char *buf = NULL, *header = NULL;
-	const char *text;
-	size_t bcap = 0, len;
-	long lineno = 0;
-	int status = -1, nl, r;
-	struct pack_reader *rd = pack_reader_open(fp, display);
+	char *header = NULL, *s;
+	int status = -1, r;
+	struct lines *in = lines_open(fp, display);
 
 	memset(t, 0, sizeof *t);
-	if (!rd)
+	if (!in)
 		return -1;
-	/* through the pack reader: plain and gzip tables alike, a truncated .gz is an error */
-	while ((r = pack_reader_line(rd, &text, &lineno, &nl)) == 1) {
-		char *p, *end;
-		int k;
-
-		if (!nl) {
-			msg_seterr("%s:%ld: the last line has no newline (truncated?)", display, lineno);
+	while ((r = lines_next(in, &s, NULL)) == 1) {
+		if (!lines_newline(in)) {
+			lines_error(in, "the last line has no newline (truncated?)");
 			goto out;
 		}
-		len = strlen(text);
-		if (len + 1 > bcap) {
-			char *b = realloc(buf, 2 * (len + 1));
-			if (!b) {
-				msg_seterr("out of memory");
-				goto out;
-			}
-			buf = b;
-			bcap = 2 * (len + 1);
-		}
-		memcpy(buf, text, len + 1);
-		if (strncmp(buf, "##", 2) == 0)
+		if (strncmp(s, "##", 2) == 0)
 			continue;
-		if (buf[0] == '#') {
-			if (!header) {
-				if (strncmp(buf, "# ", 2) != 0 || !(header = strdup(buf)) || parse_header(t, buf + 2)) {
-					msg_seterr("%s:%ld: bad header line (expected '# name\\tname...')", display, lineno);
-					goto out;
-				}
-			} else if (strcmp(buf, header) != 0) {
-				msg_seterr("%s:%ld: a second, different header line", display, lineno);
+		if (s[0] == '#') {
+			if (header_line(in, t, &header, s))
 				goto out;
-			}
 			continue;
 		}
 		if (!header) {
-			msg_seterr("%s:%ld: no header line before the first row", display, lineno);
+			lines_error(in, "no header line before the first row");
 			goto out;
 		}
-		if (t->nrow == t->cap) {
-			size_t cap = t->cap ? 2 * t->cap : 256;
-			double *v = realloc(t->v, cap * t->ncol * sizeof *v);
-			long *ln = v ? realloc(t->line, cap * sizeof *ln) : NULL;
-			if (v)
-				t->v = v;
-			if (!v || !ln) {
-				msg_seterr("out of memory");
-				goto out;
-			}
-			t->line = ln;
-			t->cap = cap;
-		}
-		p = buf;
-		for (k = 0; k < t->ncol; k++) {
-			double x;
-			char *tab = strchr(p, '\t');
-			if (tab)
-				*tab = '\0';
-			else if (k + 1 < t->ncol) {
-				msg_seterr("%s:%ld: %d fields, the header has %d", display, lineno, k + 1, t->ncol);
-				goto out;
-			}
-			x = strtod(p, &end);
-			if (end == p || *end) {
-				msg_seterr("%s:%ld: column %s: '%s' is not a number", display, lineno, t->names[k], p);
-				goto out;
-			}
-			t->v[t->nrow * t->ncol + k] = x;
-			p = tab ? tab + 1 : p + strlen(p);
-			if (!tab && k + 1 == t->ncol)
-				break;
-			if (tab && k + 1 == t->ncol) {
-				msg_seterr("%s:%ld: more fields than the header's %d", display, lineno, t->ncol);
-				goto out;
-			}
-		}
-		t->line[t->nrow++] = lineno;
+		if (parse_row(in, t, s))
+			goto out;
 	}
 	if (r < 0)
 		goto out;
@@ -177,8 +170,7 @@ table_read(FILE *fp, const char *display, struct table *t)
 	}
 	status = 0;
 out:
-	pack_reader_close(rd);
-	free(buf);
+	lines_close(in);
 	free(header);
 	if (status)
 		table_free(t);

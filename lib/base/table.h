@@ -29,7 +29,8 @@ struct table {
 	long *line;	/* the input line of each row, for messages */
 };
 
-/* 0, or -1 with msg_seterr("display:line: what is wrong"). */
+/* Read through base/lines.h (plain or gzip; a truncated .gz is an error), every line ending
+ * with a newline.  0, or -1 with msg_seterr("display:line: what is wrong"). */
 int table_read(FILE *fp, const char *display, struct table *t);
 /* Index of the column called name, or -1. */
 int table_find(const struct table *t, const char *name);

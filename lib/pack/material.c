@@ -1,5 +1,6 @@
 /* material: presets, preset files and sampling (see material.h). */
 #include "pack/material.h"
+#include "base/lines.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
 
@@ -16,50 +17,55 @@ static const struct material presets[] = {
 
 const char *const material_preset_names = "glass, quartz, hydrate";
 
+/* The blanks of a preset file: what sscanf's %s stopped at, which the reader used to use. */
+#define BLANKS " \t\n\v\f\r"
+
+/* A "key value" line into m; *seen gets bit 1, 2, 4 for E, nu, rho. */
+static int
+preset_line(struct lines *in, char *s, struct material *m, int *seen)
+{
+	char *tok[2];
+	double v;
+	int n = lines_split(s, BLANKS, tok, 2);
+
+	if (n != 2 || num_parse(tok[1], &v))
+		return lines_error(in, "expected 'key value' with a finite number");
+	if (strcmp(tok[0], "E") == 0 && v > 0)
+		m->E = v, *seen |= 1;
+	else if (strcmp(tok[0], "nu") == 0 && v > -1 && v < 0.5)
+		m->nu = v, *seen |= 2;
+	else if (strcmp(tok[0], "rho") == 0 && v > 0)
+		m->rho = v, *seen |= 4;
+	else if (strcmp(tok[0], "spread") == 0 && v >= 0 && v < 1)
+		m->spread = v;
+	else
+		return lines_error(in, "unknown key or value out of range: %s %s", tok[0], tok[1]);
+	return 0;
+}
+
 static int
 read_preset_file(const char *path, struct material *m)
 {
-	FILE *fp = fopen(path, "r");
-	char line[512];
-	long ln = 0;
-	int seen = 0;
+	struct lines *in = lines_open_path(path);
+	int seen = 0, r;
+	char *s;
 
-	if (!fp) {
+	if (!in) {
 		msg_seterr("%s: cannot open material file", path);
 		return -1;
 	}
 	memset(m, 0, sizeof *m);
 	snprintf(m->name, sizeof m->name, "%s", path);
 	m->spread = 0.1;
-	while (fgets(line, sizeof line, fp)) {
-		char key[64], val[128], extra[8];
-		double v;
-		int n;
-
-		ln++;
-		if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
+	while ((r = lines_next(in, &s, NULL)) == 1) {
+		if (s[0] == '#' || s[strspn(s, " \t\r\n")] == 0)
 			continue;
-		n = sscanf(line, "%63s %127s %7s", key, val, extra);
-		if (n != 2 || num_parse(val, &v)) {
-			msg_seterr("%s:%ld: expected 'key value' with a finite number", path, ln);
-			fclose(fp);
-			return -1;
-		}
-		if (strcmp(key, "E") == 0 && v > 0)
-			m->E = v, seen |= 1;
-		else if (strcmp(key, "nu") == 0 && v > -1 && v < 0.5)
-			m->nu = v, seen |= 2;
-		else if (strcmp(key, "rho") == 0 && v > 0)
-			m->rho = v, seen |= 4;
-		else if (strcmp(key, "spread") == 0 && v >= 0 && v < 1)
-			m->spread = v;
-		else {
-			msg_seterr("%s:%ld: unknown key or value out of range: %s %s", path, ln, key, val);
-			fclose(fp);
-			return -1;
-		}
+		if ((r = preset_line(in, s, m, &seen)) < 0)
+			break;
 	}
-	fclose(fp);
+	lines_close(in);
+	if (r < 0)
+		return -1;
 	if (seen != 7) {
 		msg_seterr("%s: a material file needs E, nu and rho", path);
 		return -1;

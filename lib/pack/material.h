@@ -3,7 +3,8 @@
  * A material is a mean Young's modulus E (Pa), Poisson ratio nu and density rho (kg/m^3),
  * with a relative spread (standard deviation / mean) of E and nu; the papers use 10 %.
  * Built-in presets: glass, quartz, hydrate (physics.md §10).  A preset file holds
- * "key value" lines: E, nu, rho, spread (and # comments). */
+ * "key value" lines: E, nu, rho, spread (and # comments, blank lines), read through
+ * base/lines.h: lines of any length, plain or gzip, errors as "file:line: what". */
 #ifndef QUSGM_MATERIAL_H
 #define QUSGM_MATERIAL_H
 

@@ -12,7 +12,7 @@
 #include <stddef.h>
 
 #define PACK_FORMAT_NAME "qusgm-pack"
-#define PACK_FORMAT_VERSION 1
+#define PACK_FORMAT_VERSION 2	/* the newest version read and written */
 
 /* Walls: index w = 2 * axis + side (side 0 = low, 1 = high). */
 enum { WALL_XLO, WALL_XHI, WALL_YLO, WALL_YHI, WALL_ZLO, WALL_ZHI, NWALLS };

@@ -1,6 +1,7 @@
 /* packio: the strict pack reader and the round-trip-exact writer (see packio.h). */
 #include "pack/packio.h"
-#include "base/cli.h"
+#include "base/fileio.h"
+#include "base/lines.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
 
@@ -11,42 +12,27 @@
 #include <unistd.h>
 #include <zlib.h>
 
+/* Fields kept of a split line: more than any line of the format has. */
 #define MAXTOK 16
 
 struct pack_reader {
-	gzFile gz;
-	char *name;
-	long line;		/* number of the line in buf */
-	char *chunk;		/* raw bytes from gzread */
-	size_t chunk_len, chunk_pos;
-	int eof, failed;
-	char *buf;		/* current line */
-	size_t cap;
-	int have_pushback;	/* buf holds a line to be returned again */
-	int newline;		/* the line in buf ended with a newline */
+	struct lines *in;
+	int failed;
 };
 
 struct pack_reader *
 pack_reader_open(FILE *fp, const char *name)
 {
 	struct pack_reader *rd = calloc(1, sizeof *rd);
-	int fd;
 
 	if (!rd) {
 		msg_seterr("out of memory");
 		return NULL;
 	}
-	rd->name = strdup(name);
-	rd->chunk = malloc(1 << 16);
-	fd = dup(fileno(fp));
-	if (!rd->name || !rd->chunk || fd < 0 || !(rd->gz = gzdopen(fd, "rb"))) {
-		msg_seterr("%s: cannot open for reading", name);
-		if (fd >= 0 && !rd->gz)
-			close(fd);
-		pack_reader_close(rd);
+	if (!(rd->in = lines_open(fp, name))) {
+		free(rd);
 		return NULL;
 	}
-	gzbuffer(rd->gz, 1 << 17);
 	return rd;
 }
 
@@ -55,159 +41,73 @@ pack_reader_close(struct pack_reader *rd)
 {
 	if (!rd)
 		return;
-	if (rd->gz)
-		gzclose(rd->gz);
-	free(rd->name);
-	free(rd->chunk);
-	free(rd->buf);
+	lines_close(rd->in);
 	free(rd);
 }
 
 const char *
 pack_reader_name(const struct pack_reader *rd)
 {
-	return rd->name;
+	return lines_name(rd->in);
 }
 
 static int
-rd_error(struct pack_reader *rd, const char *fmt, ...)
+rd_verror(struct pack_reader *rd, long line, const char *fmt, va_list ap)
 {
-	char what[512];
-	va_list ap;
+	char what[1024];
 
-	va_start(ap, fmt);
 	vsnprintf(what, sizeof what, fmt, ap);
-	va_end(ap);
-	msg_seterr("%s:%ld: %s", rd->name, rd->line > 0 ? rd->line : 1, what);
+	lines_error_at(rd->in, line, "%s", what);
 	rd->failed = 1;
 	return -1;
 }
 
-/* zlib's message without its "<fd:N>: " prefix, which would make the text depend on
- * descriptor numbers. */
-static const char *
-gz_message(gzFile gz, int *err)
+/* "name:line: what" in the slot, at the line just read; the reader is done. */
+static int __attribute__((format(printf, 2, 3)))
+rd_error(struct pack_reader *rd, const char *fmt, ...)
 {
-	const char *m = gzerror(gz, err), *c;
+	va_list ap;
 
-	if (strncmp(m, "<fd:", 4) == 0 && (c = strstr(m, ">: ")))
-		return c + 3;
-	return m;
+	va_start(ap, fmt);
+	rd_verror(rd, lines_lineno(rd->in), fmt, ap);
+	va_end(ap);
+	return -1;
 }
 
+/* The same at another line: the one after the last (an early end), or an earlier one. */
+static int __attribute__((format(printf, 3, 4)))
+rd_error_at(struct pack_reader *rd, long line, const char *fmt, ...)
+{
+	va_list ap;
+
+	va_start(ap, fmt);
+	rd_verror(rd, line, fmt, ap);
+	va_end(ap);
+	return -1;
+}
+
+/* 1: a line in *s; 0: end of input; -1: error (in the slot). */
 static int
-fill_chunk(struct pack_reader *rd)
+next_line(struct pack_reader *rd, char **s)
 {
-	int n, err;
-	const char *msg;
+	int r = lines_next(rd->in, s, NULL);
 
-	if (rd->eof)
-		return 0;
-	n = gzread(rd->gz, rd->chunk, 1 << 16);
-	if (n < 0) {
-		msg = gz_message(rd->gz, &err);
-		rd->line++;
-		return rd_error(rd, "corrupt or truncated input (%s)", err == Z_BUF_ERROR ?
-		    "unexpected end of compressed data" : msg);
-	}
-	if (n == 0) {
-		/* zlib reports a truncated gzip stream as end of file plus an error state. */
-		msg = gz_message(rd->gz, &err);
-		if (err != Z_OK && err != Z_STREAM_END) {
-			rd->line++;
-			return rd_error(rd, "corrupt or truncated input (%s)", msg);
-		}
-		rd->eof = 1;
-		return 0;
-	}
-	rd->chunk_len = (size_t)n;
-	rd->chunk_pos = 0;
-	return 1;
-}
-
-/* 1: a line in rd->buf (newline stripped); 0: end of input; -1: error. */
-static int
-next_line(struct pack_reader *rd)
-{
-	size_t len = 0;
-	int got = 0;
-
-	if (rd->have_pushback) {
-		rd->have_pushback = 0;
-		rd->line++;
-		return 1;
-	}
-	for (;;) {
-		char *nl;
-		size_t take;
-
-		if (rd->chunk_pos == rd->chunk_len) {
-			int f = fill_chunk(rd);
-			if (f < 0)
-				return -1;
-			if (f == 0)
-				break;
-		}
-		nl = memchr(rd->chunk + rd->chunk_pos, '\n', rd->chunk_len - rd->chunk_pos);
-		take = nl ? (size_t)(nl - (rd->chunk + rd->chunk_pos)) : rd->chunk_len - rd->chunk_pos;
-		if (len + take + 1 > rd->cap) {
-			size_t cap = 2 * (len + take + 1);
-			char *b = realloc(rd->buf, cap);
-			if (!b)
-				return rd_error(rd, "out of memory");
-			rd->buf = b;
-			rd->cap = cap;
-		}
-		memcpy(rd->buf + len, rd->chunk + rd->chunk_pos, take);
-		len += take;
-		rd->chunk_pos += take + (nl ? 1 : 0);
-		got = 1;
-		rd->newline = nl != NULL;
-		if (nl)
-			break;
-	}
-	if (!got)
-		return 0;
-	rd->buf[len] = 0;
-	if (len > 0 && rd->buf[len - 1] == '\r')
-		rd->buf[len - 1] = 0;
-	rd->line++;
-	if (strlen(rd->buf) + 1 < len)
-		return rd_error(rd, "binary data (NUL byte) in a text pack");
-	return 1;
-}
-
-int
-pack_reader_line(struct pack_reader *rd, const char **line, long *lineno, int *newline)
-{
-	int r = next_line(rd);
-
-	if (r == 1) {
-		*line = rd->buf;
-		*lineno = rd->line;
-		*newline = rd->newline;
-	}
+	if (r < 0)
+		rd->failed = 1;
 	return r;
 }
 
+static long
+line_after_last(const struct pack_reader *rd)
+{
+	return lines_lineno(rd->in) + 1;
+}
+
+/* Fields are separated by spaces and tabs. */
 static int
 split(char *s, char **tok, int max)
 {
-	int n = 0;
-
-	for (;;) {
-		while (*s == ' ' || *s == '\t')
-			s++;
-		if (!*s)
-			return n;
-		if (n == max)
-			return max + 1;
-		tok[n++] = s;
-		while (*s && *s != ' ' && *s != '\t')
-			s++;
-		if (*s)
-			*s++ = 0;
-	}
+	return lines_split(s, " \t", tok, max);
 }
 
 static int
@@ -261,7 +161,6 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 	return why;
 }
 
-static const size_t *sort_ids_base;
 static const long *sort_ids_id;
 
 static int
@@ -269,7 +168,6 @@ cmp_by_id(const void *a, const void *b)
 {
 	long x = sort_ids_id[*(const size_t *)a], y = sort_ids_id[*(const size_t *)b];
 
-	(void)sort_ids_base;
 	return x < y ? -1 : x > y;
 }
 
@@ -341,164 +239,371 @@ find_duplicate_contact(const struct pack *p)
 	return found;
 }
 
-enum { H_UNITS, H_BOX, H_REFBOX, H_WALLS, H_FRICTION, H_GRAINS, H_CONTACTS, NH };
-static const char *const hkeys[NH] = {"units", "box", "refbox", "walls", "friction", "grains", "contacts"};
-static const int hrequired[NH] = {1, 1, 0, 1, 1, 1, 1};
+/* ---- the grain columns ---- */
+
+/* The grain columns a pack may have, in the order writers put them.  The required ones are
+ * in every pack, first on each grain line and in this order, so that a script reading a
+ * column by its position reads it from every pack; a version-1 pack has exactly these and
+ * no columns line.  A later optional column (a phase tag, a shape, an orientation) is a row
+ * with required 0, plus the storage of its values in struct pack, their parsing in
+ * read_grain_line, and the test in pack_format_version that the pack has it. */
+static const struct column {
+	const char *name;
+	int required;
+} columns[] = {
+	{"id", 1}, {"x", 1}, {"y", 1}, {"z", 1}, {"r", 1}, {"E", 1}, {"nu", 1}, {"rho", 1},
+};
+#define NCOLUMNS ((int)(sizeof columns / sizeof columns[0]))
+
+/* A columns line naming every known column once, and one more name, fits in tok[]: so the
+ * unknown or repeated name of a longer line is among the fields kept. */
+_Static_assert(MAXTOK >= NCOLUMNS + 2, "MAXTOK too small for the columns line");
 
 static int
-read_header(struct pack_reader *rd, struct pack *p, long *ngr, long *nco)
+column_index(const char *name)
 {
-	int seen[NH] = {0};
-	char *tok[MAXTOK + 1];
-	int r, n, k;
-	double v[6];
+	int k;
 
-	for (;;) {
-		r = next_line(rd);
-		if (r < 0)
-			return -1;
-		if (r == 0)
-			return rd->line++, rd_error(rd, "unexpected end of input in the header (no 'end' line)");
-		if (rd->buf[0] == '#')
-			continue;
-		if (strncmp(rd->buf, "history", 7) == 0 && (rd->buf[7] == ' ' || rd->buf[7] == '\t')) {
-			if (pack_add_history(p, rd->buf + 8))
-				return rd_error(rd, "out of memory");
-			continue;
+	for (k = 0; k < NCOLUMNS; k++)
+		if (strcmp(name, columns[k].name) == 0)
+			return k;
+	return -1;
+}
+
+/* ---- the header ---- */
+
+/* The header being read: the version, what it declares, which keywords it has had, and
+ * the grain columns (col[k]: the row of columns[] of the k-th column of a grain line). */
+struct header {
+	struct pack_reader *rd;
+	struct pack *p;
+	long version;
+	long ngr, nco;
+	unsigned seen;	/* bit k: keywords[k] has been read */
+	int ncol, col[NCOLUMNS];
+	char colnames[256];	/* "id x y z r E nu rho", for messages */
+};
+
+/* Until a columns line says otherwise: the required columns (a version-1 pack). */
+static void
+standard_columns(struct header *h)
+{
+	int k;
+
+	h->ncol = 0;
+	h->colnames[0] = 0;
+	for (k = 0; k < NCOLUMNS; k++)
+		if (columns[k].required) {
+			h->col[h->ncol++] = k;
+			snprintf(h->colnames + strlen(h->colnames), sizeof h->colnames - strlen(h->colnames),
+			    "%s%s", h->colnames[0] ? " " : "", columns[k].name);
 		}
-		if (strncmp(rd->buf, "meta", 4) == 0 && (rd->buf[4] == ' ' || rd->buf[4] == '\t')) {
-			char *key = rd->buf + 5, *val;
-			while (*key == ' ' || *key == '\t')
-				key++;
-			val = key + strcspn(key, " \t");
-			if (!*key || !*val)
-				return rd_error(rd, "meta: expected a key and a value");
-			*val++ = 0;
-			while (*val == ' ' || *val == '\t')
-				val++;
-			if (!*val)
-				return rd_error(rd, "meta: expected a key and a value");
-			if (pack_get_meta(p, key))
-				return rd_error(rd, "meta: duplicate key '%s'", key);
-			if (pack_set_meta(p, key, val))
-				return rd_error(rd, "out of memory");
-			continue;
-		}
-		n = split(rd->buf, tok, MAXTOK);
-		if (n == 0)
-			return rd_error(rd, "empty line in the header");
-		if (strcmp(tok[0], "end") == 0) {
-			if (n != 1)
-				return rd_error(rd, "end: unexpected text after 'end'");
-			break;
-		}
-		for (k = 0; k < NH; k++)
-			if (strcmp(tok[0], hkeys[k]) == 0)
-				break;
-		if (k == NH)
-			return rd_error(rd, "unknown header keyword '%s'", tok[0]);
-		if (seen[k])
-			return rd_error(rd, "duplicate '%s' line (the header must contain exactly one)", tok[0]);
-		seen[k] = 1;
-		switch (k) {
-		case H_UNITS:
-			if (n != 2 || strcmp(tok[1], "SI") != 0)
-				return rd_error(rd, "units: only 'units SI' is defined");
-			break;
-		case H_BOX:
-		case H_REFBOX:
-			if (n != 7)
-				return rd_error(rd, "%s: expected 6 numbers (xlo ylo zlo xhi yhi zhi), found %d",
-				    tok[0], n - 1);
-			if (parse_numbers(rd, tok + 1, 6, v, tok[0]) || check_box(rd, v, tok[0]))
-				return -1;
-			memcpy(k == H_BOX ? p->box : p->refbox, v, sizeof v);
-			if (k == H_REFBOX)
-				p->has_refbox = 1;
-			break;
-		case H_WALLS:
-			if (n != 4)
-				return rd_error(rd, "walls: expected 3 numbers (E nu mu), found %d", n - 1);
-			if (parse_numbers(rd, tok + 1, 3, v, "walls"))
-				return -1;
-			if (!(v[0] > 0))
-				return rd_error(rd, "walls: Young's modulus %g is not positive", v[0]);
-			if (!(v[1] > -1 && v[1] < 0.5))
-				return rd_error(rd, "walls: Poisson ratio %g is outside (-1, 0.5)", v[1]);
-			if (!(v[2] >= 0))
-				return rd_error(rd, "walls: friction coefficient %g is negative", v[2]);
-			p->wall_E = v[0];
-			p->wall_nu = v[1];
-			p->wall_mu = v[2];
-			break;
-		case H_FRICTION:
-			if (n != 2)
-				return rd_error(rd, "friction: expected 1 number (mu), found %d", n - 1);
-			if (parse_numbers(rd, tok + 1, 1, v, "friction"))
-				return -1;
-			if (!(v[0] >= 0))
-				return rd_error(rd, "friction: coefficient %g is negative", v[0]);
-			p->mu = v[0];
-			break;
-		case H_GRAINS:
-		case H_CONTACTS: {
-			long cnt;
-			if (n != 2)
-				return rd_error(rd, "%s: expected 1 count, found %d", tok[0], n - 1);
-			if (num_parse_long(tok[1], &cnt) || cnt < (k == H_GRAINS ? 1 : 0) || cnt > 1000000000L)
-				return rd_error(rd, "%s: '%s' is not a valid count", tok[0], tok[1]);
-			*(k == H_GRAINS ? ngr : nco) = cnt;
-			break;
-		}
-		}
-	}
-	for (k = 0; k < NH; k++)
-		if (hrequired[k] && !seen[k])
-			return rd_error(rd, "missing '%s' line in the header", hkeys[k]);
+}
+
+static int
+kw_units(struct header *h, char **tok, int n)
+{
+	if (n != 2 || strcmp(tok[1], "SI") != 0)
+		return rd_error(h->rd, "units: only 'units SI' is defined");
 	return 0;
 }
 
 static int
-read_grains(struct pack_reader *rd, struct pack *p, long ngr, size_t **sorted)
+kw_box(struct header *h, char **tok, int n)
 {
-	char *tok[MAXTOK + 1];
-	char why[256];
-	long k, first = rd->line + 1;
-	size_t dup;
+	int ref = strcmp(tok[0], "refbox") == 0;
+	double v[6];
 
-	if (pack_reserve(p, (size_t)ngr))
-		return rd_error(rd, "out of memory for %ld grains", ngr);
-	for (k = 0; k < ngr; k++) {
-		double v[7];
-		long id;
-		int r = next_line(rd), n;
+	if (n != 7)
+		return rd_error(h->rd, "%s: expected 6 numbers (xlo ylo zlo xhi yhi zhi), found %d", tok[0],
+		    n - 1);
+	if (parse_numbers(h->rd, tok + 1, 6, v, tok[0]) || check_box(h->rd, v, tok[0]))
+		return -1;
+	memcpy(ref ? h->p->refbox : h->p->box, v, sizeof v);
+	if (ref)
+		h->p->has_refbox = 1;
+	return 0;
+}
+
+static int
+kw_walls(struct header *h, char **tok, int n)
+{
+	double v[3];
+
+	if (n != 4)
+		return rd_error(h->rd, "walls: expected 3 numbers (E nu mu), found %d", n - 1);
+	if (parse_numbers(h->rd, tok + 1, 3, v, "walls"))
+		return -1;
+	if (!(v[0] > 0))
+		return rd_error(h->rd, "walls: Young's modulus %g is not positive", v[0]);
+	if (!(v[1] > -1 && v[1] < 0.5))
+		return rd_error(h->rd, "walls: Poisson ratio %g is outside (-1, 0.5)", v[1]);
+	if (!(v[2] >= 0))
+		return rd_error(h->rd, "walls: friction coefficient %g is negative", v[2]);
+	h->p->wall_E = v[0];
+	h->p->wall_nu = v[1];
+	h->p->wall_mu = v[2];
+	return 0;
+}
+
+static int
+kw_friction(struct header *h, char **tok, int n)
+{
+	double mu;
+
+	if (n != 2)
+		return rd_error(h->rd, "friction: expected 1 number (mu), found %d", n - 1);
+	if (parse_numbers(h->rd, tok + 1, 1, &mu, "friction"))
+		return -1;
+	if (!(mu >= 0))
+		return rd_error(h->rd, "friction: coefficient %g is negative", mu);
+	h->p->mu = mu;
+	return 0;
+}
+
+/* grains N (N >= 1) and contacts M (M >= 0) */
+static int
+kw_count(struct header *h, char **tok, int n)
+{
+	int grains = strcmp(tok[0], "grains") == 0;
+	long cnt;
+
+	if (n != 2)
+		return rd_error(h->rd, "%s: expected 1 count, found %d", tok[0], n - 1);
+	if (num_parse_long(tok[1], &cnt) || cnt < (grains ? 1 : 0) || cnt > 1000000000L)
+		return rd_error(h->rd, "%s: '%s' is not a valid count", tok[0], tok[1]);
+	*(grains ? &h->ngr : &h->nco) = cnt;
+	return 0;
+}
+
+/* "columns NAME ...": known names, each once, the required ones first and in order. */
+static int
+kw_columns(struct header *h, char **tok, int n)
+{
+	unsigned named = 0;
+	int k, c;
+
+	if (n < 2)
+		return rd_error(h->rd, "columns: expected the names of the grain columns (%s ...)", h->colnames);
+	for (k = 1; k < n; k++) {
+		if ((c = column_index(tok[k])) < 0)
+			return rd_error(h->rd, "columns: unknown column '%s'", tok[k]);
+		if (named & 1u << c)
+			return rd_error(h->rd, "columns: column '%s' named twice", tok[k]);
+		named |= 1u << c;
+	}
+	for (c = 0; c < NCOLUMNS; c++)
+		if (columns[c].required && !(named & 1u << c))
+			return rd_error(h->rd, "columns: the required column '%s' is missing", columns[c].name);
+	for (c = 0, k = 1; c < NCOLUMNS; c++) {
+		if (!columns[c].required)
+			continue;
+		if (strcmp(tok[k], columns[c].name) != 0)
+			return rd_error(h->rd, "columns: column %d must be '%s' (the required columns come first, in the order %s)",
+			    k, columns[c].name, h->colnames);
+		k++;
+	}
+	for (k = 1; k < n; k++)
+		h->col[k - 1] = column_index(tok[k]);
+	h->ncol = n - 1;
+	return 0;
+}
+
+/* "boundary X Y Z": along each axis, "walls" (two rigid walls, the box faces) or
+ * "periodic" (the box length is the period; no walls). */
+static int
+kw_boundary(struct header *h, char **tok, int n)
+{
+	int a;
+
+	if (n != 4)
+		return rd_error(h->rd, "boundary: expected 3 words (x y z, each 'walls' or 'periodic'), found %d",
+		    n - 1);
+	for (a = 0; a < 3; a++) {
+		if (strcmp(tok[1 + a], "walls") == 0)
+			h->p->periodic[a] = 0;
+		else if (strcmp(tok[1 + a], "periodic") == 0)
+			h->p->periodic[a] = 1;
+		else
+			return rd_error(h->rd, "boundary: '%s' for axis %c is neither 'walls' nor 'periodic'",
+			    tok[1 + a], 'x' + a);
+	}
+	return 0;
+}
+
+/* The header keywords other than history, meta and end, each allowed once: from format
+ * version since on, and then required or not. */
+static const struct keyword {
+	const char *name;
+	int since, required;
+	int (*parse)(struct header *h, char **tok, int n);
+} keywords[] = {
+	{"units", 1, 1, kw_units},
+	{"box", 1, 1, kw_box},
+	{"refbox", 1, 0, kw_box},
+	{"walls", 1, 1, kw_walls},
+	{"friction", 1, 1, kw_friction},
+	{"grains", 1, 1, kw_count},
+	{"contacts", 1, 1, kw_count},
+	{"columns", 2, 1, kw_columns},
+	{"boundary", 2, 1, kw_boundary},
+};
+#define NKEYWORDS (sizeof keywords / sizeof keywords[0])
+
+static int
+header_keyword(struct header *h, char **tok, int n)
+{
+	size_t k;
+
+	for (k = 0; k < NKEYWORDS; k++)
+		if (strcmp(tok[0], keywords[k].name) == 0)
+			break;
+	if (k == NKEYWORDS)
+		return rd_error(h->rd, "unknown header keyword '%s'", tok[0]);
+	if (h->version < keywords[k].since)
+		return rd_error(h->rd, "%s: not in version %ld of the format (a pack with a %s line starts '%s %d')",
+		    tok[0], h->version, tok[0], PACK_FORMAT_NAME, keywords[k].since);
+	if (h->seen & 1u << k)
+		return rd_error(h->rd, "duplicate '%s' line (the header must contain exactly one)", tok[0]);
+	h->seen |= 1u << k;
+	return keywords[k].parse(h, tok, n);
+}
+
+/* s starts with the word w followed by a blank. */
+static int
+starts_word(const char *s, const char *w)
+{
+	size_t n = strlen(w);
+
+	return strncmp(s, w, n) == 0 && (s[n] == ' ' || s[n] == '\t');
+}
+
+/* "meta KEY VALUE": VALUE is the rest of the line after the blanks that follow KEY. */
+static int
+header_meta(struct header *h, char *s)
+{
+	char *key = s + 5, *val;
+
+	while (*key == ' ' || *key == '\t')
+		key++;
+	val = key + strcspn(key, " \t");
+	if (!*key || !*val)
+		return rd_error(h->rd, "meta: expected a key and a value");
+	*val++ = 0;
+	while (*val == ' ' || *val == '\t')
+		val++;
+	if (!*val)
+		return rd_error(h->rd, "meta: expected a key and a value");
+	if (pack_get_meta(h->p, key))
+		return rd_error(h->rd, "meta: duplicate key '%s'", key);
+	if (pack_set_meta(h->p, key, val))
+		return rd_error(h->rd, "out of memory");
+	return 0;
+}
+
+/* One header line; 1 when it was 'end'. */
+static int
+header_line(struct header *h, char *s)
+{
+	char *tok[MAXTOK];
+	int n;
+
+	if (s[0] == '#')
+		return 0;
+	if (starts_word(s, "history"))
+		return pack_add_history(h->p, s + 8) ? rd_error(h->rd, "out of memory") : 0;
+	if (starts_word(s, "meta"))
+		return header_meta(h, s);
+	n = split(s, tok, MAXTOK);
+	if (n == 0)
+		return rd_error(h->rd, "empty line in the header");
+	if (strcmp(tok[0], "end") == 0)
+		return n == 1 ? 1 : rd_error(h->rd, "end: unexpected text after 'end'");
+	return header_keyword(h, tok, n);
+}
+
+static int
+read_header(struct header *h)
+{
+	size_t k;
+	char *s;
+	int r;
+
+	standard_columns(h);
+	do {
+		r = next_line(h->rd, &s);
+		if (r < 0)
+			return -1;
+		if (r == 0)
+			return rd_error_at(h->rd, line_after_last(h->rd),
+			    "unexpected end of input in the header (no 'end' line)");
+		r = header_line(h, s);
+		if (r < 0)
+			return -1;
+	} while (r == 0);
+	for (k = 0; k < NKEYWORDS; k++)
+		if (keywords[k].required && h->version >= keywords[k].since && !(h->seen & 1u << k))
+			return rd_error(h->rd, "missing '%s' line in the header", keywords[k].name);
+	return 0;
+}
+
+/* ---- grains and contacts ---- */
+
+/* A grain line of the header's columns: the required ones come first, in columns[] order. */
+static int
+read_grain_line(const struct header *h, char *s)
+{
+	struct pack_reader *rd = h->rd;
+	char *tok[MAXTOK], why[256];
+	double v[7];
+	long id;
+	int n = split(s, tok, MAXTOK);
+
+	if (n != h->ncol)
+		return rd_error(rd, "grain line: expected %d columns (%s), found %d", h->ncol, h->colnames, n);
+	if (num_parse_long(tok[0], &id))
+		return rd_error(rd, "grain id '%s' is not an integer", tok[0]);
+	if (parse_numbers(rd, tok + 1, 7, v, "grain"))
+		return -1;
+	if (pack_add_grain(h->p, id, v, v[3], v[4], v[5], v[6]) == (size_t)-1)
+		return rd_error(rd, "out of memory");
+	if (check_grain_values(h->p, h->p->n - 1, why, sizeof why))
+		return rd_error(rd, "%s", why);
+	return 0;
+}
+
+static int
+read_grains(const struct header *h, size_t **sorted)
+{
+	struct pack_reader *rd = h->rd;
+	struct pack *p = h->p;
+	long k, first = lines_lineno(rd->in) + 1;
+	size_t dup;
+	char *s;
+
+	if (pack_reserve(p, (size_t)h->ngr))
+		return rd_error(rd, "out of memory for %ld grains", h->ngr);
+	for (k = 0; k < h->ngr; k++) {
+		int r = next_line(rd, &s);
 
 		if (r < 0)
 			return -1;
 		if (r == 0)
-			return rd->line++, rd_error(rd, "unexpected end of input: %ld grains declared, %ld found",
-			    ngr, k);
-		n = split(rd->buf, tok, MAXTOK);
-		if (n != 8)
-			return rd_error(rd, "grain line: expected 8 columns (id x y z r E nu rho), found %d", n);
-		if (num_parse_long(tok[0], &id))
-			return rd_error(rd, "grain id '%s' is not an integer", tok[0]);
-		if (parse_numbers(rd, tok + 1, 7, v, "grain"))
+			return rd_error_at(rd, line_after_last(rd),
+			    "unexpected end of input: %ld grains declared, %ld found", h->ngr, k);
+		if (read_grain_line(h, s))
 			return -1;
-		pack_add_grain(p, id, v, v[3], v[4], v[5], v[6]);
-		if (check_grain_values(p, p->n - 1, why, sizeof why))
-			return rd_error(rd, "%s", why);
 	}
 	*sorted = sort_by_id(p, &dup);
 	if (!*sorted)
 		return rd_error(rd, "out of memory");
-	if (dup != (size_t)-1) {
-		rd->line = first + (long)dup;
-		return rd_error(rd, "duplicate grain id %ld", p->id[dup]);
-	}
+	if (dup != (size_t)-1)
+		return rd_error_at(rd, first + (long)dup, "duplicate grain id %ld", p->id[dup]);
 	return 0;
 }
 
+/* One end of a contact: a grain id, or (allow_wall) the name of a wall, which a periodic
+ * axis does not have. */
 static int
 parse_end(struct pack_reader *rd, const struct pack *p, const size_t *sorted, const char *s,
     long *out, int allow_wall)
@@ -509,6 +614,9 @@ parse_end(struct pack_reader *rd, const struct pack *p, const size_t *sorted, co
 	if (allow_wall)
 		for (w = 0; w < NWALLS; w++)
 			if (strcmp(s, pack_wall_names[w]) == 0) {
+				if (p->periodic[w / 2])
+					return rd_error(rd, "contact: wall '%s' on axis %c, which is periodic (no walls)",
+					    s, 'x' + w / 2);
 				*out = PACK_WALL(w);
 				return 0;
 			}
@@ -521,46 +629,100 @@ parse_end(struct pack_reader *rd, const struct pack *p, const size_t *sorted, co
 }
 
 static int
-read_contacts(struct pack_reader *rd, struct pack *p, long nco, const size_t *sorted)
+read_contact_line(struct pack_reader *rd, struct pack *p, const size_t *sorted, char *s)
 {
-	char *tok[MAXTOK + 1];
-	long k, first = rd->line + 1;
-	size_t dup;
+	char *tok[MAXTOK];
+	struct pack_contact c;
+	long i, j;
+	double v[5];
+	int n = split(s, tok, MAXTOK);
 
-	for (k = 0; k < nco; k++) {
-		struct pack_contact c;
-		long i, j;
-		double v[5];
-		int r = next_line(rd), n;
+	if (n != 7)
+		return rd_error(rd, "contact line: expected 7 columns (i j P0 Q0x Q0y Q0z M0), found %d", n);
+	if (parse_end(rd, p, sorted, tok[0], &i, 0) || parse_end(rd, p, sorted, tok[1], &j, 1))
+		return -1;
+	if (i == j)
+		return rd_error(rd, "contact of grain %s with itself", tok[0]);
+	if (parse_numbers(rd, tok + 2, 5, v, "contact"))
+		return -1;
+	if (v[0] < 0)
+		return rd_error(rd, "contact: normal force P0 = %g is negative", v[0]);
+	c.i = (size_t)i;
+	c.j = j;
+	c.P0 = v[0];
+	memcpy(c.Q0, v + 1, sizeof c.Q0);
+	c.M0 = v[4];
+	if (pack_add_contact(p, &c))
+		return rd_error(rd, "out of memory");
+	return 0;
+}
+
+static int
+read_contacts(const struct header *h, const size_t *sorted)
+{
+	struct pack_reader *rd = h->rd;
+	long k, first = lines_lineno(rd->in) + 1;
+	size_t dup;
+	char *s;
+
+	for (k = 0; k < h->nco; k++) {
+		int r = next_line(rd, &s);
 
 		if (r < 0)
 			return -1;
 		if (r == 0)
-			return rd->line++, rd_error(rd, "unexpected end of input: %ld contacts declared, %ld found",
-			    nco, k);
-		n = split(rd->buf, tok, MAXTOK);
-		if (n != 7)
-			return rd_error(rd, "contact line: expected 7 columns (i j P0 Q0x Q0y Q0z M0), found %d", n);
-		if (parse_end(rd, p, sorted, tok[0], &i, 0) || parse_end(rd, p, sorted, tok[1], &j, 1))
+			return rd_error_at(rd, line_after_last(rd),
+			    "unexpected end of input: %ld contacts declared, %ld found", h->nco, k);
+		if (read_contact_line(rd, h->p, sorted, s))
 			return -1;
-		if (i == j)
-			return rd_error(rd, "contact of grain %s with itself", tok[0]);
-		if (parse_numbers(rd, tok + 2, 5, v, "contact"))
-			return -1;
-		if (v[0] < 0)
-			return rd_error(rd, "contact: normal force P0 = %g is negative", v[0]);
-		c.i = (size_t)i;
-		c.j = j;
-		c.P0 = v[0];
-		memcpy(c.Q0, v + 1, sizeof c.Q0);
-		c.M0 = v[4];
-		if (pack_add_contact(p, &c))
-			return rd_error(rd, "out of memory");
 	}
-	dup = find_duplicate_contact(p);
-	if (dup != (size_t)-1) {
-		rd->line = first + (long)dup;
-		return rd_error(rd, "contact pair listed twice");
+	dup = find_duplicate_contact(h->p);
+	if (dup != (size_t)-1)
+		return rd_error_at(rd, first + (long)dup, "contact pair listed twice");
+	return 0;
+}
+
+/* ---- a whole pack ---- */
+
+/* The oldest format version read; PACK_FORMAT_VERSION (pack.h) is the newest. */
+#define OLDEST_VERSION 1
+
+/* The magic line, already read into s: 0 with *version when it names a version this
+ * reader knows. */
+static int
+read_magic(struct pack_reader *rd, char *s, long *version)
+{
+	char *tok[MAXTOK];
+	int n = split(s, tok, MAXTOK);
+
+	if (n < 1 || strcmp(tok[0], PACK_FORMAT_NAME) != 0)
+		return rd_error(rd, "not a qusgm pack (first line must be '%s %d' or '%s %d')", PACK_FORMAT_NAME,
+		    OLDEST_VERSION, PACK_FORMAT_NAME, PACK_FORMAT_VERSION);
+	if (n != 2 || num_parse_long(tok[1], version))
+		return rd_error(rd, "%s: missing or malformed version", PACK_FORMAT_NAME);
+	if (*version > PACK_FORMAT_VERSION)
+		return rd_error(rd, "pack format version %ld is newer than this qusgm reads (%d); upgrade qusgm",
+		    *version, PACK_FORMAT_VERSION);
+	if (*version < OLDEST_VERSION)
+		return rd_error(rd, "unknown pack format version %ld", *version);
+	return 0;
+}
+
+/* After the last contact: the end of input, or the magic line of the next pack (given back
+ * to be read by the next call). */
+static int
+read_pack_end(struct pack_reader *rd, const struct header *h)
+{
+	char *s;
+	int r = next_line(rd, &s);
+
+	if (r < 0)
+		return -1;
+	if (r == 1) {
+		if (strncmp(s, PACK_FORMAT_NAME, strlen(PACK_FORMAT_NAME)) != 0)
+			return rd_error(rd, "unexpected line after the last contact (counts in the header are %ld grains, %ld contacts)",
+			    h->ngr, h->nco);
+		lines_unread(rd->in);
 	}
 	return 0;
 }
@@ -568,56 +730,37 @@ read_contacts(struct pack_reader *rd, struct pack *p, long nco, const size_t *so
 int
 pack_read_next(struct pack_reader *rd, struct pack *p)
 {
-	char *tok[MAXTOK + 1];
-	long ngr = 0, nco = 0, version;
+	struct header h;
 	size_t *sorted = NULL;
-	int r, n, status;
+	char *s;
+	int r, status;
 
 	pack_init(p);
+	memset(&h, 0, sizeof h);
+	h.rd = rd;
+	h.p = p;
 	if (rd->failed)
 		return -1;
-	r = next_line(rd);
+	r = next_line(rd, &s);
 	if (r <= 0) {
-		if (r == 0 && rd->line == 0)
-			return rd->line++, rd_error(rd, "empty input (expected '%s %d')", PACK_FORMAT_NAME,
-			    PACK_FORMAT_VERSION);
+		if (r == 0 && lines_lineno(rd->in) == 0)
+			return rd_error_at(rd, 1, "empty input (expected '%s %d' or '%s %d')", PACK_FORMAT_NAME,
+			    OLDEST_VERSION, PACK_FORMAT_NAME, PACK_FORMAT_VERSION);
 		return r;
 	}
-	n = split(rd->buf, tok, MAXTOK);
-	if (n < 1 || strcmp(tok[0], PACK_FORMAT_NAME) != 0)
-		return rd_error(rd, "not a qusgm pack (first line must be '%s %d')", PACK_FORMAT_NAME,
-		    PACK_FORMAT_VERSION);
-	if (n != 2 || num_parse_long(tok[1], &version))
-		return rd_error(rd, "%s: missing or malformed version", PACK_FORMAT_NAME);
-	if (version > PACK_FORMAT_VERSION)
-		return rd_error(rd, "pack format version %ld is newer than this qusgm reads (%d); upgrade qusgm",
-		    version, PACK_FORMAT_VERSION);
-	if (version != PACK_FORMAT_VERSION)
-		return rd_error(rd, "unknown pack format version %ld", version);
-	status = read_header(rd, p, &ngr, &nco);
+	status = read_magic(rd, s, &h.version);
 	if (status == 0)
-		status = read_grains(rd, p, ngr, &sorted);
+		status = read_header(&h);
 	if (status == 0)
-		status = read_contacts(rd, p, nco, sorted);
+		status = read_grains(&h, &sorted);
+	if (status == 0)
+		status = read_contacts(&h, sorted);
 	free(sorted);
+	if (status == 0)
+		status = read_pack_end(rd, &h);
 	if (status) {
 		pack_free(p);
 		return -1;
-	}
-	/* What follows must be another pack or nothing. */
-	r = next_line(rd);
-	if (r < 0) {
-		pack_free(p);
-		return -1;
-	}
-	if (r == 1) {
-		if (strncmp(rd->buf, PACK_FORMAT_NAME, strlen(PACK_FORMAT_NAME)) != 0) {
-			pack_free(p);
-			return rd_error(rd, "unexpected line after the last contact (counts in the header are %ld grains, %ld contacts)",
-			    ngr, nco);
-		}
-		rd->have_pushback = 1;
-		rd->line--;
 	}
 	return 1;
 }
@@ -625,41 +768,32 @@ pack_read_next(struct pack_reader *rd, struct pack *p)
 int
 pack_read_path(const char *path, struct pack *p)
 {
-	const char *name;
-	FILE *fp = cli_in_open(path, &name);
-	struct pack_reader *rd;
+	struct pack_reader rd = {NULL, 0};
 	struct pack extra;
 	int r;
 
 	pack_init(p);
-	if (!fp)
+	if (!(rd.in = lines_open_path(path)))
 		return -1;
-	rd = pack_reader_open(fp, name);
-	if (!rd) {
-		if (fp != stdin)
-			fclose(fp);
-		return -1;
-	}
-	r = pack_read_next(rd, p);
+	r = pack_read_next(&rd, p);
 	if (r == 1) {
-		long line = rd->line + 1;
-		int r2 = pack_read_next(rd, &extra);
+		long line = lines_lineno(rd.in) + 1;
+		int r2 = pack_read_next(&rd, &extra);
 		if (r2 == 1) {
 			pack_free(&extra);
 			pack_free(p);
-			msg_seterr("%s:%ld: a second pack follows; this tool reads one pack", name, line);
+			msg_seterr("%s:%ld: a second pack follows; this tool reads one pack", lines_name(rd.in),
+			    line);
 			r = -1;
 		} else if (r2 < 0) {
 			pack_free(p);
 			r = -1;
 		}
 	} else if (r == 0) {
-		msg_seterr("%s:1: empty input", name);
+		msg_seterr("%s:1: empty input", lines_name(rd.in));
 		r = -1;
 	}
-	pack_reader_close(rd);
-	if (fp != stdin)
-		fclose(fp);
+	lines_close(rd.in);
 	return r == 1 ? 0 : -1;
 }
 
@@ -738,19 +872,56 @@ sb_printf(struct sbuf *b, const char *fmt, ...)
 	b->len += (size_t)n;
 }
 
+int
+pack_format_version(const struct pack *p)
+{
+	/* every column of columns[] is required, so the columns are the standard ones */
+	return p->periodic[0] || p->periodic[1] || p->periodic[2] ? 2 : 1;
+}
+
+/* The version-2 lines: the boundary along x y z, and the grain columns. */
 static void
-format_pack(const struct pack *p, struct sbuf *b)
+format_boundary(const struct pack *p, struct sbuf *b)
+{
+	int a;
+
+	sb_puts(b, "boundary");
+	for (a = 0; a < 3; a++)
+		sb_puts(b, p->periodic[a] ? " periodic" : " walls");
+	sb_puts(b, "\n");
+}
+
+static void
+format_columns(struct sbuf *b)
+{
+	int k;
+
+	sb_puts(b, "columns");
+	for (k = 0; k < NCOLUMNS; k++)
+		if (columns[k].required) {
+			sb_puts(b, " ");
+			sb_puts(b, columns[k].name);
+		}
+	sb_puts(b, "\n");
+}
+
+/* magic, history, meta, units, box, [boundary], [refbox], walls, friction, grains,
+ * contacts, [columns], end: the order of share/doc/pack-format.md. */
+static void
+format_header(const struct pack *p, int version, struct sbuf *b)
 {
 	size_t k;
-	double v[7];
+	double v[3];
 
-	sb_printf(b, "%s %d\n", PACK_FORMAT_NAME, PACK_FORMAT_VERSION);
+	sb_printf(b, "%s %d\n", PACK_FORMAT_NAME, version);
 	for (k = 0; k < p->nhist; k++)
 		sb_printf(b, "history %s\n", p->history[k]);
 	for (k = 0; k < p->nmeta; k++)
 		sb_printf(b, "meta %s %s\n", p->meta[k].key, p->meta[k].value);
 	sb_puts(b, "units SI\nbox ");
 	sb_nums(b, p->box, 6);
+	if (version >= 2)
+		format_boundary(p, b);
 	if (p->has_refbox) {
 		sb_puts(b, "refbox ");
 		sb_nums(b, p->refbox, 6);
@@ -762,7 +933,19 @@ format_pack(const struct pack *p, struct sbuf *b)
 	sb_nums(b, v, 3);
 	sb_puts(b, "friction ");
 	sb_nums(b, &p->mu, 1);
-	sb_printf(b, "grains %zu\ncontacts %zu\nend\n", p->n, p->nc);
+	sb_printf(b, "grains %zu\ncontacts %zu\n", p->n, p->nc);
+	if (version >= 2)
+		format_columns(b);
+	sb_puts(b, "end\n");
+}
+
+static void
+format_pack(const struct pack *p, struct sbuf *b)
+{
+	size_t k;
+	double v[7];
+
+	format_header(p, pack_format_version(p), b);
 	for (k = 0; k < p->n && !b->oom; k++) {
 		sb_printf(b, "%ld ", p->id[k]);
 		memcpy(v, p->x + 3 * k, 3 * sizeof *v);
@@ -822,26 +1005,39 @@ pack_write_stream(const struct pack *p, FILE *fp, int gz)
 }
 
 int
-path_is_gz(const char *path)
-{
-	size_t n = path ? strlen(path) : 0;
-
-	return n > 3 && strcmp(path + n - 3, ".gz") == 0;
-}
-
-int
 pack_write_path(const struct pack *p, const char *path)
 {
-	struct cli_out o;
+	struct file_out o;
 
-	if (cli_out_open(&o, path))
+	if (file_out_open(&o, path))
 		return -1;
-	if (pack_write_stream(p, o.fp, 0)) {	/* cli_out_commit gzips a *.gz output */
+	if (pack_write_stream(p, o.fp, 0)) {	/* file_out_commit gzips a *.gz output */
 		msg_seterr("%s: write error", path ? path : "<stdout>");
-		cli_out_abort(&o);
+		file_out_abort(&o);
 		return -1;
 	}
-	return cli_out_commit(&o);
+	return file_out_commit(&o);
+}
+
+/* The boundary flags are 0 or 1, and no contact names a wall of a periodic axis. */
+static int
+validate_boundary(const struct pack *p)
+{
+	size_t k;
+	int a;
+
+	for (a = 0; a < 3; a++)
+		if (p->periodic[a] != 0 && p->periodic[a] != 1) {
+			msg_seterr("boundary: periodic[%d] = %d is neither 0 (walls) nor 1 (periodic)", a, p->periodic[a]);
+			return -1;
+		}
+	for (k = 0; k < p->nc; k++)
+		if (PACK_IS_WALL(p->c[k].j) && p->periodic[PACK_WALL_INDEX(p->c[k].j) / 2]) {
+			msg_seterr("contact of grain %ld with wall '%s', on a periodic axis", p->id[p->c[k].i],
+			    pack_wall_names[PACK_WALL_INDEX(p->c[k].j)]);
+			return -1;
+		}
+	return 0;
 }
 
 int
@@ -874,5 +1070,5 @@ pack_validate(const struct pack *p)
 		msg_seterr("duplicate grain id %ld", p->id[dup]);
 		return -1;
 	}
-	return 0;
+	return validate_boundary(p);
 }

@@ -1,9 +1,9 @@
-/* packio: reading and writing qusgm-pack version 1 (share/doc/pack-format.md).
+/* packio: reading and writing qusgm-pack versions 1 and 2 (share/doc/pack-format.md).
  *
  * The reader is strict and reports the first problem as "file:line: what is wrong" in the
- * error slot (msg_geterr).  Input goes through zlib, so gzip-compressed and plain packs share
- * one code path and a truncated .gz is an error.  A stream may hold several packs back to
- * back.  The writer prints every number with num_format, so write(read(f)) == f byte for
+ * error slot (msg_geterr).  Input goes through the line reader (base/lines.h), so
+ * gzip-compressed and plain packs share one code path and a truncated .gz is an error.  A
+ * stream may hold several packs back to back.  The writer prints every number with num_format, so write(read(f)) == f byte for
  * byte, and compresses when the output name ends in ".gz". */
 #ifndef QUSGM_PACKIO_H
 #define QUSGM_PACKIO_H
@@ -19,13 +19,14 @@ void pack_reader_close(struct pack_reader *rd);
 /* 1: a pack was read into p (initialised here); 0: clean end of input; -1: error. */
 int pack_read_next(struct pack_reader *rd, struct pack *p);
 const char *pack_reader_name(const struct pack_reader *rd);
-/* The next text line of the stream (plain or gzip), for readers of other line formats (the
- * tables): 1 with *line (newline stripped, valid until the next call), its number and whether
- * it ended with a newline; 0 at the end; -1 with msg_seterr (a corrupt or truncated .gz). */
-int pack_reader_line(struct pack_reader *rd, const char **line, long *lineno, int *newline);
 
 /* Read exactly one pack from path (NULL or "-" = stdin).  0 on success, -1 with the slot set. */
 int pack_read_path(const char *path, struct pack *p);
+
+/* The version a writer emits for p: the lowest that represents it, 1 for the standard
+ * grain columns and six walls (byte for byte what qusgm wrote before version 2 existed,
+ * readable by older readers), 2 for a periodic axis. */
+int pack_format_version(const struct pack *p);
 
 /* Write one pack to an open stream, compressed if gz; 0 on success. */
 int pack_write_stream(const struct pack *p, FILE *fp, int gz);
@@ -35,7 +36,5 @@ int pack_write_path(const struct pack *p, const char *path);
 /* Validation shared with tools that build packs (packgen, packimport): 0 if p obeys every
  * rule the reader enforces; otherwise fills the slot (without a line number). */
 int pack_validate(const struct pack *p);
-
-int path_is_gz(const char *path);
 
 #endif

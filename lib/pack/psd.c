@@ -1,5 +1,6 @@
 /* psd: radius distributions (see psd.h). */
 #include "pack/psd.h"
+#include "base/lines.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
 
@@ -8,77 +9,108 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Up to max comma-separated finite numbers of s into v; their count, or -1. */
 static int
 parse_list(const char *s, double *v, int max)
 {
-	char buf[256], *tok, *save = NULL;
+	char *buf = strdup(s), *tok, *save = NULL;
 	int n = 0;
 
-	snprintf(buf, sizeof buf, "%s", s);
+	if (!buf)
+		return -1;
 	for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-		if (n == max || num_parse(tok, &v[n]))
-			return -1;
+		if (n == max || num_parse(tok, &v[n])) {
+			n = -1;
+			break;
+		}
 		n++;
 	}
+	free(buf);
 	return n;
+}
+
+/* The blanks of a size table: what sscanf's %s stopped at, which the reader used to use. */
+#define BLANKS " \t\n\v\f\r"
+
+/* The radii and weights read so far. */
+struct rows {
+	double *r, *w;
+	size_t n, cap;
+};
+
+static int
+add_row(struct rows *t, double r, double w)
+{
+	if (t->n == t->cap) {
+		size_t cap = t->cap ? 2 * t->cap : 64;
+		double *nr = realloc(t->r, cap * sizeof *nr), *nw;
+		if (!nr)
+			return -1;
+		t->r = nr;
+		nw = realloc(t->w, cap * sizeof *nw);
+		if (!nw)
+			return -1;
+		t->w = nw;
+		t->cap = cap;
+	}
+	t->r[t->n] = r;
+	t->w[t->n++] = w;
+	return 0;
+}
+
+/* "radius [weight]", radius > 0, weight >= 0 (default 1). */
+static int
+table_line(struct lines *in, char *s, struct rows *t)
+{
+	char *tok[2];
+	double r, wt = 1;
+	int n = lines_split(s, BLANKS, tok, 2);
+
+	if (n < 1 || n > 2 || num_parse(tok[0], &r) || (n == 2 && num_parse(tok[1], &wt)) || !(r > 0) ||
+	    !(wt >= 0))
+		return lines_error(in, "expected 'radius [weight]' with radius > 0 and weight >= 0");
+	if (add_row(t, r, wt)) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	return 0;
 }
 
 static int
 read_table(const char *path, struct psd *d)
 {
-	FILE *fp = fopen(path, "r");
-	char line[256];
-	long ln = 0;
-	size_t cap = 0;
-	double *w = NULL;
+	struct lines *in = lines_open_path(path);
+	struct rows t = {NULL, NULL, 0, 0};
+	char *s;
+	int r;
 
-	if (!fp) {
+	if (!in) {
 		msg_seterr("%s: cannot open size table", path);
 		return -1;
 	}
-	while (fgets(line, sizeof line, fp)) {
-		char a[64], b[64], c[8];
-		double r, wt = 1;
-		int n;
-
-		ln++;
-		if (line[0] == '#' || strspn(line, " \t\r\n") == strlen(line))
+	while ((r = lines_next(in, &s, NULL)) == 1) {
+		if (s[0] == '#' || s[strspn(s, " \t\r\n")] == 0)
 			continue;
-		n = sscanf(line, "%63s %63s %7s", a, b, c);
-		if (n < 1 || n > 2 || num_parse(a, &r) || (n == 2 && num_parse(b, &wt)) || !(r > 0) || !(wt >= 0)) {
-			msg_seterr("%s:%ld: expected 'radius [weight]' with radius > 0 and weight >= 0", path, ln);
-			goto fail;
-		}
-		if (d->ntable == cap) {
-			cap = cap ? 2 * cap : 64;
-			d->table = realloc(d->table, cap * sizeof *d->table);
-			w = realloc(w, cap * sizeof *w);
-			if (!d->table || !w) {
-				msg_seterr("out of memory");
-				goto fail;
-			}
-		}
-		d->table[d->ntable] = r;
-		w[d->ntable++] = wt;
+		if ((r = table_line(in, s, &t)) < 0)
+			break;
 	}
-	fclose(fp);
-	fp = NULL;
-	if (d->ntable == 0) {
+	lines_close(in);
+	if (r == 0 && t.n == 0) {
 		msg_seterr("%s: the size table is empty", path);
-		goto fail;
+		r = -1;
 	}
-	d->disc = gsl_ran_discrete_preproc(d->ntable, w);
-	if (!d->disc) {
+	if (r == 0 && !(d->disc = gsl_ran_discrete_preproc(t.n, t.w))) {
 		msg_seterr("%s: the weights do not define a distribution", path);
-		goto fail;
+		r = -1;
 	}
-	free(w);
+	free(t.w);
+	if (r < 0) {
+		free(t.r);
+		return -1;
+	}
+	d->table = t.r;
+	d->ntable = t.n;
 	return 0;
-fail:
-	if (fp)
-		fclose(fp);
-	free(w);
-	return -1;
 }
 
 int

@@ -2,7 +2,9 @@
  *
  * Specs: "uniform:RMIN,RMAX" (m), "lognormal:MEDIAN,SIGMA[,RMIN,RMAX]" (SIGMA of ln r,
  * optional truncation, default [median/5, 5 median]), "table:FILE" (lines "r [weight]",
- * sampled with probability proportional to weight, default 1).  Draws use the GSL RNG. */
+ * sampled with probability proportional to weight, default 1; # comments and blank lines
+ * allowed; read through base/lines.h, so lines of any length, plain or gzip, and errors as
+ * "file:line: what").  Draws use the GSL RNG. */
 #ifndef QUSGM_PSD_H
 #define QUSGM_PSD_H
 

@@ -1,7 +1,8 @@
 # packformat: the pack reader (lib/pack/packio.c) as a user meets it, through packinfo.
-# One check for every error the reader reports (share/doc/pack-format.md, "Validity"), each
+# One check for every error the reader reports (share/doc/pack-format.md, "Errors"), each
 # with exit status 1, an empty stdout and exactly one "packinfo: FILE:LINE: what" line on
-# stderr, and the positive cases: plain, gzip, stdin, '-', several packs in one stream, -o.
+# stderr, and the positive cases: plain, gzip, stdin, '-', several packs in one stream, -o;
+# then the same for the lines of format version 2 (columns, boundary).
 . "$TOP/tests/tools/lib.sh"
 
 # Line numbers of good.pack, used by the error checks below:
@@ -39,9 +40,10 @@ bad() {
 # --- the first line ---
 bad wrong-magic 1 'not a qusgm pack' '1s/.*/qusgm-pak 1/'
 bad missing-version 1 'version' '1s/.*/qusgm-pack/'
-bad newer-version 1 'newer' '1s/.*/qusgm-pack 2/'
+bad newer-version 1 'version 3 is newer than this qusgm reads \(2\)' '1s/.*/qusgm-pack 3/'
 bad older-version 1 'version' '1s/.*/qusgm-pack 0/'
 bad malformed-version 1 'version' '1s/.*/qusgm-pack 1.0/'
+bad much-newer-version 1 'version 30 is newer' '1s/.*/qusgm-pack 30/'
 
 # --- the header: every required keyword exactly once (the error is at the 'end' line) ---
 for k in units box walls friction grains contacts; do
@@ -113,7 +115,7 @@ garbage'
 bad trailing-empty-line 19 'unexpected line after the last contact' '$a\
 '
 bad second-pack-bad 19 'newer' '$a\
-qusgm-pack 2'
+qusgm-pack 3'
 bad nul-byte 14 'NUL' '14s/2420/24\x0020/'
 
 # --- truncated gzip, empty input ---
@@ -189,3 +191,95 @@ if [ -e goodbad.info ] || ls -a | grep -q '^\.goodbad\.info\.'; then
 else
 	pass output-second-bad-leaves-nothing
 fi
+
+# --- format version 2: the columns and boundary lines --------------------------------------
+# Line numbers of good2.pack:
+#  1 magic   2 history   3 comment   4 meta   5 units   6 box   7 boundary   8 refbox
+#  9 walls   10 friction   11 grains   12 contacts   13 columns   14 end   15-17 grains
+#  18-20 contacts (x is periodic: no contact with xlo or xhi)
+cat >good2.pack <<'EOF'
+qusgm-pack 2
+history packgen 0.1.0: packgen -n 3 ; --n=3
+# a comment is allowed in the header
+meta note three grains in a row
+units SI
+box 0 0 0 3e-4 2e-4 2e-4
+boundary periodic walls walls
+refbox 0 0 0 3e-4 2e-4 2e-4
+walls 7e12 0.495 0.3
+friction 0.3
+grains 3
+contacts 3
+columns id x y z r E nu rho
+end
+1 1e-4 1e-4 1e-4 1.0001e-4 7e10 0.2 2420
+2 2e-4 1e-4 1e-4 1.0001e-4 7e10 0.2 2420
+3 1.5e-4 1.5e-4 1.5e-4 2e-5 7e10 0.2 2420
+1 2 0.01 0 0 0 0
+1 ylo 0.01 0 1e-4 0 0
+2 zhi 0.01 0 0 0 0
+EOF
+
+# bad2 NAME LINE REGEX SED-SCRIPT: as bad, on good2.pack.
+bad2() {
+	name=$1 line=$2 re=$3
+	sed "$4" good2.pack >"$name.pack"
+	expect_error "$name" 1 "^packinfo: $name\\.pack:$line: .*$re" packinfo "$name.pack"
+}
+
+expect_ok v2-good packinfo good2.pack
+gzip -c good2.pack >good2.pack.gz
+packinfo good2.pack >good2.info 2>/dev/null
+packinfo good2.pack.gz >good2gz.info 2>/dev/null
+expect_same v2-gzip-same-output good2.info good2gz.info
+sed 's/$/\r/' good2.pack >crlf2.pack
+packinfo crlf2.pack >crlf2.info 2>/dev/null
+expect_same v2-crlf-same-output good2.info crlf2.info
+# version 2 spelling out what version 1 implies: the same pack
+sed '1s/1$/2/;6a\
+boundary walls walls walls
+11a\
+columns id x y z r E nu rho' good.pack >std2.pack
+packinfo std2.pack >std2.info 2>/dev/null
+expect_same v2-standard-is-v1 good.info std2.info
+# every axis periodic; the columns line early in the header
+sed '7s/.*/boundary periodic periodic periodic/;19,20d;12s/3/1/' good2.pack >allper.pack
+expect_ok v2-all-periodic packinfo allper.pack
+sed '13d;4a\
+columns id x y z r E nu rho' good2.pack >colsfirst.pack
+expect_ok v2-columns-early packinfo colsfirst.pack
+# a version-1 and a version-2 pack in one stream
+cat good.pack good2.pack >mixed.pack
+packinfo --tsv mixed.pack >mixed.tsv 2>mixed.err
+if [ $? -eq 0 ] && [ "$(wc -l <mixed.tsv)" -eq 3 ]; then pass v2-after-v1-in-a-stream; else fail v2-after-v1-in-a-stream "$(head -c 300 mixed.err)"; fi
+
+# --- version 2: every error of the new lines ---
+bad2 v2-missing-columns 13 "missing 'columns' line" '/^columns /d'
+bad2 v2-missing-boundary 13 "missing 'boundary' line" '/^boundary /d'
+bad2 v2-duplicate-columns 14 "duplicate 'columns' line" '13p'
+bad2 v2-duplicate-boundary 8 "duplicate 'boundary' line" '7p'
+bad2 v2-columns-no-names 13 'columns: expected the names of the grain columns' '13s/.*/columns/'
+bad2 v2-unknown-column 13 "columns: unknown column 'phase'" '13s/$/ phase/'
+bad2 v2-unknown-column-first 13 "columns: unknown column 'ID'" '13s/ id / ID /'
+bad2 v2-column-twice 13 "columns: column 'x' named twice" '13s/$/ x/'
+bad2 v2-column-twice-long 13 "columns: column 'id' named twice" '13s/$/ id x y z r E nu rho id x y z r E nu rho/'
+bad2 v2-missing-required-column 13 "columns: the required column 'rho' is missing" '13s/ rho$//'
+bad2 v2-missing-first-column 13 "columns: the required column 'id' is missing" '13s/ id / /'
+bad2 v2-column-order 13 "columns: column 2 must be 'x'" '13s/ x y / y x /'
+bad2 v2-column-order-last 13 "columns: column 7 must be 'nu'" '13s/ nu rho$/ rho nu/'
+bad2 v2-boundary-two-words 7 'boundary: expected 3 words .*found 2' '7s/ walls$//'
+bad2 v2-boundary-four-words 7 'boundary: expected 3 words .*found 4' '7s/$/ walls/'
+bad2 v2-boundary-no-words 7 'boundary: expected 3 words .*found 0' '7s/.*/boundary/'
+bad2 v2-boundary-unknown-word 7 "boundary: 'wall' for axis y is neither 'walls' nor 'periodic'" '7s/periodic walls/periodic wall/'
+bad2 v2-boundary-case 7 "boundary: 'Periodic' for axis x" '7s/periodic/Periodic/'
+bad2 v2-boundary-shear 7 "boundary: 'lees-edwards' for axis z" '7s/walls$/lees-edwards/'
+bad2 v2-periodic-wall-contact 19 "contact: wall 'xlo' on axis x, which is periodic" '19s/ylo/xlo/'
+bad2 v2-periodic-wall-contact-z 20 "contact: wall 'zhi' on axis z, which is periodic" '7s/.*/boundary periodic walls periodic/'
+bad2 v2-grain-columns 16 'grain line: expected 8 columns \(id x y z r E nu rho\), found 7' '16s/ 2420$//'
+bad2 v2-unknown-keyword 6 "unknown header keyword 'shape'" '5a\
+shape sphere'
+# the new lines do not exist in version 1
+bad columns-in-v1 12 "columns: not in version 1 of the format \(a pack with a columns line starts 'qusgm-pack 2'\)" '11a\
+columns id x y z r E nu rho'
+bad boundary-in-v1 7 "boundary: not in version 1 of the format" '6a\
+boundary walls walls walls'

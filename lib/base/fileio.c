@@ -1,0 +1,304 @@
+/* fileio: inputs by name, atomic outputs (see fileio.h). */
+#include "base/fileio.h"
+#include "base/msg.h"
+
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <zlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+/* The temporary files in flight (a tool may write a pack and a log at once), removed by
+ * the signal handler and at exit unless committed. */
+#define MAX_TMP 8
+static volatile sig_atomic_t tmp_live[MAX_TMP];
+static char tmp_pending[MAX_TMP][4096];
+
+static void
+remove_all_tmp(void)
+{
+	int k;
+
+	for (k = 0; k < MAX_TMP; k++)
+		if (tmp_live[k])
+			unlink(tmp_pending[k]);
+}
+
+static void
+forget_tmp(const char *path)
+{
+	int k;
+
+	for (k = 0; k < MAX_TMP; k++)
+		if (tmp_live[k] && strcmp(tmp_pending[k], path) == 0)
+			tmp_live[k] = 0;
+}
+
+/* Record tmp for removal at exit or on a signal; -1 when MAX_TMP are in flight already. */
+static int
+remember_tmp(const char *tmp)
+{
+	int k;
+
+	for (k = 0; k < MAX_TMP && tmp_live[k]; k++)
+		;
+	if (k == MAX_TMP)
+		return -1;
+	strcpy(tmp_pending[k], tmp);
+	tmp_live[k] = 1;
+	return 0;
+}
+
+static void
+remove_tmp_on_signal(int sig)
+{
+	remove_all_tmp();
+	signal(sig, SIG_DFL);
+	raise(sig);
+}
+
+static void
+remove_tmp_at_exit(void)
+{
+	remove_all_tmp();
+}
+
+static void
+hook_cleanup(void)
+{
+	static int hooked;
+
+	if (hooked)
+		return;
+	atexit(remove_tmp_at_exit);
+	signal(SIGINT, remove_tmp_on_signal);
+	signal(SIGTERM, remove_tmp_on_signal);
+	signal(SIGHUP, remove_tmp_on_signal);
+	signal(SIGPIPE, remove_tmp_on_signal);
+	hooked = 1;
+}
+
+FILE *
+file_in_open(const char *path, const char **display)
+{
+	FILE *fp;
+
+	if (!path || strcmp(path, "-") == 0) {
+		*display = "<stdin>";
+		return stdin;
+	}
+	*display = path;
+	fp = fopen(path, "rb");
+	if (!fp)
+		msg_seterr("%s: %s", path, strerror(errno));
+	return fp;
+}
+
+int
+file_is_gz(const char *path)
+{
+	size_t n = path ? strlen(path) : 0;
+
+	return n > 3 && strcmp(path + n - 3, ".gz") == 0;
+}
+
+/* A device or a pipe (-o /dev/null, -o /dev/stderr, a FIFO) is written into: the temporary
+ * file and rename would replace the device node with a regular file (as root, /dev/null
+ * itself).  1: path is one and o is open on it (or -1 on failure); 0: a regular file or none. */
+static int
+open_special(struct file_out *o, const char *path)
+{
+	struct stat sb;
+
+	if (stat(path, &sb) != 0 || S_ISREG(sb.st_mode))
+		return 0;
+	if (S_ISDIR(sb.st_mode)) {
+		msg_seterr("%s: is a directory", path);
+		return -1;
+	}
+	o->fp = fopen(path, "w");
+	if (!o->fp) {
+		msg_seterr("%s: %s", path, strerror(errno));
+		return -1;
+	}
+	o->path = strdup(path);
+	if (!o->path) {
+		fclose(o->fp);
+		o->fp = NULL;
+		msg_seterr("out of memory");
+		return -1;
+	}
+	return 1;
+}
+
+/* o->path and o->tmp = "DIR/.NAME.XXXXXX" for mkstemp. */
+static int
+name_tmp(struct file_out *o, const char *path)
+{
+	const char *slash = strrchr(path, '/');
+	size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
+
+	if (strlen(path) + 16 >= sizeof tmp_pending[0]) {
+		msg_seterr("%s: path too long", path);
+		return -1;
+	}
+	o->path = strdup(path);
+	o->tmp = malloc(strlen(path) + 16);
+	if (!o->path || !o->tmp) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	memcpy(o->tmp, path, dirlen);
+	sprintf(o->tmp + dirlen, ".%s.XXXXXX", path + dirlen);
+	return 0;
+}
+
+static void
+drop_names(struct file_out *o)
+{
+	free(o->path);
+	free(o->tmp);
+	o->path = o->tmp = NULL;
+}
+
+int
+file_out_open(struct file_out *o, const char *path)
+{
+	mode_t mask;
+	int fd, special;
+
+	memset(o, 0, sizeof *o);
+	if (!path || strcmp(path, "-") == 0) {
+		o->fp = stdout;
+		return 0;
+	}
+	if ((special = open_special(o, path)) != 0)
+		return special > 0 ? 0 : -1;
+	if (name_tmp(o, path)) {
+		drop_names(o);
+		return -1;
+	}
+	hook_cleanup();
+	fd = mkstemp(o->tmp);
+	if (fd < 0) {
+		msg_seterr("%s: cannot create temporary file: %s", path, strerror(errno));
+		drop_names(o);
+		return -1;
+	}
+	if (remember_tmp(o->tmp)) {
+		close(fd);
+		unlink(o->tmp);
+		msg_seterr("%s: too many outputs at once", path);
+		drop_names(o);
+		return -1;
+	}
+	/* mkstemp makes the file 0600; an output gets the usual 0666 less the umask */
+	mask = umask(0);
+	umask(mask);
+	fchmod(fd, 0666 & ~mask);
+	o->fp = fdopen(fd, "w");
+	if (!o->fp) {
+		msg_seterr("%s: %s", path, strerror(errno));
+		close(fd);
+		file_out_abort(o);
+		return -1;
+	}
+	return 0;
+}
+
+/* Compress the finished temporary file of an output named *.gz: the outputs are written as
+ * text and gzipped whole at the commit, so that the rename stays the one atomic step. */
+static int
+gzip_in_place(const char *tmp)
+{
+	char buf[1 << 15], *ztmp = malloc(strlen(tmp) + 4);
+	FILE *in = fopen(tmp, "rb");
+	gzFile z = NULL;
+	size_t n;
+	int bad = 0;
+
+	if (ztmp)
+		sprintf(ztmp, "%s.z", tmp);
+	if (!ztmp || !in || !(z = gzopen(ztmp, "wb6"))) {
+		if (in)
+			fclose(in);
+		free(ztmp);
+		return -1;
+	}
+	while ((n = fread(buf, 1, sizeof buf, in)) > 0)
+		if (gzwrite(z, buf, (unsigned)n) != (int)n)
+			bad = 1;
+	bad |= ferror(in) != 0;
+	fclose(in);
+	bad |= gzclose(z) != Z_OK;
+	if (bad || rename(ztmp, tmp) != 0) {
+		unlink(ztmp);
+		free(ztmp);
+		return -1;
+	}
+	free(ztmp);
+	return 0;
+}
+
+int
+file_out_commit(struct file_out *o)
+{
+	int bad;
+
+	if (!o->fp)
+		return -1;
+	bad = fflush(o->fp) != 0 || ferror(o->fp);
+	if (o->fp == stdout) {
+		o->fp = NULL;
+		if (bad) {
+			msg_seterr("<stdout>: write error: %s", strerror(errno));
+			return -1;
+		}
+		return 0;
+	}
+	if (fclose(o->fp) != 0)
+		bad = 1;
+	o->fp = NULL;
+	if (bad) {
+		msg_seterr("%s: write error: %s", o->path, strerror(errno));
+		file_out_abort(o);
+		return -1;
+	}
+	if (!o->tmp) {	/* written straight into a device or pipe */
+		free(o->path);
+		o->path = NULL;
+		return 0;
+	}
+	if (file_is_gz(o->path) && gzip_in_place(o->tmp)) {
+		msg_seterr("%s: cannot compress: %s", o->path, strerror(errno));
+		file_out_abort(o);
+		return -1;
+	}
+	if (rename(o->tmp, o->path) != 0) {
+		msg_seterr("%s: cannot rename temporary file: %s", o->path, strerror(errno));
+		file_out_abort(o);
+		return -1;
+	}
+	forget_tmp(o->tmp);
+	free(o->tmp);
+	free(o->path);
+	o->tmp = o->path = NULL;
+	return 0;
+}
+
+void
+file_out_abort(struct file_out *o)
+{
+	if (o->fp && o->fp != stdout)
+		fclose(o->fp);
+	o->fp = NULL;
+	if (o->tmp) {
+		unlink(o->tmp);
+		forget_tmp(o->tmp);
+	}
+	free(o->tmp);
+	free(o->path);
+	o->tmp = o->path = NULL;
+}
