@@ -178,220 +178,290 @@ minimize_releasing(struct qs_system *s, double *x, const double *de, const struc
 	return st;
 }
 
-int
-densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx, struct densify_stage *last)
-{
-	struct densify_params dpl = *dp;
+/* One densify run: the functional, the last minimisation's report, the last stage's
+ * measures and the state that carries from round to round. */
+struct densify_state {
+	struct pack *p;
+	const struct densify_params *dp;
+	densify_log_fn fn;
+	void *ctx;
 	struct qs_system s;
 	struct qs_min_report rep;
 	struct densify_stage st;
-	struct gaps *gp = NULL;
-	unsigned *cnt = NULL;
-	double *x = NULL, r0sum = 0, zero[3] = {0, 0, 0};
-	double floor_loose, e_prev = NAN, y_prev = NAN, eps_now = 0, scale = 1, boxsave[6], *xsave = NULL, *rsave = NULL;
-	size_t i;
-	long round;
-	int status = -1, limit_hit = 0, have_ref = p->has_refbox, full = 1;
+	struct gaps *gp;
+	unsigned *cnt;
+	double *x, *xsave, *rsave, boxsave[6];
+	double r0sum, floor_loose, scale;
+	int limit_hit, have_ref, full;
+};
 
-	if (!(dpl.onset > 0))
-		dpl.onset = densify_onset_default(dpl.stress);
-	dp = &dpl;
-	memset(&st, 0, sizeof st);
-	if (qs_init(&s, p, dp->skin))
+/* A row of the log: the stage's measures after the last minimisation. */
+static void
+record(struct densify_state *d, const char *name, long rnd)
+{
+	struct densify_stage *st = &d->st;
+	double rs = 0;
+	size_t i;
+
+	stage_measures(&d->s, d->x, d->cnt, st);
+	for (i = 0; i < d->p->n; i++)
+		rs += d->p->r[i];
+	st->stage = name;
+	st->round = rnd;
+	st->growth = rs / d->r0sum - 1;
+	st->iterations = d->rep.iter;
+	st->res_max = d->rep.res_max;
+	st->res_mean = d->rep.res_mean;
+	st->min_status = d->rep.status;
+	/* below the onset the pack is not jammed: nothing to balance; rounds at grow_tol stop
+	 * at grow_max_iter by design */
+	d->limit_hit |= d->rep.status == 1 && st->sigma_c >= d->dp->onset && d->full;
+	if (d->fn)
+		d->fn(st, d->ctx);
+}
+
+static int
+state_alloc(struct densify_state *d)
+{
+	size_t n = d->p->n, i;
+
+	if (qs_init(&d->s, d->p, d->dp->skin))
 		return -1;
-	x = malloc(3 * p->n * sizeof *x);
-	cnt = malloc(p->n * sizeof *cnt);
-	gp = malloc(p->n * sizeof *gp);
-	xsave = malloc(3 * p->n * sizeof *xsave);
-	rsave = malloc(p->n * sizeof *rsave);
-	if (!x || !cnt || !gp || !xsave || !rsave) {
+	d->x = malloc(3 * n * sizeof *d->x);
+	d->cnt = malloc(n * sizeof *d->cnt);
+	d->gp = malloc(n * sizeof *d->gp);
+	d->xsave = malloc(3 * n * sizeof *d->xsave);
+	d->rsave = malloc(n * sizeof *d->rsave);
+	if (!d->x || !d->cnt || !d->gp || !d->xsave || !d->rsave) {
 		msg_seterr("out of memory");
-		goto out;
+		return -1;
 	}
-	memcpy(x, p->x, 3 * p->n * sizeof *x);
-	for (i = 0; i < p->n; i++)
-		r0sum += p->r[i];
+	memcpy(d->x, d->p->x, 3 * n * sizeof *d->x);
+	for (i = 0; i < n; i++)
+		d->r0sum += d->p->r[i];
 	/* Before the pack carries the onset stress there is no load to balance: judge forces
 	 * against what a contact carries at the onset, about onset x (2 r_mean)^2 (forces below
 	 * tol times that are balanced).  A floor 1e-3 times lower made unjammed rounds near
 	 * jamming converge to residual stresses of 1e-3 Pa, critically slowly (58k L-BFGS
 	 * iterations in one round of a 1e4-grain pack); the equilibria at and above the onset are
 	 * judged against their own forces as before. */
-	floor_loose = dp->onset * 4 * (r0sum / p->n) * (r0sum / p->n);
-	s.force_floor = floor_loose;
+	d->floor_loose = d->dp->onset * 4 * (d->r0sum / n) * (d->r0sum / n);
+	d->s.force_floor = d->floor_loose;
+	return 0;
+}
 
-#define RECORD(name, rnd)                                                        \
-	do {                                                                     \
-		double rs_ = 0;                                                  \
-		stage_measures(&s, x, cnt, &st);                                 \
-		for (i = 0; i < p->n; i++)                                       \
-			rs_ += p->r[i];                                          \
-		st.stage = name;                                                 \
-		st.round = rnd;                                                  \
-		st.growth = rs_ / r0sum - 1;                                     \
-		st.iterations = rep.iter;                                        \
-		st.res_max = rep.res_max;                                        \
-		st.res_mean = rep.res_mean;                                      \
-		st.min_status = rep.status;                                      \
-		/* below the onset the pack is not jammed: nothing to balance; */ \
-		/* rounds at grow_tol stop at grow_max_iter by design */          \
-		limit_hit |= rep.status == 1 && st.sigma_c >= dp->onset && full; \
-		if (fn)                                                          \
-			fn(&st, ctx);                                            \
-	} while (0)
+/* The end condition holds at grow_tol: the full equilibrium, in chunks of grow_max_iter
+ * iterations, stopping early if the pack relaxes below the onset (it only looked jammed: a
+ * 1e4-grain pack once spent 200k L-BFGS iterations relaxing from 1e4 to 6e3 Pa). */
+static int
+full_equilibrium(struct densify_state *d)
+{
+	const struct densify_params *dp = d->dp;
+	long it = d->rep.iter, left = dp->min.max_iter;
+	struct qs_min_params fm = dp->min;
 
-	if (qs_minimize(&s, x, &dp->min, &rep) < 0)
-		goto out;
-	RECORD("relax", 0);
-	for (round = 1;; round++) {
-		double de, sc;
-		size_t grown;
-
-		/* the reference box: where the stress reached the onset and stayed there (a pack
-		 * that relaxes below it was not jammed; a pack densified again keeps its own) */
-		if (st.sigma_c >= dp->onset && !have_ref) {
-			memcpy(p->refbox, p->box, sizeof p->refbox);
-			have_ref = 1;
-		} else if (st.sigma_c < dp->onset && !p->has_refbox)
-			have_ref = 0;
-		if (st.under4 == 0 && st.sigma_c >= dp->onset && full)
+	d->s.force_floor = 0;
+	for (;;) {
+		fm.max_iter = left < dp->grow_max_iter ? left : dp->grow_max_iter;
+		if (minimize_releasing(&d->s, d->x, NULL, dp, &fm, &d->rep) < 0)
+			return -1;
+		it += d->rep.iter;
+		left -= d->rep.iter;
+		if (d->rep.status != 1 || left <= 0 || wall_sigma_c(&d->s) < dp->onset)
 			break;
-		if (round > dp->max_rounds) {
-			msg_seterr("phase (a) did not finish in %ld rounds: %zu grains under %u contacts, sigma_c %g Pa",
-			    dp->max_rounds, st.under4, dp->min_coord, st.sigma_c);
-			goto out;
-		}
-		/* keep the state: a round that jumps from below the onset to far above it (the
-		 * pack jammed within one squeeze) is undone and redone with half the squeeze and
-		 * half the growth, so that the reference box lies near the onset */
-		memcpy(xsave, x, 3 * p->n * sizeof *x);
-		memcpy(rsave, p->r, p->n * sizeof *rsave);
-		memcpy(boxsave, p->box, sizeof boxsave);
-		grown = grow_grains(&s, x, cnt, dp, scale, gp);
-		de = st.sigma_c < dp->onset ? scale * dp->strain_step : 0;
-		if (grown == 0 && de == 0) {
-			/* under-coordinated grains that cannot grow (already touching): rattlers
-			 * of a stressed pack; squeeze the box a little to seat them */
-			de = 0.1 * scale * dp->strain_step;
-		}
-		{
-			double d3[3] = {de, de, de};
-			struct qs_min_params mp = dp->min;
-
-			/* Every round is minimised to grow_tol, jammed or not: it only decides which
-			 * grains grow next; the round that meets the end condition is then taken to
-			 * the full tolerance and judged again (below).  Just above jamming a full
-			 * minimisation slows critically (70k L-BFGS iterations in the jamming round
-			 * of a 1e4-grain pack, 44k more over the 8 rounds that seated its rattlers). */
-			mp.tol = fmax(mp.tol, dp->grow_tol);
-			if (mp.max_iter > dp->grow_max_iter)
-				mp.max_iter = dp->grow_max_iter;
-			s.force_floor = st.sigma_c < dp->onset ? floor_loose : 0;
-			if (minimize_releasing(&s, x, de > 0 ? d3 : zero, dp, &mp, &rep) < 0)
-				goto out;
-			full = mp.tol <= dp->min.tol;
-			sc = wall_sigma_c(&s);
-			if (st.sigma_c < dp->onset && sc > 10 * dp->onset && scale > 1.0 / 1024) {
-				memcpy(x, xsave, 3 * p->n * sizeof *x);
-				memcpy(p->r, rsave, p->n * sizeof *rsave);
-				memcpy(p->box, boxsave, sizeof boxsave);
-				qs_radii_changed(&s);
-				scale *= 0.5;
-				s.force_floor = floor_loose;
-				if (qs_minimize(&s, x, &mp, &rep) < 0)
-					goto out;
-				full = 0;
-				RECORD("retry", round);
-				continue;
-			}
-			if (sc >= dp->onset && !full) {
-				size_t under = 0;
-
-				qs_coordination(&s, x, cnt);
-				for (i = 0; i < s.n; i++)
-					under += cnt[i] < dp->min_coord;
-				if (under == 0) {
-					/* the end condition holds at grow_tol: the full equilibrium, in
-					 * chunks of grow_max_iter iterations, stopping early if the pack
-					 * relaxes below the onset (it only looked jammed: a 1e4-grain pack
-					 * once spent 200k L-BFGS iterations relaxing from 1e4 to 6e3 Pa) */
-					long it = rep.iter, left = dp->min.max_iter;
-					struct qs_min_params fm = dp->min;
-
-					s.force_floor = 0;
-					for (;;) {
-						fm.max_iter = left < dp->grow_max_iter ? left : dp->grow_max_iter;
-						if (minimize_releasing(&s, x, NULL, dp, &fm, &rep) < 0)
-							goto out;
-						it += rep.iter;
-						left -= rep.iter;
-						if (rep.status != 1 || left <= 0 || wall_sigma_c(&s) < dp->onset)
-							break;
-					}
-					rep.iter = it;
-					full = 1;
-				}
-			}
-		}
-		RECORD("grow", round);
 	}
-	if (!have_ref) {
+	d->rep.iter = it;
+	d->full = 1;
+	return 0;
+}
+
+/* Undo a round that jumped from below the onset to far above it (the pack jammed within one
+ * squeeze) and redo it with half the squeeze and half the growth, so that the reference box
+ * lies near the onset. */
+static int
+retry_round(struct densify_state *d, const struct qs_min_params *mp, long round)
+{
+	size_t n = d->p->n;
+
+	memcpy(d->x, d->xsave, 3 * n * sizeof *d->x);
+	memcpy(d->p->r, d->rsave, n * sizeof *d->rsave);
+	memcpy(d->p->box, d->boxsave, sizeof d->boxsave);
+	qs_radii_changed(&d->s);
+	d->scale *= 0.5;
+	d->s.force_floor = d->floor_loose;
+	if (qs_minimize(&d->s, d->x, mp, &d->rep) < 0)
+		return -1;
+	d->full = 0;
+	record(d, "retry", round);
+	return 0;
+}
+
+/* One round of phase (a): grow the grains short of contacts, squeeze the box while the pack
+ * is below the onset, minimise.  0, 1 when phase (a) is over, -1 on error. */
+static int
+phase_a_round(struct densify_state *d, long round)
+{
+	const struct densify_params *dp = d->dp;
+	struct pack *p = d->p;
+	double de, sc, d3[3], zero[3] = {0, 0, 0};
+	struct qs_min_params mp = dp->min;
+	size_t grown, i;
+
+	/* the reference box: where the stress reached the onset and stayed there (a pack that
+	 * relaxes below it was not jammed; a pack densified again keeps its own) */
+	if (d->st.sigma_c >= dp->onset && !d->have_ref) {
 		memcpy(p->refbox, p->box, sizeof p->refbox);
-		have_ref = 1;
+		d->have_ref = 1;
+	} else if (d->st.sigma_c < dp->onset && !p->has_refbox)
+		d->have_ref = 0;
+	if (d->st.under4 == 0 && d->st.sigma_c >= dp->onset && d->full)
+		return 1;
+	if (round > dp->max_rounds) {
+		msg_seterr("phase (a) did not finish in %ld rounds: %zu grains under %u contacts, sigma_c %g Pa",
+		    dp->max_rounds, d->st.under4, dp->min_coord, d->st.sigma_c);
+		return -1;
 	}
-	p->has_refbox = 1;
-	s.force_floor = 0;
-	/* compaction to the target: secant on y = sigma_c^(2/3) against the strain */
-	for (round = 1; fabs(st.sigma_c / dp->stress - 1) > dp->stress_tol || st.under4 > 0; round++) {
-		double y = pow(st.sigma_c, 2.0 / 3.0), yt = pow(dp->stress, 2.0 / 3.0), de, d3[3];
-		double eps[3];
+	/* keep the state, for retry_round */
+	memcpy(d->xsave, d->x, 3 * p->n * sizeof *d->x);
+	memcpy(d->rsave, p->r, p->n * sizeof *d->rsave);
+	memcpy(d->boxsave, p->box, sizeof d->boxsave);
+	grown = grow_grains(&d->s, d->x, d->cnt, dp, d->scale, d->gp);
+	de = d->st.sigma_c < dp->onset ? d->scale * dp->strain_step : 0;
+	if (grown == 0 && de == 0) {
+		/* under-coordinated grains that cannot grow (already touching): rattlers of a
+		 * stressed pack; squeeze the box a little to seat them */
+		de = 0.1 * d->scale * dp->strain_step;
+	}
+	d3[0] = d3[1] = d3[2] = de;
+	/* Every round is minimised to grow_tol, jammed or not: it only decides which grains grow
+	 * next; the round that meets the end condition is then taken to the full tolerance and
+	 * judged again (below).  Just above jamming a full minimisation slows critically (70k
+	 * L-BFGS iterations in the jamming round of a 1e4-grain pack, 44k more over the 8
+	 * rounds that seated its rattlers). */
+	mp.tol = fmax(mp.tol, dp->grow_tol);
+	if (mp.max_iter > dp->grow_max_iter)
+		mp.max_iter = dp->grow_max_iter;
+	d->s.force_floor = d->st.sigma_c < dp->onset ? d->floor_loose : 0;
+	if (minimize_releasing(&d->s, d->x, de > 0 ? d3 : zero, dp, &mp, &d->rep) < 0)
+		return -1;
+	d->full = mp.tol <= dp->min.tol;
+	sc = wall_sigma_c(&d->s);
+	if (d->st.sigma_c < dp->onset && sc > 10 * dp->onset && d->scale > 1.0 / 1024)
+		return retry_round(d, &mp, round);
+	if (sc >= dp->onset && !d->full) {
+		size_t under = 0;
 
-		if (round > dp->max_rounds) {
-			msg_seterr("compaction did not reach %g Pa in %ld steps (sigma_c %g Pa)", dp->stress,
-			    dp->max_rounds, st.sigma_c);
-			goto out;
-		}
-		load_strain(p->box, p->refbox, eps);
-		eps_now = (eps[0] + eps[1] + eps[2]) / 3;
-		if (!isnan(e_prev) && eps_now != e_prev && (y - y_prev) / (eps_now - e_prev) > 0)
-			de = (yt - y) / ((y - y_prev) / (eps_now - e_prev));
-		else if (eps_now > 1e-9 && y > pow(dp->onset, 2.0 / 3.0))
-			/* first step: the line through the onset at the reference box */
-			de = (yt - y) / ((y - pow(dp->onset, 2.0 / 3.0)) / eps_now);
-		else
-			de = (st.sigma_c < dp->stress ? 0.1 : -0.1) * dp->strain_step;
-		de = fmax(-dp->strain_step, fmin(dp->strain_step, de));
-		if (eps_now > 0 && de < -0.5 * eps_now)
-			de = -0.5 * eps_now;	/* never unload the pack back towards jamming */
-		e_prev = eps_now;
-		y_prev = y;
-		d3[0] = d3[1] = d3[2] = de;
-		/* compaction can leave a grain with fewer than min_coord contacts: grow it too */
-		if (st.under4 > 0)
-			grow_grains(&s, x, cnt, dp, 1.0, gp);
-		if (fabs(st.sigma_c / dp->stress - 1) <= dp->stress_tol)
-			d3[0] = d3[1] = d3[2] = 0;
-		if (minimize_releasing(&s, x, d3, dp, &dp->min, &rep) < 0)
-			goto out;
-		RECORD("compact", round);
+		qs_coordination(&d->s, d->x, d->cnt);
+		for (i = 0; i < d->s.n; i++)
+			under += d->cnt[i] < dp->min_coord;
+		if (under == 0 && full_equilibrium(d))
+			return -1;
 	}
-#undef RECORD
-	memcpy(p->x, x, 3 * p->n * sizeof *x);
+	record(d, "grow", round);
+	return 0;
+}
+
+/* One step of the compaction to the target: a secant on y = sigma_c^(2/3) against the
+ * strain from the reference box. */
+static int
+compaction_step(struct densify_state *d, long round, double *e_prev, double *y_prev)
+{
+	const struct densify_params *dp = d->dp;
+	struct pack *p = d->p;
+	double y = pow(d->st.sigma_c, 2.0 / 3.0), yt = pow(dp->stress, 2.0 / 3.0), de, d3[3], eps[3], eps_now;
+
+	if (round > dp->max_rounds) {
+		msg_seterr("compaction did not reach %g Pa in %ld steps (sigma_c %g Pa)", dp->stress, dp->max_rounds,
+		    d->st.sigma_c);
+		return -1;
+	}
+	load_strain(p->box, p->refbox, eps);
+	eps_now = (eps[0] + eps[1] + eps[2]) / 3;
+	if (!isnan(*e_prev) && eps_now != *e_prev && (y - *y_prev) / (eps_now - *e_prev) > 0)
+		de = (yt - y) / ((y - *y_prev) / (eps_now - *e_prev));
+	else if (eps_now > 1e-9 && y > pow(dp->onset, 2.0 / 3.0))
+		/* first step: the line through the onset at the reference box */
+		de = (yt - y) / ((y - pow(dp->onset, 2.0 / 3.0)) / eps_now);
+	else
+		de = (d->st.sigma_c < dp->stress ? 0.1 : -0.1) * dp->strain_step;
+	de = fmax(-dp->strain_step, fmin(dp->strain_step, de));
+	if (eps_now > 0 && de < -0.5 * eps_now)
+		de = -0.5 * eps_now;	/* never unload the pack back towards jamming */
+	*e_prev = eps_now;
+	*y_prev = y;
+	d3[0] = d3[1] = d3[2] = de;
+	/* compaction can leave a grain with fewer than min_coord contacts: grow it too */
+	if (d->st.under4 > 0)
+		grow_grains(&d->s, d->x, d->cnt, dp, 1.0, d->gp);
+	if (fabs(d->st.sigma_c / dp->stress - 1) <= dp->stress_tol)
+		d3[0] = d3[1] = d3[2] = 0;
+	if (minimize_releasing(&d->s, d->x, d3, dp, &dp->min, &d->rep) < 0)
+		return -1;
+	record(d, "compact", round);
+	return 0;
+}
+
+/* The dense pack: positions, contacts, and no sliding (a frictional pack densified again). */
+static int
+finish(struct densify_state *d)
+{
+	struct pack *p = d->p;
+
+	memcpy(p->x, d->x, 3 * p->n * sizeof *d->x);
 	if (contacts_store(p, 0))
-		goto out;
-	/* frictionless compaction: nothing slides (a frictional pack densified again) */
+		return -1;
 	if (pack_get_meta(p, "sliding_ratio") && pack_set_meta(p, "sliding_ratio", "0")) {
 		msg_seterr("out of memory");
-		goto out;
+		return -1;
 	}
-	status = limit_hit ? 1 : 0;
-	if (limit_hit)
-		msg_seterr("a minimisation stopped at its iteration limit (largest residual %.3g)", st.res_max);
+	return 0;
+}
+
+int
+densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx, struct densify_stage *last)
+{
+	struct densify_params dpl = *dp;
+	struct densify_state d;
+	double e_prev = NAN, y_prev = NAN;
+	long round;
+	int status = -1, r;
+
+	if (!(dpl.onset > 0))
+		dpl.onset = densify_onset_default(dpl.stress);
+	memset(&d, 0, sizeof d);
+	d.p = p;
+	d.dp = &dpl;
+	d.fn = fn;
+	d.ctx = ctx;
+	d.scale = 1;
+	d.have_ref = p->has_refbox;
+	d.full = 1;
+	if (state_alloc(&d) || qs_minimize(&d.s, d.x, &dpl.min, &d.rep) < 0)
+		goto out;
+	record(&d, "relax", 0);
+	for (round = 1; (r = phase_a_round(&d, round)) == 0; round++)
+		;
+	if (r < 0)
+		goto out;
+	if (!d.have_ref) {
+		memcpy(p->refbox, p->box, sizeof p->refbox);
+		d.have_ref = 1;
+	}
+	p->has_refbox = 1;
+	d.s.force_floor = 0;
+	for (round = 1; fabs(d.st.sigma_c / dpl.stress - 1) > dpl.stress_tol || d.st.under4 > 0; round++)
+		if (compaction_step(&d, round, &e_prev, &y_prev))
+			goto out;
+	if (finish(&d))
+		goto out;
+	status = d.limit_hit ? 1 : 0;
+	if (d.limit_hit)
+		msg_seterr("a minimisation stopped at its iteration limit (largest residual %.3g)", d.st.res_max);
 out:
 	if (last)
-		*last = st;
-	qs_free(&s);
-	free(x), free(cnt), free(gp), free(xsave), free(rsave);
+		*last = d.st;
+	qs_free(&d.s);
+	free(d.x), free(d.cnt), free(d.gp), free(d.xsave), free(d.rsave);
 	return status;
 }
 
