@@ -203,9 +203,9 @@ history packgen 0.1.0: packgen -n 3 ; --n=3
 # a comment is allowed in the header
 meta note three grains in a row
 units SI
-box 0 0 0 3e-4 2e-4 2e-4
+box 0 0 0 7e-4 2e-4 2e-4
 boundary periodic walls walls
-refbox 0 0 0 3e-4 2e-4 2e-4
+refbox 0 0 0 7e-4 2e-4 2e-4
 walls 7e12 0.495 0.3
 friction 0.3
 grains 3
@@ -242,8 +242,9 @@ boundary walls walls walls
 columns id x y z r E nu rho' good.pack >std2.pack
 packinfo std2.pack >std2.info 2>/dev/null
 expect_same v2-standard-is-v1 good.info std2.info
-# every axis periodic; the columns line early in the header
-sed '7s/.*/boundary periodic periodic periodic/;19,20d;12s/3/1/' good2.pack >allper.pack
+# every axis periodic (a periodic axis must hold three interaction distances, 2 r_max
+# each: the enumerator's cell grid); the columns line early in the header
+sed '6s/.*/box 0 0 0 7e-4 7e-4 7e-4/;8s/.*/refbox 0 0 0 7e-4 7e-4 7e-4/;7s/.*/boundary periodic periodic periodic/;19,20d;12s/3/1/' good2.pack >allper.pack
 expect_ok v2-all-periodic packinfo allper.pack
 sed '13d;4a\
 columns id x y z r E nu rho' good2.pack >colsfirst.pack
