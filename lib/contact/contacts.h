@@ -122,8 +122,10 @@ contact_wall(const struct contact_enum *e, const double *x, size_t i, int w, int
 	int a = w / 2;
 	double dist;
 
-	if (e->periodic[a])
+	if (e->periodic[a]) {
+		c->hist = NULL;
 		return 0;
+	}
 	dist = w % 2 ? e->hi[a] - x[3 * i + a] : x[3 * i + a] - e->lo[a];
 	c->i = i;
 	c->j = PACK_WALL(w);
@@ -152,6 +154,24 @@ contact_clear_history(const struct contact_enum *e, struct contact *c)
  * returns nonzero. */
 typedef int (*contact_fn)(const struct contact *c, void *ctx);
 
+/* One record of contact_foreach: the history of a pair apart is zeroed; fn is called on the
+ * records the mode visits.  0, or -1 when fn returned nonzero. */
+static inline int
+contact_visit(const struct contact_enum *e, struct contact *c, int visited, int mode, contact_fn fn, void *ctx,
+    long *calls)
+{
+	if (!visited || (mode == CONTACT_NEAR && c->h <= 0)) {
+		if (c->hist)
+			contact_clear_history(e, c);
+		if (!visited)
+			return 0;
+	}
+	if (fn(c, ctx))
+		return -1;
+	(*calls)++;
+	return 0;
+}
+
 static inline long
 contact_foreach(const struct contact_enum *e, const double *x, int mode, contact_fn fn, void *ctx)
 {
@@ -161,30 +181,12 @@ contact_foreach(const struct contact_enum *e, const double *x, int mode, contact
 	int w;
 
 	for (i = 0; i < e->n; i++) {
-		for (k = e->nl.first[i]; k < e->nl.first[i + 1]; k++) {
-			if (!contact_pair(e, x, i, k, mode, &c)) {
-				if (c.hist)
-					contact_clear_history(e, &c);
-				continue;
-			}
-			if (mode == CONTACT_NEAR && c.hist && c.h <= 0)
-				contact_clear_history(e, &c);
-			if (fn(&c, ctx))
+		for (k = e->nl.first[i]; k < e->nl.first[i + 1]; k++)
+			if (contact_visit(e, &c, contact_pair(e, x, i, k, mode, &c), mode, fn, ctx, &calls))
 				return -1;
-			calls++;
-		}
-		for (w = 0; w < NWALLS; w++) {
-			if (!contact_wall(e, x, i, w, mode, &c)) {
-				if (c.hist && !e->periodic[w / 2])
-					contact_clear_history(e, &c);
-				continue;
-			}
-			if (mode == CONTACT_NEAR && c.hist && c.h <= 0)
-				contact_clear_history(e, &c);
-			if (fn(&c, ctx))
+		for (w = 0; w < NWALLS; w++)
+			if (contact_visit(e, &c, contact_wall(e, x, i, w, mode, &c), mode, fn, ctx, &calls))
 				return -1;
-			calls++;
-		}
 	}
 	return calls;
 }
