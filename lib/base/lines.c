@@ -29,7 +29,7 @@ struct lines *
 lines_open(FILE *fp, const char *name)
 {
 	struct lines *in = calloc(1, sizeof *in);
-	int fd = -1;
+	int fd;
 
 	if (!in) {
 		msg_seterr("out of memory");
@@ -37,8 +37,12 @@ lines_open(FILE *fp, const char *name)
 	}
 	in->name = strdup(name);
 	in->chunk = malloc(CHUNK);
-	if (in->name && in->chunk)
-		fd = dup(fileno(fp));
+	if (!in->name || !in->chunk) {
+		msg_seterr("out of memory");
+		lines_close(in);
+		return NULL;
+	}
+	fd = dup(fileno(fp));
 	if (fd < 0 || !(in->gz = gzdopen(fd, "rb"))) {
 		msg_seterr("%s: cannot open for reading", name);
 		if (fd >= 0)

@@ -281,7 +281,7 @@ struct header {
 	long ngr, nco;
 	unsigned seen;	/* bit k: keywords[k] has been read */
 	int ncol, col[NCOLUMNS];
-	char colnames[256];	/* "id x y z r E nu rho", for messages */
+	char colnames[256];	/* the names, "id x y z r E nu rho", for messages */
 };
 
 /* Until a columns line says otherwise: the required columns (a version-1 pack). */
@@ -403,8 +403,12 @@ kw_columns(struct header *h, char **tok, int n)
 			    k, columns[c].name, h->colnames);
 		k++;
 	}
-	for (k = 1; k < n; k++)
+	h->colnames[0] = 0;
+	for (k = 1; k < n; k++) {
 		h->col[k - 1] = column_index(tok[k]);
+		snprintf(h->colnames + strlen(h->colnames), sizeof h->colnames - strlen(h->colnames), "%s%s",
+		    k > 1 ? " " : "", tok[k]);
+	}
 	h->ncol = n - 1;
 	return 0;
 }
