@@ -273,14 +273,14 @@ column_index(const char *name)
 /* ---- the header ---- */
 
 /* The header being read: the version, what it declares, which keywords it has had, and
- * the grain columns (col[k]: the row of columns[] of the k-th column of a grain line). */
+ * the grain columns. */
 struct header {
 	struct pack_reader *rd;
 	struct pack *p;
 	long version;
 	long ngr, nco;
 	unsigned seen;	/* bit k: keywords[k] has been read */
-	int ncol, col[NCOLUMNS];
+	int ncol;	/* fields of a grain line */
 	char colnames[256];	/* the names, "id x y z r E nu rho", for messages */
 };
 
@@ -294,7 +294,7 @@ standard_columns(struct header *h)
 	h->colnames[0] = 0;
 	for (k = 0; k < NCOLUMNS; k++)
 		if (columns[k].required) {
-			h->col[h->ncol++] = k;
+			h->ncol++;
 			snprintf(h->colnames + strlen(h->colnames), sizeof h->colnames - strlen(h->colnames),
 			    "%s%s", h->colnames[0] ? " " : "", columns[k].name);
 		}
@@ -404,11 +404,9 @@ kw_columns(struct header *h, char **tok, int n)
 		k++;
 	}
 	h->colnames[0] = 0;
-	for (k = 1; k < n; k++) {
-		h->col[k - 1] = column_index(tok[k]);
+	for (k = 1; k < n; k++)
 		snprintf(h->colnames + strlen(h->colnames), sizeof h->colnames - strlen(h->colnames), "%s%s",
 		    k > 1 ? " " : "", tok[k]);
-	}
 	h->ncol = n - 1;
 	return 0;
 }
