@@ -190,6 +190,33 @@ full_rows(struct contact_enum *e)
 	return 0;
 }
 
+/* The record of grain i and wall w at x; 1 when it is visited in mode (never on a periodic
+ * axis). */
+static int
+contact_wall(const struct contact_enum *e, const double *x, size_t i, int w, int mode, struct contact *c)
+{
+	int a = w / 2;
+	double dist;
+
+	if (e->periodic[a]) {
+		c->hist = NULL;
+		return 0;
+	}
+	dist = w % 2 ? e->hi[a] - x[3 * i + a] : x[3 * i + a] - e->lo[a];
+	c->i = i;
+	c->j = PACK_WALL(w);
+	c->ri = e->r[i];
+	c->rj = 0;
+	c->h = e->r[i] - dist;
+	c->hist = e->hsize ? e->hwall + (size_t)e->hsize * (NWALLS * i + (size_t)w) : NULL;
+	if (mode == CONTACT_TOUCHING && c->h <= 0)
+		return 0;
+	c->d = dist;
+	c->dx[0] = c->dx[1] = c->dx[2] = 0;
+	c->dx[a] = w % 2 ? -dist : dist;
+	return 1;
+}
+
 long
 contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mode, contact_fn fn, void *ctx)
 {

@@ -58,59 +58,11 @@ mindlin_tangent(const struct contact_law *law, const struct law_pair *lp, double
 	t->mmax = 3 * M_PI / 16 * a * mu * P;
 }
 
-/* The tangential spring xi (3 doubles of history): turned into the current tangent plane
- * with its length kept, advanced by the sliding velocity, its force clamped to the Coulomb
- * limit (the spring then set back to the force it carries). */
-static void
-dem_spring(double *xi, const double n[3], const double vt[3], double dt, double kt, double fmaxt, double ft[3])
-{
-	double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2], old, now, s;
-	int a;
-
-	old = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-	for (a = 0; a < 3; a++)
-		xi[a] -= xn * n[a];
-	now = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-	s = now > 0 ? old / now : 0;
-	for (a = 0; a < 3; a++) {
-		xi[a] = xi[a] * s + vt[a] * dt;
-		ft[a] = -kt * xi[a];
-	}
-	now = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
-	if (now > fmaxt && now > 0) {
-		s = fmaxt / now;
-		for (a = 0; a < 3; a++) {
-			ft[a] *= s;
-			xi[a] = -ft[a] / kt;
-		}
-	}
-}
-
-/* The DEM force for normal stiffness kn and elastic normal force fn0. */
-static double
-dem_damped(const struct contact_law *law, const struct law_dem_in *in, double kn, double fn0, double *hist,
-    double ft[3], double *fel)
-{
-	double vn = in->vr[0] * in->n[0] + in->vr[1] * in->n[1] + in->vr[2] * in->n[2], vt[3], fn;
-	int a;
-
-	*fel = fn0;
-	fn = fn0 - 2 * law->zeta * sqrt(in->meff * kn) * vn;
-	if (fn < 0)
-		fn = 0;
-	for (a = 0; a < 3; a++)
-		vt[a] = in->vr[a] - vn * in->n[a];
-	dem_spring(hist, in->n, vt, in->dt, law->kt_ratio * kn, in->mu * fn, ft);
-	return fn;
-}
-
 static double
 hertz_dem_force(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in, double *hist,
     double ft[3], double *fel)
 {
-	double kn = 2 * lp->Es * sqrt(lp->Rs * in->h);
-
-	return dem_damped(law, in, kn, kn * in->h * (2.0 / 3.0), hist, ft, fel);
+	return law_hertz_dem_force(law, lp, in, hist, ft, fel);
 }
 
 static double
@@ -147,7 +99,7 @@ linear_dem_force(const struct contact_law *law, const struct law_pair *lp, const
     double ft[3], double *fel)
 {
 	(void)lp;
-	return dem_damped(law, in, law->kn, law->kn * in->h, hist, ft, fel);
+	return law_dem_damped(law, in, law->kn, law->kn * in->h, hist, ft, fel);
 }
 
 /* kt_ratio 2(1-nu)/(2-nu) at nu = 0.2 (Mindlin stick over Hertz stiffness), zeta 0.3: the

@@ -19,6 +19,7 @@
 #ifndef QUSGM_LAW_H
 #define QUSGM_LAW_H
 
+#include <math.h>
 #include "pack/pack.h"
 
 struct law_pair {
@@ -60,6 +61,70 @@ struct contact_law {
 	double (*dem_force)(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in,
 	    double *hist, double ft[3], double *fel);
 };
+
+/* The DEM force pieces, inline so that the DEM's force loop, which uses Hertz-Mindlin by
+ * design, inlines them (through the law's pointer they cost a call per contact and step:
+ * packgen 20 % more instructions, measured with callgrind). */
+#if defined(__GNUC__)
+#define LAW_INLINE static inline __attribute__((always_inline))
+#else
+#define LAW_INLINE static inline
+#endif
+
+/* The tangential spring xi (3 doubles of history): turned into the current tangent plane
+ * with its length kept, advanced by the sliding velocity, its force clamped to the Coulomb
+ * limit (the spring then set back to the force it carries). */
+LAW_INLINE void
+law_dem_spring(double *xi, const double n[3], const double vt[3], double dt, double kt, double fmaxt, double ft[3])
+{
+	double xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2], old, now, s;
+	int a;
+
+	old = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+	for (a = 0; a < 3; a++)
+		xi[a] -= xn * n[a];
+	now = sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+	s = now > 0 ? old / now : 0;
+	for (a = 0; a < 3; a++) {
+		xi[a] = xi[a] * s + vt[a] * dt;
+		ft[a] = -kt * xi[a];
+	}
+	now = sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+	if (now > fmaxt && now > 0) {
+		s = fmaxt / now;
+		for (a = 0; a < 3; a++) {
+			ft[a] *= s;
+			xi[a] = -ft[a] / kt;
+		}
+	}
+}
+
+/* The DEM force for normal stiffness kn and elastic normal force fn0. */
+LAW_INLINE double
+law_dem_damped(const struct contact_law *law, const struct law_dem_in *in, double kn, double fn0, double *hist,
+    double ft[3], double *fel)
+{
+	double vn = in->vr[0] * in->n[0] + in->vr[1] * in->n[1] + in->vr[2] * in->n[2], vt[3], fn;
+	int a;
+
+	*fel = fn0;
+	fn = fn0 - 2 * law->zeta * sqrt(in->meff * kn) * vn;
+	if (fn < 0)
+		fn = 0;
+	for (a = 0; a < 3; a++)
+		vt[a] = in->vr[a] - vn * in->n[a];
+	law_dem_spring(hist, in->n, vt, in->dt, law->kt_ratio * kn, in->mu * fn, ft);
+	return fn;
+}
+
+LAW_INLINE double
+law_hertz_dem_force(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in, double *hist,
+    double ft[3], double *fel)
+{
+	double kn = 2 * lp->Es * sqrt(lp->Rs * in->h);
+
+	return law_dem_damped(law, in, kn, kn * in->h * (2.0 / 3.0), hist, ft, fel);
+}
 
 extern const struct contact_law contact_law_hertz_mindlin;
 extern const struct contact_law contact_law_linear;

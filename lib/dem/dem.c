@@ -13,7 +13,7 @@
 #define E_WALL 2.0			/* grain-wall E* over grain-grain E* for rigid walls */
 /* The contact law of the settling: Hertz-Mindlin's DEM force (law.h: tangential spring
  * 2(1-nu)/(2-nu) = 0.889 of the normal stiffness at nu = 0.2, viscous damping ratio 0.3),
- * with the scaled E* of dem.h. */
+ * with the scaled E* of dem.h, called inline (law_hertz_dem_force). */
 #define DEM_LAW (&contact_law_hertz_mindlin)
 
 struct dem {
@@ -163,7 +163,7 @@ sort_spatially(struct dem *d, size_t *perm)
 
 /* The force of one contact on i (and j), from the law's DEM force at the contact point's
  * relative velocity. */
-static int
+CONTACT_INLINE int
 on_force(const struct contact *c, void *vd)
 {
 	struct dem *d = vd;
@@ -195,7 +195,7 @@ on_force(const struct contact *c, void *vd)
 		for (a = 0; a < 3; a++)
 			in.vr[a] = d->v[3 * i + a] + ca[a];
 	}
-	fn = DEM_LAW->dem_force(DEM_LAW, &lp, &in, c->hist, ft, &fel);
+	fn = law_hertz_dem_force(DEM_LAW, &lp, &in, c->hist, ft, &fel);
 	if (wall)	/* the servo reads the elastic wall force */
 		d->wallf[PACK_WALL_INDEX(c->j)] += fel;
 	for (a = 0; a < 3; a++) {
