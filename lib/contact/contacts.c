@@ -281,16 +281,6 @@ contact_between(const struct pack *p, const double *x, size_t i, long j, struct 
 	c->h = p->r[i] + p->r[j] - c->d;
 }
 
-static int
-cmp_hist(const void *a, const void *b)
-{
-	const long *x = a, *y = b;
-
-	if (x[0] != y[0])
-		return x[0] < y[0] ? -1 : 1;
-	return x[1] < y[1] ? -1 : x[1] > y[1];
-}
-
 /* Attach history lines to geometric contacts by pair. */
 static int
 match_history(const struct pack *p, struct geo_contacts *gc)
@@ -300,36 +290,11 @@ match_history(const struct pack *p, struct geo_contacts *gc)
 
 	if (p->nc == 0)
 		return 0;
-	t = malloc(p->nc * 3 * sizeof *t);
-	if (!t) {
-		msg_seterr("out of memory");
+	t = pack_history_keys(p);
+	if (!t)
 		return -1;
-	}
-	for (k = 0; k < p->nc; k++) {
-		long i = (long)p->c[k].i, j = p->c[k].j;
-		if (j >= 0 && j < i) {
-			long s = i;
-			i = j;
-			j = s;
-		}
-		t[3 * k] = i;
-		t[3 * k + 1] = j;
-		t[3 * k + 2] = (long)k;
-	}
-	qsort(t, p->nc, 3 * sizeof *t, cmp_hist);
-	for (k = 0; k < gc->n; k++) {
-		size_t lo = 0, hi = p->nc;
-		long key[2] = {(long)gc->c[k].i, gc->c[k].j};
-		while (lo < hi) {
-			size_t mid = (lo + hi) / 2;
-			if (cmp_hist(t + 3 * mid, key) < 0)
-				lo = mid + 1;
-			else
-				hi = mid;
-		}
-		if (lo < p->nc && cmp_hist(t + 3 * lo, key) == 0)
-			gc->c[k].hist = t[3 * lo + 2];
-	}
+	for (k = 0; k < gc->n; k++)
+		gc->c[k].hist = pack_history_lookup(t, p->nc, gc->c[k].i, gc->c[k].j);
 	free(t);
 	return 0;
 }

@@ -199,3 +199,58 @@ pack_find_id(const struct pack *p, long id, size_t *sorted)
 	}
 	return lo < p->n && p->id[sorted[lo]] == id ? sorted[lo] : (size_t)-1;
 }
+
+static int
+cmp_key(const void *a, const void *b)
+{
+	const long *x = a, *y = b;
+
+	if (x[0] != y[0])
+		return x[0] < y[0] ? -1 : 1;
+	if (x[1] != y[1])
+		return x[1] < y[1] ? -1 : 1;
+	return x[2] < y[2] ? -1 : x[2] > y[2];
+}
+
+long *
+pack_history_keys(const struct pack *p)
+{
+	long *t = malloc((p->nc ? p->nc : 1) * 3 * sizeof *t);
+	size_t k;
+
+	if (!t) {
+		msg_seterr("out of memory");
+		return NULL;
+	}
+	for (k = 0; k < p->nc; k++) {
+		long a = (long)p->c[k].i, b = p->c[k].j;
+		/* walls sort after grains and never swap with a grain */
+		if (b >= 0 && b < a) {
+			long s = a;
+			a = b;
+			b = s;
+		}
+		t[3 * k] = a;
+		t[3 * k + 1] = b;
+		t[3 * k + 2] = (long)k;
+	}
+	if (p->nc > 1)
+		qsort(t, p->nc, 3 * sizeof *t, cmp_key);
+	return t;
+}
+
+long
+pack_history_lookup(const long *keys, size_t n, size_t i, long j)
+{
+	size_t lo = 0, hi = n;
+	long key[3] = {(long)i, j, -1};
+
+	while (lo < hi) {
+		size_t mid = (lo + hi) / 2;
+		if (cmp_key(keys + 3 * mid, key) < 0)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < n && keys[3 * lo] == key[0] && keys[3 * lo + 1] == key[1] ? keys[3 * lo + 2] : -1;
+}

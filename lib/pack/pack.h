@@ -94,6 +94,14 @@ int pack_reserve(struct pack *p, size_t n);
 size_t pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, double nu,
     double rho);
 int pack_add_contact(struct pack *p, const struct pack_contact *c);
+/* The history lines as sorted keys: three longs per line, (a, b, line) with a < b for a grain
+ * pair (either order in the file: 'i j' and 'j i' name one pair) and (grain, wall) for a wall,
+ * ascending in a, then b, then line.  For finding a pair's line and a pair named twice.
+ * NULL (msg_seterr) when out of memory; the caller frees. */
+long *pack_history_keys(const struct pack *p);
+/* The first line of pair (i, j) in keys (p->nc of them): i < j for grains, or j a wall; -1
+ * when the pack has none. */
+long pack_history_lookup(const long *keys, size_t n, size_t i, long j);
 int pack_add_history(struct pack *p, const char *line);
 int pack_set_meta(struct pack *p, const char *key, const char *value);
 const char *pack_get_meta(const struct pack *p, const char *key);

@@ -195,40 +195,14 @@ sort_by_id(const struct pack *p, size_t *dup)
 	return s;
 }
 
-static int
-cmp_pair(const void *a, const void *b)
-{
-	const long *x = a, *y = b;
-
-	if (x[0] != y[0])
-		return x[0] < y[0] ? -1 : 1;
-	if (x[1] != y[1])
-		return x[1] < y[1] ? -1 : 1;
-	return x[2] < y[2] ? -1 : x[2] > y[2];
-}
-
-/* Finds a contact pair listed twice; returns the later contact index or (size_t)-1. */
 static size_t
 find_duplicate_contact(const struct pack *p)
 {
-	long *t = malloc((p->nc ? p->nc : 1) * 3 * sizeof *t);
+	long *t = pack_history_keys(p);
 	size_t k, found = (size_t)-1;
 
 	if (!t)
 		return (size_t)-1;
-	for (k = 0; k < p->nc; k++) {
-		long a = (long)p->c[k].i, b = p->c[k].j;
-		/* walls sort after grains and never swap with a grain */
-		if (b >= 0 && b < a) {
-			long s = a;
-			a = b;
-			b = s;
-		}
-		t[3 * k] = a;
-		t[3 * k + 1] = b;
-		t[3 * k + 2] = (long)k;
-	}
-	qsort(t, p->nc, 3 * sizeof *t, cmp_pair);
 	for (k = 1; k < p->nc; k++)
 		if (t[3 * k] == t[3 * k - 3] && t[3 * k + 1] == t[3 * k - 2]) {
 			size_t later = (size_t)(t[3 * k + 2] > t[3 * k - 1] ? t[3 * k + 2] : t[3 * k - 1]);
