@@ -159,7 +159,7 @@ main(int argc, char **argv)
 	struct log_ctx lc = {NULL};
 	struct densify_stage last;
 	struct pack p;
-	char *hist, buf[40];
+	char buf[40];
 	int r;
 
 	msg_init(argv[0]);
@@ -177,10 +177,7 @@ main(int argc, char **argv)
 	check_stop(r, &logout, &last);
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
-	hist = cli_history_line(&tool, &st);
-	pack_add_history(&p, hist);
-	free(hist);
-	if (pack_write_path(&p, st.output))
+	if (pack_write_tool(&p, &tool, &st))
 		msg_die_err(EXIT_DATA);
 	if (o.log && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);

@@ -164,7 +164,6 @@ main(int argc, char **argv)
 	struct load_row last;
 	struct pack p;
 	const char *in;
-	char *hist;
 	size_t stale;
 	int r;
 
@@ -189,10 +188,7 @@ main(int argc, char **argv)
 	r = frictionalize_run(&p, &o.fp, on_row, &lc, &last);
 	cli_progress_end();
 	check_stop(r, &logout, &last);
-	hist = cli_history_line(&tool, &st);
-	pack_add_history(&p, hist);
-	free(hist);
-	if (pack_write_path(&p, st.output))
+	if (pack_write_tool(&p, &tool, &st))
 		msg_die_err(EXIT_DATA);
 	if (o.log && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);

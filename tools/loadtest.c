@@ -249,7 +249,6 @@ main(int argc, char **argv)
 	struct out_ctx oc = {&path, 0, 0, -1, 0};
 	struct pack p;
 	const char *in;
-	char *hist;
 	size_t stale;
 	int r;
 
@@ -265,10 +264,7 @@ main(int argc, char **argv)
 	set_friction(&p);
 	check_stop(run_test(&p, &path, in, &oc), &st);
 	if (st.output) {
-		hist = cli_history_line(&tool, &st);
-		pack_add_history(&p, hist);
-		free(hist);
-		if (pack_write_path(&p, st.output))
+		if (pack_write_tool(&p, &tool, &st))
 			msg_die_err(EXIT_DATA);
 	}
 	msg_info(1, "%ld rows", oc.rows);

@@ -148,7 +148,6 @@ main(int argc, char **argv)
 	struct cli_state st;
 	struct pack p;
 	gsl_rng *rng;
-	char *hist;
 
 	msg_init(argv[0]);
 	parse_args(argc, argv, &st);
@@ -161,10 +160,7 @@ main(int argc, char **argv)
 	p.mu = o.mu;
 	p.wall_mu = o.wall_mu;
 	pack_set_meta(&p, "material", o.mat.name);
-	hist = cli_history_line(&tool, &st);
-	pack_add_history(&p, hist);
-	free(hist);
-	if (pack_validate(&p) || pack_write_path(&p, st.output))
+	if (pack_validate(&p) || pack_write_tool(&p, &tool, &st))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	psd_free(&o.psd);

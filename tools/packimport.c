@@ -112,7 +112,6 @@ main(int argc, char **argv)
 	gsl_rng *rng;
 	const char *name;
 	double box[6], wall_E, wall_mu;
-	char *hist;
 	size_t i;
 	FILE *in;
 
@@ -137,13 +136,9 @@ main(int argc, char **argv)
 	p.wall_E = wall_E;
 	p.wall_nu = wall_nu;
 	p.wall_mu = wall_mu;
-	hist = cli_history_line(&tool, &st);
-	if (pack_add_history(&p, hist))
-		msg_die(EXIT_DATA, "out of memory");
-	free(hist);
 	if (pack_validate(&p))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
-	if (pack_write_path(&p, st.output))
+	if (pack_write_tool(&p, &tool, &st))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;

@@ -1048,3 +1048,19 @@ pack_validate(const struct pack *p)
 	}
 	return validate_boundary(p);
 }
+
+int
+pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cli_state *st)
+{
+	char *hist = cli_history_line(tool, st);
+	int r;
+
+	if (!hist || pack_add_history(p, hist)) {
+		free(hist);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	free(hist);
+	r = pack_write_path(p, st->output);
+	return r;
+}

@@ -9,6 +9,7 @@
 #define QUSGM_PACKIO_H
 
 #include <stdio.h>
+#include "base/cli.h"
 #include "pack/pack.h"
 
 struct pack_reader;
@@ -36,5 +37,10 @@ int pack_write_path(const struct pack *p, const char *path);
 /* Validation shared with tools that build packs (packgen, packimport): 0 if p obeys every
  * rule the reader enforces; otherwise fills the slot (without a line number). */
 int pack_validate(const struct pack *p);
+
+/* The last step of every tool that writes a pack: append the tool's history line (its
+ * command line and every option's value, cli_history_line) and write the pack to the
+ * output of st, atomically.  0, or -1 with msg_seterr. */
+int pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cli_state *st);
 
 #endif
