@@ -145,11 +145,10 @@ stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densi
 	st->coordination = sum / s->n;
 }
 
-/* A strain step de (NULL: none) and its equilibrium, up to mp->max_iter iterations in all,
- * in chunks of release_after iterations with the unbraced grains released between them (see
- * densify.h).  Returns as load_increment. */
+/* The restart form: each chunk of release_after iterations is a minimisation of its own,
+ * started afresh after the release. */
 static int
-minimize_releasing(struct qs_system *s, double *x, const double *de, const struct densify_params *dp,
+releasing_restart(struct qs_system *s, double *x, const double *de, const struct densify_params *dp,
     const struct qs_min_params *mp, struct qs_min_report *rep)
 {
 	struct qs_min_params cm = *mp;
@@ -176,6 +175,68 @@ minimize_releasing(struct qs_system *s, double *x, const double *de, const struc
 	rep->iter = it;
 	rep->evals = evals;
 	return st;
+}
+
+/* The keeping form: after the strain step's first chunk, one minimiser runs to the end and
+ * the grains are released between its iterations, every release_after of them; a release
+ * that moved grains re-evaluates at the new positions and keeps the method's memory
+ * (qs_minimizer_moved). */
+static int
+releasing_keep(struct qs_system *s, double *x, const double *de, const struct densify_params *dp,
+    const struct qs_min_params *mp, struct qs_min_report *rep)
+{
+	struct qs_min_params cm = *mp;
+	struct qs_minimizer *m;
+	long it = 0, evals = 0;
+	int st;
+
+	if (de) {
+		cm.max_iter = mp->max_iter > dp->release_after ? dp->release_after : mp->max_iter;
+		st = load_increment(s, x, de, dp->nsub, dp->k_inc, &cm, rep);
+		it = rep->iter, evals = rep->evals;
+		if (st != 1 || it >= mp->max_iter)
+			return st;
+		if (qs_release_unbraced(s, x) < 0)
+			return -1;
+	}
+	m = qs_minimizer_alloc(s, mp);
+	if (!m || qs_minimizer_set(m, x)) {
+		qs_minimizer_free(m);
+		return -1;
+	}
+	qs_minimizer_set_max_iter(m, mp->max_iter - it);
+	memset(rep, 0, sizeof *rep);
+	while ((st = qs_minimizer_test(m, rep)) == QS_MIN_CONTINUE) {
+		long moved;
+		if (qs_minimizer_iterate(m))
+			break;
+		if ((rep->iter + 1) % dp->release_after)
+			continue;
+		moved = qs_release_unbraced(s, x);
+		if (moved < 0 || (moved > 0 && qs_minimizer_moved(m)))
+			break;
+	}
+	if (st == QS_MIN_CONTINUE)
+		st = rep->status = -1;
+	else
+		st = rep->status;
+	qs_minimizer_free(m);
+	rep->iter += it;
+	rep->evals += evals;
+	return st;
+}
+
+/* A strain step de (NULL: none) and its equilibrium, up to mp->max_iter iterations in all,
+ * with the unbraced grains released every release_after iterations (see densify.h), the
+ * minimiser restarted after each release or keeping its memory (release_keep).  Returns as
+ * load_increment. */
+static int
+minimize_releasing(struct qs_system *s, double *x, const double *de, const struct densify_params *dp,
+    const struct qs_min_params *mp, struct qs_min_report *rep)
+{
+	if (dp->release_keep && dp->release_after > 0)
+		return releasing_keep(s, x, de, dp, mp, rep);
+	return releasing_restart(s, x, de, dp, mp, rep);
 }
 
 /* One densify run: the functional, the last minimisation's report, the last stage's

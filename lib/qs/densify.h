@@ -25,7 +25,14 @@
  * 1e5-grain pack's second compaction step stood at a largest residual near 1 after 99k
  * L-BFGS iterations, held by hundreds of grains with one contact left.  With a release every
  * 5000 iterations the 1e4-grain benchmark pack reached 4 MPa in 102 s against 206 s
- * (65947 iterations against 124451); every 2000, 168 s. */
+ * (65947 iterations against 124451); every 2000, 168 s.
+ *
+ * After a release the minimiser starts afresh (release_keep 0, the default).  Keeping its
+ * memory instead (release_keep 1: the L-BFGS pairs survive, qs_minimizer_moved) was measured
+ * slower on every pack tried, to 4 MPa: 2740 grains, seeds 1, 2, 3: 59034, 87201, 97623
+ * iterations against 50491, 59080, 50047; 1e4 grains (seed 1): 90192 iterations, 191 s,
+ * against 65947, 141 s.  The stored pairs describe the curvature before the release moved
+ * the grains, and the steps they shape afterwards are poor ones. */
 #ifndef QUSGM_DENSIFY_H
 #define QUSGM_DENSIFY_H
 
@@ -41,6 +48,7 @@ struct densify_params {
 	double grow_tol;	/* residual target of rounds that start below the onset */
 	long grow_max_iter;	/* iteration limit of those rounds */
 	long release_after;	/* minimiser iterations between releases of unbraced grains; 0: never */
+	int release_keep;	/* between releases, keep the minimiser's memory (1) or restart it (0) */
 	unsigned min_coord;
 	long max_rounds;
 	int nsub;		/* sub-increments per strain step */
