@@ -86,6 +86,9 @@ parse_row(struct lines *in, struct table *t, char *p)
 	char *end;
 	int k;
 
+	/* No columns: nothing to store a row in (and a realloc to size 0 would free t->v). */
+	if (t->ncol == 0)
+		return lines_error(in, "a row under a header with no columns");
 	if (t->nrow == t->cap) {
 		size_t cap = t->cap ? 2 * t->cap : 256;
 		double *v = realloc(t->v, cap * t->ncol * sizeof *v);

@@ -175,6 +175,10 @@ tail -n +2 synth.tsv >nohdr.tsv
 expect_fail "no header" 1 '^moduli: nohdr\.tsv:1: ' nohdr.tsv
 printf '%s' "$(cat synth.tsv)" >nonl.tsv
 expect_fail "last line without newline" 1 '^moduli: nonl\.tsv:14: ' nonl.tsv
+# a header with no columns ('# ') and rows under it: refused at the first row (257 empty rows
+# used to grow the row store to size 0 and abort with a double free)
+{ printf '# \n'; awk 'BEGIN { for (i = 0; i < 300; i++) print "" }'; } >nocols.tsv
+expect_fail "rows under a header with no columns" 1 '^moduli: nocols\.tsv:2: a row under a header with no columns$' nocols.tsv
 expect_fail "--emt without porosity column" 1 '^moduli: synth\.tsv: --emt needs the porosity' --emt glass synth.tsv
 expect_fail "missing input file" 1 '^moduli: .*no-such\.tsv' no-such.tsv
 expect_fail "--window 0" 2 '^moduli: --window' --window 0 synth.tsv

@@ -365,6 +365,18 @@ test_table_read(void)
 	    "table_read: a CRLF line is %s", rc ? msg_geterr() : "read as 1, 2");
 	if (rc == 0)
 		table_free(&t);
+	/* a header with no columns: its rows are refused (300 empty rows once aborted on a double free) */
+	{
+		char text[3 + 300 + 1];
+		memset(text, '\n', sizeof text - 1);
+		memcpy(text, "# \n", 3);
+		text[sizeof text - 1] = '\0';
+		rc = read_text(text, &t);
+		CHECK(rc == -1 && err_is(2, "a row under a header with no columns"), "table_read: 300 empty rows under '# ': '%s'",
+		    msg_geterr());
+	}
+	rc = read_text("# \n1\n", &t);
+	CHECK(rc == -1 && err_is(2, "a row under a header with no columns"), "table_read: a row under '# ': '%s'", msg_geterr());
 	rc = read_text("## only metadata\n", &t);
 	CHECK(rc == -1 && strcmp(msg_geterr(), "t.tsv: empty (no header line)") == 0, "table_read: no header: '%s'", msg_geterr());
 	/* a failed read leaves an empty table (table_free is safe on it) */
