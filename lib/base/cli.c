@@ -198,8 +198,8 @@ shell_quote_argv(int argc, char **argv)
 			if (*c == '\'') {
 				memcpy(p, "'\\''", 4);
 				p += 4;
-			} else if (*c == '\n') {
-				*p++ = ' ';	/* history is one line */
+			} else if (*c == '\n' || *c == '\r') {
+				*p++ = ' ';	/* history is one line, read back as written */
 			} else {
 				*p++ = *c;
 			}
@@ -336,7 +336,7 @@ cli_resolved(const struct cli_tool *t)
 char *
 cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 {
-	char *res = cli_resolved(t), *s;
+	char *res = cli_resolved(t), *s, *c;
 	size_t len = strlen(t->name) + strlen(st->argv_text) + strlen(res) + 64;
 
 	s = malloc(len);
@@ -344,6 +344,10 @@ cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 		msg_die(EXIT_DATA, "out of memory");
 	snprintf(s, len, "%s %s: %s ; %s", t->name, QUSGM_VERSION, st->argv_text, res);
 	free(res);
+	/* one line, without a carriage return, that a pack reader gives back byte for byte */
+	for (c = s; *c; c++)
+		if (*c == '\n' || *c == '\r')
+			*c = ' ';
 	return s;
 }
 

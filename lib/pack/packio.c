@@ -94,6 +94,11 @@ next_line(struct pack_reader *rd, char **s)
 
 	if (r < 0)
 		rd->failed = 1;
+	/* The line reader drops one \r before the \n; any other would be kept in a history or
+	 * meta text and written back before the \n, where the next read drops it: refused, so
+	 * that what is read is what is written back. */
+	if (r == 1 && strchr(*s, '\r'))
+		return rd_error(rd, "a carriage return (\\r) inside a line (only one, just before the newline, is allowed)");
 	return r;
 }
 

@@ -117,6 +117,11 @@ bad trailing-empty-line 19 'unexpected line after the last contact' '$a\
 bad second-pack-bad 19 'newer' '$a\
 qusgm-pack 3'
 bad nul-byte 14 'NUL' '14s/2420/24\x0020/'
+# a \r other than the one before the \n (a history line ending in CR CR LF once kept one \r,
+# wrote it back and lost it on the next read)
+bad history-cr-cr-lf 2 'a carriage return \(\\r\) inside a line' '2s/$/\r\r/'
+bad meta-cr-inside 4 'carriage return' '4s/three/three\r/'
+bad grain-cr-cr-lf 14 'carriage return' '14s/$/\r\r/'
 
 # --- truncated gzip, empty input ---
 gzip -c good.pack >good.pack.gz

@@ -19,6 +19,18 @@ else
 	fail "ids 1..N in file order" "$(awk 'f { printf "%s ", $1 } $1 == "end" { f = 1 }' a.pack)"
 fi
 packexport --xyzr a.pack >back.xyzr
+# an argument with a carriage return (here the file name): the history line gets a space for
+# it, so the pack reads back and a second tool writes the history back byte for byte
+crname=$(printf 'in\r.xyzr')
+cp in.xyzr "$crname"
+expect_ok "import a file whose name has a \\r" packimport -o cr.pack "$crname"
+if ! grep -q "$(printf '\r')" cr.pack && grep -q "^history packimport .* 'in .xyzr'" cr.pack; then
+	pass "the history line has a space for the \\r"
+else
+	fail "the history line has a space for the \\r" "$(grep '^history' cr.pack | od -c | head -3)"
+fi
+packexport --xyzr cr.pack >/dev/null 2>cr.err && pass "the pack with that history reads back" ||
+    fail "the pack with that history reads back" "$(cat cr.err)"
 expect_same "xyzr -> packimport -> packexport --xyzr is exact" back.xyzr in.xyzr
 if grep -q '^history packimport .*--seed=1 .*--wall-E=7000000000000 ' a.pack; then
 	pass "history line with resolved options"

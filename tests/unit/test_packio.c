@@ -441,6 +441,50 @@ two_in_a_stream(const char *path)
 	pack_free(&p);
 }
 
+/* Carriage returns: a CRLF pack reads and writes back without them, and written, read and
+ * written again is the same bytes; a history line ending in CR CR LF is refused at its line
+ * (once read as "text\r" and written back with the \r, which the next read dropped). */
+static const char cr_pack[] = "qusgm-pack 1\r\n"
+			      "history packgen 0.1.0: packgen -n 1 ; --n=1%s\r\n"
+			      "units SI\r\n"
+			      "box 0 0 0 1 1 1\r\n"
+			      "walls 7e12 0.3 0.3\r\n"
+			      "friction 0.3\r\n"
+			      "grains 1\r\n"
+			      "contacts 0\r\n"
+			      "end\r\n"
+			      "1 0.5 0.5 0.5 0.1 7e10 0.2 2420\r\n";
+
+static void
+carriage_returns(const char *dir)
+{
+	char in[160], a[160], b[160];
+	struct pack p, q;
+	FILE *fp;
+
+	snprintf(in, sizeof in, "%s/cr.pack", dir);
+	snprintf(a, sizeof a, "%s/cr-a.pack", dir);
+	snprintf(b, sizeof b, "%s/cr-b.pack", dir);
+	fp = fopen(in, "wb");
+	fprintf(fp, cr_pack, "");
+	fclose(fp);
+	CHECK(pack_read_path(in, &p) == 0, "a CRLF pack reads (%s)", msg_geterr());
+	CHECK(pack_write_path(&p, a) == 0 && pack_read_path(a, &q) == 0 && pack_write_path(&q, b) == 0 && same_file(a, b, 0),
+	    "a CRLF pack: written, read and written again, the same bytes");
+	CHECK(p.nhist == 1 && strcmp(p.history[0], "packgen 0.1.0: packgen -n 1 ; --n=1") == 0,
+	    "a CRLF pack: the history text without its \\r");
+	pack_free(&p);
+	pack_free(&q);
+	fp = fopen(in, "wb");
+	fprintf(fp, cr_pack, "\r");
+	fclose(fp);
+	CHECK(pack_read_path(in, &p) != 0 && strstr(msg_geterr(), "cr.pack:2: a carriage return"),
+	    "a history line ending in CR CR LF is refused at line 2 (%s)", msg_geterr());
+	unlink(in);
+	unlink(a);
+	unlink(b);
+}
+
 int
 main(void)
 {
@@ -466,6 +510,7 @@ main(void)
 	}
 	two_in_a_stream(b);
 	format_2(dir);
+	carriage_returns(dir);
 	unlink(a);
 	unlink(b);
 	rmdir(dir);
