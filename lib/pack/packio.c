@@ -97,6 +97,10 @@ next_line(struct pack_reader *rd, char **s)
 	/* The line reader drops one \r before the \n; any other would be kept in a history or
 	 * meta text and written back before the \n, where the next read drops it: refused, so
 	 * that what is read is what is written back. */
+	/* A plain pack cut inside its last field would still parse (2420 cut to 24): the
+	 * writer ends every line with \n, so a last line without one is a truncated file. */
+	if (r == 1 && !lines_newline(rd->in))
+		return rd_error(rd, "truncated: the last line has no newline");
 	if (r == 1 && strchr(*s, '\r'))
 		return rd_error(rd, "a carriage return (\\r) inside a line (only one, just before the newline, is allowed)");
 	return r;

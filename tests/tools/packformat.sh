@@ -123,6 +123,16 @@ bad history-cr-cr-lf 2 'a carriage return \(\\r\) inside a line' '2s/$/\r\r/'
 bad meta-cr-inside 4 'carriage return' '4s/three/three\r/'
 bad grain-cr-cr-lf 14 'carriage return' '14s/$/\r\r/'
 
+# --- a plain pack cut without its final newline (once read: the last rho 2420 became 24) ---
+sed '11s/3/0/;16,$d' good.pack >nocontacts.pack
+printf '%s' "$(sed '$s/2420$/24/' nocontacts.pack)" >cut-last-field.pack
+expect_error cut-last-field 1 '^packinfo: cut-last-field\.pack:15: truncated: the last line has no newline$' packinfo cut-last-field.pack
+printf '%s' "$(cat good.pack)" >no-final-newline.pack
+expect_error no-final-newline 1 '^packinfo: no-final-newline\.pack:18: truncated: the last line has no newline$' \
+    packinfo no-final-newline.pack
+printf '%s' "$(cat good.pack)" | gzip -c >no-final-newline.pack.gz
+expect_error no-final-newline-gz 1 '^packinfo: no-final-newline\.pack\.gz:18: truncated' packinfo no-final-newline.pack.gz
+
 # --- truncated gzip, empty input ---
 gzip -c good.pack >good.pack.gz
 size=$(wc -c <good.pack.gz)
