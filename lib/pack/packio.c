@@ -566,8 +566,6 @@ read_grains(const struct header *h, size_t **sorted)
 	size_t dup;
 	char *s;
 
-	if (pack_reserve(p, (size_t)h->ngr))
-		return rd_error(rd, "out of memory for %ld grains", h->ngr);
 	for (k = 0; k < h->ngr; k++) {
 		int r = next_line(rd, &s);
 
@@ -576,6 +574,15 @@ read_grains(const struct header *h, size_t **sorted)
 		if (r == 0)
 			return rd_error_at(rd, line_after_last(rd),
 			    "unexpected end of input: %ld grains declared, %ld found", h->ngr, k);
+		/* room grows with the lines read, doubling up to the declared count: a header
+		 * that declares 10^9 grains over one grain line costs no 64 GB before the end */
+		if (p->n == p->cap) {
+			size_t want = p->cap ? 2 * p->cap : 1024;
+			if (want > (size_t)h->ngr)
+				want = (size_t)h->ngr;
+			if (pack_reserve(p, want))
+				return rd_error(rd, "out of memory for %ld grains", h->ngr);
+		}
 		if (read_grain_line(h, s))
 			return -1;
 	}

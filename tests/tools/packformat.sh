@@ -133,6 +133,15 @@ expect_error no-final-newline 1 '^packinfo: no-final-newline\.pack:18: truncated
 printf '%s' "$(cat good.pack)" | gzip -c >no-final-newline.pack.gz
 expect_error no-final-newline-gz 1 '^packinfo: no-final-newline\.pack\.gz:18: truncated' packinfo no-final-newline.pack.gz
 
+# --- a huge declared count over one grain line: the plain end-of-input error, fast, and no
+# room reserved for 10^9 grains (64 GB, refused under a 1 GB address-space limit) ---
+# (a sanitizer build cannot start under that limit: there the message alone is checked)
+sed '10s/3/1000000000/;11s/3/0/;14,$d' good.pack >huge-count.pack
+vlimit='ulimit -v 1000000 &&'
+ldd "$BIN/packinfo" 2>/dev/null | grep -q 'libasan\|libtsan' && vlimit=
+expect_error huge-grain-count 1 '^packinfo: huge-count\.pack:14: unexpected end of input: 1000000000 grains declared, 1 found$' \
+    sh -c "$vlimit exec packinfo huge-count.pack"
+
 # --- truncated gzip, empty input ---
 gzip -c good.pack >good.pack.gz
 size=$(wc -c <good.pack.gz)
