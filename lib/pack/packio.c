@@ -222,6 +222,54 @@ find_duplicate_contact(const struct pack *p)
 	return found;
 }
 
+static const double *sort_centre_x;
+
+static int
+cmp_by_centre(const void *a, const void *b)
+{
+	size_t i = *(const size_t *)a, j = *(const size_t *)b;
+	const double *u = sort_centre_x + 3 * i, *v = sort_centre_x + 3 * j;
+	int k;
+
+	for (k = 0; k < 3; k++)
+		if (u[k] != v[k])
+			return u[k] < v[k] ? -1 : 1;
+	return i < j ? -1 : i > j;
+}
+
+/* Two grains at the same centre have no direction between them: the contact code sees no
+ * overlap and no contact (packinfo said overlap_max 0).  0 when every centre is distinct;
+ * -1 when two are equal, with *first and *later the two earliest such grains (by the
+ * later one's index); -2 when out of memory. */
+static int
+find_same_centre(const struct pack *p, size_t *first, size_t *later)
+{
+	size_t *s = malloc((p->n ? p->n : 1) * sizeof *s), k, g = 0;
+	int found = 0;
+
+	if (!s)
+		return -2;
+	for (k = 0; k < p->n; k++)
+		s[k] = k;
+	sort_centre_x = p->x;
+	qsort(s, p->n, sizeof *s, cmp_by_centre);
+	for (k = 1; k < p->n; k++) {
+		if (p->x[3 * s[k]] == p->x[3 * s[g]] && p->x[3 * s[k] + 1] == p->x[3 * s[g] + 1] &&
+		    p->x[3 * s[k] + 2] == p->x[3 * s[g] + 2]) {
+			/* s[g] is the earliest of its group, s[g + 1] the next */
+			if (k == g + 1 && (!found || s[k] < *later)) {
+				*first = s[g];
+				*later = s[k];
+				found = 1;
+			}
+		} else {
+			g = k;
+		}
+	}
+	free(s);
+	return found ? -1 : 0;
+}
+
 /* ---- the grain columns ---- */
 
 /* The grain columns a pack may have, in the order writers put them.  The required ones are
@@ -563,7 +611,7 @@ read_grains(const struct header *h, size_t **sorted)
 	struct pack_reader *rd = h->rd;
 	struct pack *p = h->p;
 	long k, first = lines_lineno(rd->in) + 1;
-	size_t dup;
+	size_t dup, a, b;
 	char *s;
 
 	for (k = 0; k < h->ngr; k++) {
@@ -591,6 +639,12 @@ read_grains(const struct header *h, size_t **sorted)
 		return rd_error(rd, "out of memory");
 	if (dup != (size_t)-1)
 		return rd_error_at(rd, first + (long)dup, "duplicate grain id %ld", p->id[dup]);
+	switch (find_same_centre(p, &a, &b)) {
+	case -2:
+		return rd_error(rd, "out of memory");
+	case -1:
+		return rd_error_at(rd, first + (long)b, "grains %ld and %ld have the same centre", p->id[a], p->id[b]);
+	}
 	return 0;
 }
 
@@ -1060,6 +1114,14 @@ pack_validate(const struct pack *p)
 	free(s);
 	if (dup != (size_t)-1) {
 		msg_seterr("duplicate grain id %ld", p->id[dup]);
+		return -1;
+	}
+	switch (find_same_centre(p, &k, &dup)) {
+	case -2:
+		msg_seterr("out of memory");
+		return -1;
+	case -1:
+		msg_seterr("grains %ld and %ld have the same centre", p->id[k], p->id[dup]);
 		return -1;
 	}
 	return validate_boundary(p);

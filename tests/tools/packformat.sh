@@ -91,6 +91,13 @@ bad density-zero 14 'density 0 is not positive' '14s/2420$/0/'
 bad density-negative 14 'density' '14s/2420$/-2420/'
 bad centre-outside 14 'centre x = 0.0004 is outside the box' '14s/^2 2e-4/2 4e-4/'
 bad centre-below 15 'centre z' '15s/ 1.5e-4 2e-5/ -1e-6 2e-5/'
+# two grains at one centre: no direction between them, so packinfo once said overlap_max 0
+# and no contact between them; refused at the later line, for every tool that reads a pack
+bad same-centre 15 'grains 1 and 3 have the same centre$' '15s/^3 1.5e-4 1.5e-4 1.5e-4/3 1e-4 1e-4 1e-4/'
+bad same-centre-first-pair 14 'grains 1 and 2 have the same centre$' '14s/^2 2e-4/2 1e-4/;15s/^3 1.5e-4 1.5e-4 1.5e-4/3 1e-4 1e-4 1e-4/'
+for t in densify frictionalize loadtest; do
+	expect_error "same-centre-$t" 1 "^$t: same-centre\\.pack:15: grains 1 and 3 have the same centre$" $t same-centre.pack
+done
 # the later line of the two is named
 bad duplicate-id 15 'duplicate grain id 1' '15s/^3 /1 /;16,18d;11s/3/0/'
 

@@ -19,6 +19,9 @@ else
 	fail "ids 1..N in file order" "$(awk 'f { printf "%s ", $1 } $1 == "end" { f = 1 }' a.pack)"
 fi
 packexport --xyzr a.pack >back.xyzr
+# two points at one centre: refused, as the pack reader would refuse the pack
+printf '1e-4 1e-4 1e-4 1e-4\n2e-4 1e-4 1e-4 1e-4\n1e-4 1e-4 1e-4 2e-5\n' >same.xyzr
+expect_error "two points at one centre" 1 '^packimport: same\.xyzr: grains 1 and 3 have the same centre$' packimport --fit-box same.xyzr
 # an argument with a carriage return (here the file name): the history line gets a space for
 # it, so the pack reads back and a second tool writes the history back byte for byte
 crname=$(printf 'in\r.xyzr')
