@@ -468,7 +468,10 @@ carriage_returns(const char *dir)
 	fp = fopen(in, "wb");
 	fprintf(fp, cr_pack, "");
 	fclose(fp);
-	CHECK(pack_read_path(in, &p) == 0, "a CRLF pack reads (%s)", msg_geterr());
+	{
+		int rc = pack_read_path(in, &p);
+		CHECK(rc == 0, "a CRLF pack reads%s%s", rc ? ": " : "", rc ? msg_geterr() : "");
+	}
 	CHECK(pack_write_path(&p, a) == 0 && pack_read_path(a, &q) == 0 && pack_write_path(&q, b) == 0 && same_file(a, b, 0),
 	    "a CRLF pack: written, read and written again, the same bytes");
 	CHECK(p.nhist == 1 && strcmp(p.history[0], "packgen 0.1.0: packgen -n 1 ; --n=1") == 0,
