@@ -1,6 +1,6 @@
-# layering: lib/'s include graph keeps its layers (tests/layers.sh, share/doc/architecture.md).
-# The checker runs on the tree, then on copies with one forbidden include and one include
-# circle added on purpose, which it must reject.
+# layering: lib/'s include graph keeps its layers (tests/layers.sh, share/doc/library.md).
+# The checker runs on the tree, then on copies with one fault added on purpose (a forbidden
+# include, a circle, an include without its layer), each of which it must reject.
 . "$TOP/tests/tools/lib.sh"
 
 if sh "$TOP/tests/layers.sh" "$TOP" >layers.out 2>&1; then
@@ -9,42 +9,32 @@ else
 	fail "the include graph of lib/ and tools/ keeps the layers" "$(head -c 600 layers.out)"
 fi
 
-mkdir -p copy
-cp -R "$TOP/lib" "$TOP/tools" copy/
-# contact must not include qs
-printf '#include "qs/functional.h"\n' >>copy/lib/contact/cell.c
-if sh "$TOP/tests/layers.sh" copy >bad.out 2>&1; then
-	fail "a contact file including qs/functional.h is rejected" "the checker accepted it"
-elif grep -q 'lib/contact/cell.c: layer contact must not include qs/functional.h' bad.out; then
-	pass "a contact file including qs/functional.h is rejected"
-else
-	fail "a contact file including qs/functional.h is rejected" "$(head -c 300 bad.out)"
-fi
-rm -rf copy && mkdir -p copy && cp -R "$TOP/lib" "$TOP/tools" copy/
-# qs and dem are peers
-printf '#include "dem/dem.h"\n' >>copy/lib/qs/densify.c
-if sh "$TOP/tests/layers.sh" copy >bad.out 2>&1; then
-	fail "qs including dem is rejected" "the checker accepted it"
-else
-	pass "qs including dem is rejected"
-fi
-rm -rf copy && mkdir -p copy && cp -R "$TOP/lib" "$TOP/tools" copy/
-# a circle inside one layer: two base modules that include each other
-printf '#include "base/numfmt.h"\n' >>copy/lib/base/msg.c
-printf '#include "base/msg.h"\n' >>copy/lib/base/numfmt.c
-if sh "$TOP/tests/layers.sh" copy >bad.out 2>&1; then
-	fail "an include circle inside a layer is rejected" "the checker accepted it"
-elif grep -q 'include circle' bad.out; then
-	pass "an include circle inside a layer is rejected"
-else
-	fail "an include circle inside a layer is rejected" "$(head -c 300 bad.out)"
-fi
-rm -rf copy && mkdir -p copy && cp -R "$TOP/lib" "$TOP/tools" copy/
-# an include that does not name its layer
-printf '#include "msg.h"\n' >>copy/tools/moduli.c
-if sh "$TOP/tests/layers.sh" copy >bad.out 2>&1; then
-	fail "an include without its layer is rejected" "the checker accepted it"
-else
-	pass "an include without its layer is rejected"
-fi
-rm -rf copy
+# rejected NAME REGEX FILE LINE [FILE LINE]: a fresh copy of lib/ and tools/ with each LINE
+# appended to its FILE must fail the checker with a report matching REGEX.
+rejected() {
+	n=$1 re=$2
+	shift 2
+	rm -rf copy && mkdir -p copy && cp -R "$TOP/lib" "$TOP/tools" copy/
+	while [ $# -ge 2 ]; do
+		printf '%s\n' "$2" >>"copy/$1"
+		shift 2
+	done
+	if sh "$TOP/tests/layers.sh" copy >bad.out 2>&1; then
+		fail "$n" "the checker accepted it"
+	elif grep -Eq -- "$re" bad.out; then
+		pass "$n"
+	else
+		fail "$n" "$(head -c 300 bad.out)"
+	fi
+	rm -rf copy
+}
+
+rejected "a contact file including qs/functional.h is rejected" \
+	'lib/contact/cell.c: layer contact must not include qs/functional.h' \
+	lib/contact/cell.c '#include "qs/functional.h"'
+rejected "qs including dem is rejected" 'layer qs must not include dem/dem.h' \
+	lib/qs/densify.c '#include "dem/dem.h"'
+rejected "an include circle inside a layer is rejected" 'include circle' \
+	lib/base/msg.c '#include "base/numfmt.h"' lib/base/numfmt.c '#include "base/msg.h"'
+rejected "an include without its layer is rejected" 'is not a lib header named by its layer' \
+	tools/moduli.c '#include "msg.h"'
