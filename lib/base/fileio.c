@@ -65,6 +65,26 @@ remove_tmp_at_exit(void)
 	remove_all_tmp();
 }
 
+/* Catch sig to remove the temporaries, unless it was ignored at start: under nohup SIGHUP is
+ * ignored, and a non-interactive shell starts `cmd &` with SIGINT ignored; those stay ignored
+ * (the tool keeps running, as the caller asked). */
+static void
+catch_unless_ignored(int sig)
+{
+	struct sigaction old, sa;
+
+	if (sigaction(sig, NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+		return;
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = remove_tmp_on_signal;
+	sigemptyset(&sa.sa_mask);
+	sigaddset(&sa.sa_mask, SIGINT);
+	sigaddset(&sa.sa_mask, SIGTERM);
+	sigaddset(&sa.sa_mask, SIGHUP);
+	sigaddset(&sa.sa_mask, SIGPIPE);
+	sigaction(sig, &sa, NULL);
+}
+
 static void
 hook_cleanup(void)
 {
@@ -73,10 +93,10 @@ hook_cleanup(void)
 	if (hooked)
 		return;
 	atexit(remove_tmp_at_exit);
-	signal(SIGINT, remove_tmp_on_signal);
-	signal(SIGTERM, remove_tmp_on_signal);
-	signal(SIGHUP, remove_tmp_on_signal);
-	signal(SIGPIPE, remove_tmp_on_signal);
+	catch_unless_ignored(SIGINT);
+	catch_unless_ignored(SIGTERM);
+	catch_unless_ignored(SIGHUP);
+	catch_unless_ignored(SIGPIPE);
 	hooked = 1;
 }
 
@@ -209,7 +229,9 @@ file_out_open(struct file_out *o, const char *path)
 }
 
 /* Compress the finished temporary file of an output named *.gz: the outputs are written as
- * text and gzipped whole at the commit, so that the rename stays the one atomic step. */
+ * text and gzipped whole at the commit, so that the rename stays the one atomic step.  The
+ * compressed temporary TMP.z is remembered before it is created, so that a signal or an
+ * exit during the compression removes it too. */
 static int
 gzip_in_place(const char *tmp)
 {
@@ -221,9 +243,15 @@ gzip_in_place(const char *tmp)
 
 	if (ztmp)
 		sprintf(ztmp, "%s.z", tmp);
-	if (!ztmp || !in || !(z = gzopen(ztmp, "wb6"))) {
+	if (!ztmp || !in || remember_tmp(ztmp)) {
 		if (in)
 			fclose(in);
+		free(ztmp);
+		return -1;
+	}
+	if (!(z = gzopen(ztmp, "wb6"))) {
+		fclose(in);
+		forget_tmp(ztmp);
 		free(ztmp);
 		return -1;
 	}
@@ -235,9 +263,11 @@ gzip_in_place(const char *tmp)
 	bad |= gzclose(z) != Z_OK;
 	if (bad || rename(ztmp, tmp) != 0) {
 		unlink(ztmp);
+		forget_tmp(ztmp);
 		free(ztmp);
 		return -1;
 	}
+	forget_tmp(ztmp);	/* now TMP itself, still remembered */
 	free(ztmp);
 	return 0;
 }
