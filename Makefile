@@ -42,7 +42,7 @@ BENCH_BIN = $(BENCH_SRC:tests/bench/%.c=$(B)/bench/%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: all deps plotdeps pipelines check check-fast run bench validate interop install uninstall clean help tools unit
+.PHONY: all deps plotdeps pipelines check check-fast killtest run bench validate interop install uninstall clean help tools unit
 .DELETE_ON_ERROR:
 
 all: deps
@@ -112,6 +112,12 @@ check: deps
 check-fast: all
 	@sh tests/run.sh build
 
+# Signals at random moments against every tool that writes files (tests/killtest.sh): a minute
+# or two and timing-dependent, so not part of make check (tests/tools/signals.sh is, the
+# deterministic part).  KILLTEST_SEED and KILLTEST_REPS (default 19 and 3) set the sequence.
+killtest: all
+	@sh tests/killtest.sh build/bin
+
 run: all plotdeps
 	@sh share/run-default.sh build/bin
 
@@ -159,6 +165,7 @@ help:
 	@echo "make            build the library and the tools ($(TOOLS))"
 	@echo "make check      build normally and with ASan+UBSan, run every test; ends 'N passed, N failed'"
 	@echo "make check-fast the tests on the normal build only"
+	@echo "make killtest   kill every writing tool with TERM/INT/HUP/KILL at seeded random moments; check outputs and temporaries"
 	@echo "make run        the default job: packgen | densify | frictionalize | loadtest | moduli on G2740 (out/)"
 	@echo "make pipelines  the papers' studies (STUDY=name, SMALL=1 for small packs; pipelines/README.md)"
 	@echo "make bench      benchmarks; results in bench/results.md"
