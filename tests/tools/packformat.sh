@@ -315,3 +315,8 @@ bad columns-in-v1 12 "columns: not in version 1 of the format \(a pack with a co
 columns id x y z r E nu rho'
 bad boundary-in-v1 7 "boundary: not in version 1 of the format" '6a\
 boundary walls walls walls'
+# a directory as input is named as one, not as a corrupt stream (issue 19)
+mkdir -p adir
+expect_error dir-input-packinfo 1 '^packinfo: adir: is a directory$' packinfo adir
+expect_error dir-input-densify 1 '^densify: adir: is a directory$' densify --stress 1e6 -o x.pack adir
+expect_error dir-input-moduli 1 '^moduli: adir: is a directory$' moduli adir
