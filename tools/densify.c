@@ -130,6 +130,11 @@ check_stress(const struct pack *p)
 	if (o.dp.stress >= 0.01 * Emean)
 		msg_die(EXIT_USAGE, "--stress %g Pa is beyond the small-strain range of Hertz contacts (E/100 = %g Pa)",
 		    o.dp.stress, 0.01 * Emean);
+	/* a target this far below the moduli is no jammed pack the minimisers can resolve:
+	 * --stress 1e-300 ran 74 s before failing */
+	if (o.dp.stress < 1e-12 * Emean)
+		msg_die(EXIT_USAGE, "--stress %g Pa is below 1e-12 E of the grains (1e-12 E = %g Pa)",
+		    o.dp.stress, 1e-12 * Emean);
 	if (o.dp.stress <= o.dp.onset)
 		msg_die(EXIT_USAGE, "--stress %g Pa must exceed --onset %g Pa", o.dp.stress, o.dp.onset);
 }
