@@ -97,7 +97,11 @@ print_opt(const struct cli_opt *o, int show_default)
 	printf("  %-28s %s", left, o->help);
 	if (o->unit)
 		printf(" (%s)", o->unit);
-	if (show_default && o->type != CLI_FLAG) {
+	/* a nan double is "not given": the help text says what that means, or it is none */
+	if (show_default && o->type == CLI_DOUBLE && isnan(*(double *)o->dest)) {
+		if (!strstr(o->help, "default:"))
+			printf(" [default: none]");
+	} else if (show_default && o->type != CLI_FLAG) {
 		format_value(o, def, sizeof def);
 		if (def[0])
 			printf(" [default: %s]", def);
