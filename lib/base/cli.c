@@ -119,8 +119,9 @@ print_help(const struct cli_tool *t)
 		print_opt(&t->opts[i], 1);
 	for (i = 0; common_opts[i].type != CLI_END; i++)
 		print_opt(&common_opts[i], 0);
-	printf("\nFILE '-' or no FILE reads standard input; .gz input is detected.\n"
-	    "Exit status: 0 success, 1 bad data or failure, 2 usage error.\n"
+	/* a tool without operands (packgen) reads no input */
+	printf("\n%s", t->max_operands > 0 ? "FILE '-' or no FILE reads standard input; .gz input is detected.\n" : "");
+	printf("Exit status: 0 success, 1 bad data or failure, 2 usage error.\n"
 	    "See %s(1) and qusgm-pack(5).\n", t->name);
 }
 
