@@ -150,6 +150,16 @@ check_stop(int r, struct file_out *logout, const struct densify_stage *last)
 			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
 		msg_die_err(EXIT_DATA);
 	}
+	/* never a pack that does not carry what it claims: the end conditions, checked on the
+	 * final state itself (densify_run loops until they hold; this guards that loop) */
+	if (r == 0 && (!isfinite(last->sigma_c) || last->under4 > 0 || !isfinite(last->res_max) ||
+	        fabs(last->sigma_c / o.dp.stress - 1) > o.dp.stress_tol)) {
+		if (o.log)
+			file_out_abort(logout);
+		msg_die(EXIT_DATA, "the final state fails the end conditions: sigma_c %g Pa (target %g, "
+		    "--stress-tol %g), %zu grains under %u contacts, residual %g", last->sigma_c, o.dp.stress,
+		    o.dp.stress_tol, last->under4, o.dp.min_coord, last->res_max);
+	}
 	if (r == 1)
 		msg_warn("%s (kept: --allow-limit)", msg_geterr());
 	msg_info(1, "sigma_c %.6g Pa, porosity %.4f, coordination %.3f, under4 %zu, residual %.2e", last->sigma_c,
