@@ -150,7 +150,7 @@ install: all
 	cp $(TOOL_BIN) $(DESTDIR)$(BINDIR)/
 	cp $(MAN1) $(DESTDIR)$(MANPREFIX)/man1/
 	cp $(MAN5) $(DESTDIR)$(MANPREFIX)/man5/
-	cp -R share/presets share/doc $(DESTDIR)$(DATADIR)/
+	cp -R share/doc $(DESTDIR)$(DATADIR)/
 
 uninstall:
 	for t in $(TOOLS); do rm -f $(DESTDIR)$(BINDIR)/$$t; done
@@ -171,5 +171,5 @@ help:
 	@echo "make bench      benchmarks; results in bench/results.md"
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
-	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, presets"
+	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs"
 	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR"

@@ -130,6 +130,11 @@ check_stress(const struct pack *p)
 	if (o.dp.stress >= 0.01 * Emean)
 		msg_die(EXIT_USAGE, "--stress %g Pa is beyond the small-strain range of Hertz contacts (E/100 = %g Pa)",
 		    o.dp.stress, 0.01 * Emean);
+	/* a target this far below the moduli is no jammed pack the minimisers can resolve:
+	 * --stress 1e-300 ran 74 s before failing */
+	if (o.dp.stress < 1e-12 * Emean)
+		msg_die(EXIT_USAGE, "--stress %g Pa is below 1e-12 E of the grains (1e-12 E = %g Pa)",
+		    o.dp.stress, 1e-12 * Emean);
 	if (o.dp.stress <= o.dp.onset)
 		msg_die(EXIT_USAGE, "--stress %g Pa must exceed --onset %g Pa", o.dp.stress, o.dp.onset);
 }
@@ -144,6 +149,16 @@ check_stop(int r, struct file_out *logout, const struct densify_stage *last)
 		if (r == 1)
 			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
 		msg_die_err(EXIT_DATA);
+	}
+	/* never a pack that does not carry what it claims: the end conditions, checked on the
+	 * final state itself (densify_run loops until they hold; this guards that loop) */
+	if (r == 0 && (!isfinite(last->sigma_c) || last->under4 > 0 || !isfinite(last->res_max) ||
+	        fabs(last->sigma_c / o.dp.stress - 1) > o.dp.stress_tol)) {
+		if (o.log)
+			file_out_abort(logout);
+		msg_die(EXIT_DATA, "the final state fails the end conditions: sigma_c %g Pa (target %g, "
+		    "--stress-tol %g), %zu grains under %u contacts, residual %g", last->sigma_c, o.dp.stress,
+		    o.dp.stress_tol, last->under4, o.dp.min_coord, last->res_max);
 	}
 	if (r == 1)
 		msg_warn("%s (kept: --allow-limit)", msg_geterr());

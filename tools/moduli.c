@@ -67,6 +67,10 @@ main(int argc, char **argv)
 		msg_die_err(EXIT_DATA);
 	if (in != stdin)
 		fclose(in);
+	/* a window longer than the whole table would fit each segment as one interval */
+	if (t.nrow >= 2 && (size_t)window > t.nrow - 1)
+		msg_die(EXIT_DATA, "%s: --window %ld is longer than the table's %zu increments (%zu rows)",
+		    display, window, t.nrow - 1, t.nrow);
 	if (curve_columns(&t, display, strcmp(stress_arg, "lw") ? "sig" : "sig_lw", &cols) ||
 	    curve_moduli(&t, &cols, display, window, &iv, &n))
 		msg_die_err(EXIT_DATA);

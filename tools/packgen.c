@@ -135,8 +135,12 @@ compact(struct pack *p, gsl_rng *rng)
 	dp.rest_tol = o.rest_tol;
 	dp.max_steps = o.max_steps;
 	memcpy(dp.aspect, o.aspect, sizeof o.aspect);
-	if (dem_loose_pack(p, &dp, rng, progress, NULL, &ds))
+	if (dem_loose_pack(p, &dp, rng, progress, NULL, &ds)) {
+		/* name the option (a few grains fill a box of a few diameters: they need a lower one) */
+		if (strncmp(msg_geterr(), "cannot place grain", 18) == 0)
+			msg_die(EXIT_DATA, "%s (--phi0, now %g)", msg_geterr(), o.phi0);
 		msg_die_err(EXIT_DATA);
+	}
 	cli_progress_end();
 	msg_info(1, "at rest after %ld steps: packing %.4f, coordination %.3f, largest overlap/r %.2e",
 	    ds.step, ds.phi, ds.coordination, ds.max_overlap);

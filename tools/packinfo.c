@@ -19,9 +19,9 @@ static struct cli_opt opts[] = {
 };
 
 static const struct cli_tool tool = {
-	"packinfo", "[options] [FILE]",
+	"packinfo", "[options] [FILE...]",
 	"Report porosity, coordination, rattlers, radii, overlaps, stresses, residual, sliding ratio and fabric of packs.",
-	opts, 1,
+	opts, 1 << 20,
 };
 
 #define NKEYS 40
@@ -119,39 +119,48 @@ main(int argc, char **argv)
 	char *text = NULL;
 	size_t textlen = 0;
 	FILE *in, *mem;
-	int r, count = 0;
+	int r, f, count = 0;
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
 	cli_usage_done();
-	if (!(in = file_in_open(st.input, &name)) || !(rd = pack_reader_open(in, name)))
-		msg_die_err(EXIT_DATA);
-	/* Everything is formatted in memory first: a bad pack later in the stream must not
-	 * leave the rows of the earlier ones behind. */
+	/* Everything is formatted in memory first: a bad pack later in the stream (or in a later
+	 * FILE) must not leave the rows of the earlier ones behind. */
 	if (!(mem = open_memstream(&text, &textlen)))
 		msg_die(EXIT_DATA, "out of memory");
 	contacts_init(&gc);
-	while ((r = pack_read_next(rd, &p)) == 1) {
-		if (measure_pack(&p, &gc, &m))
+	/* each FILE in turn (none: standard input), every pack of each */
+	for (f = 0; f < (st.noperands > 0 ? st.noperands : 1); f++) {
+		int here = 0;
+
+		if (!(in = file_in_open(st.noperands > 0 ? st.operands[f] : NULL, &name)) ||
+		    !(rd = pack_reader_open(in, name)))
 			msg_die_err(EXIT_DATA);
-		fill_row(&p, &m, &row);
-		if (tsv) {
-			if (count == 0)
-				table_header(mem, row.col, row.n);
-			table_row(mem, row.v, row.n);
-		} else {
-			if (count > 0)
-				fputc('\n', mem);
-			print_keys(mem, &row);
+		while ((r = pack_read_next(rd, &p)) == 1) {
+			if (measure_pack(&p, &gc, &m))
+				msg_die_err(EXIT_DATA);
+			fill_row(&p, &m, &row);
+			if (tsv) {
+				if (count == 0)
+					table_header(mem, row.col, row.n);
+				table_row(mem, row.v, row.n);
+			} else {
+				if (count > 0)
+					fputc('\n', mem);
+				print_keys(mem, &row);
+			}
+			pack_free(&p);
+			count++;
+			here++;
 		}
-		pack_free(&p);
-		count++;
+		if (r < 0)
+			msg_die_err(EXIT_DATA);
+		if (here == 0)
+			msg_die(EXIT_DATA, "%s:1: empty input", name);
+		pack_reader_close(rd);
+		if (in != stdin)
+			fclose(in);
 	}
-	if (r < 0)
-		msg_die_err(EXIT_DATA);
-	if (count == 0)
-		msg_die(EXIT_DATA, "%s:1: empty input", name);
-	pack_reader_close(rd);
 	contacts_free(&gc);
 	fclose(mem);
 	if (file_out_open(&out, st.output))

@@ -97,7 +97,11 @@ print_opt(const struct cli_opt *o, int show_default)
 	printf("  %-28s %s", left, o->help);
 	if (o->unit)
 		printf(" (%s)", o->unit);
-	if (show_default && o->type != CLI_FLAG) {
+	/* a nan double is "not given": the help text says what that means, or it is none */
+	if (show_default && o->type == CLI_DOUBLE && isnan(*(double *)o->dest)) {
+		if (!strstr(o->help, "default:"))
+			printf(" [default: none]");
+	} else if (show_default && o->type != CLI_FLAG) {
 		format_value(o, def, sizeof def);
 		if (def[0])
 			printf(" [default: %s]", def);
@@ -115,8 +119,9 @@ print_help(const struct cli_tool *t)
 		print_opt(&t->opts[i], 1);
 	for (i = 0; common_opts[i].type != CLI_END; i++)
 		print_opt(&common_opts[i], 0);
-	printf("\nFILE '-' or no FILE reads standard input; .gz input is detected.\n"
-	    "Exit status: 0 success, 1 bad data or failure, 2 usage error.\n"
+	/* a tool without operands (packgen) reads no input */
+	printf("\n%s", t->max_operands > 0 ? "FILE '-' or no FILE reads standard input; .gz input is detected.\n" : "");
+	printf("Exit status: 0 success, 1 bad data or failure, 2 usage error.\n"
 	    "See %s(1) and qusgm-pack(5).\n", t->name);
 }
 

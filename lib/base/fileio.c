@@ -111,8 +111,21 @@ file_in_open(const char *path, const char **display)
 	}
 	*display = path;
 	fp = fopen(path, "rb");
-	if (!fp)
+	if (!fp) {
 		msg_seterr("%s: %s", path, strerror(errno));
+		return NULL;
+	}
+	/* fopen opens a directory for reading; its first read fails with EISDIR, which the
+	 * line reader would report as a corrupt stream */
+	{
+		struct stat st;
+
+		if (fstat(fileno(fp), &st) == 0 && S_ISDIR(st.st_mode)) {
+			fclose(fp);
+			msg_seterr("%s: is a directory", path);
+			return NULL;
+		}
+	}
 	return fp;
 }
 

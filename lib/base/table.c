@@ -130,6 +130,10 @@ header_line(struct lines *in, struct table *t, char **header, char *s)
 	if (!*header) {
 		if (strncmp(s, "# ", 2) != 0 || !(*header = strdup(s)) || parse_header(t, s + 2))
 			return lines_error(in, "bad header line (expected '# name\\tname...')");
+		/* one column whose name has spaces: a table written with spaces for tabs */
+		if (t->ncol == 1 && strchr(t->names[0], ' '))
+			return lines_error(in, "bad header line: one column name with spaces in it; "
+			    "the columns are TAB-separated");
 	} else if (strcmp(s, *header) != 0) {
 		return lines_error(in, "a second, different header line");
 	}

@@ -281,6 +281,11 @@ qs_energy(struct qs_system *s, const double *x, double *g, double *fmax)
 	memset(s->wall_force, 0, sizeof s->wall_force);
 	for (q = 0; q < s->nterms; q++)
 		E += s->term[q].energy(&s->term[q], s, x, g, fmax);
+	/* every caller fails on a nan energy and reports the error slot: fill it (it said
+	 * 'unknown error') */
+	if (isnan(E))
+		msg_seterr("the energy is not a number (a grain position, radius or modulus "
+		    "that is not finite)");
 	return E;
 }
 

@@ -154,6 +154,8 @@ expect_fail "box thinner than a grain" 1 '^densify: .*thinner than grain' thin.p
 expect_fail "--stress 0" 2 '^densify: --stress' --stress 0 loose.pack
 expect_fail "--stress -1" 2 '^densify: --stress' --stress -1 loose.pack
 expect_fail "--stress 1e12 (beyond E/100)" 2 '^densify: --stress .*small-strain' --stress 1e12 loose.pack
+# a target absurdly far below the moduli is refused at once, not after a minute of rounds (issue 19)
+expect_fail "--stress 1e-300 (below 1e-12 E)" 2 "^densify: --stress 1e-300 Pa is below 1e-12 E of the grains \\(1e-12 E = [0-9.e+-]+ Pa\\)$" --stress 1e-300 loose.pack
 expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --onset 1e4 --stress 5e3 loose.pack
 expect_fail "--tol 2" 2 '^densify: --tol' --tol 2 loose.pack
 expect_fail "--method newton" 2 "^densify: --method: 'newton'" --method newton loose.pack

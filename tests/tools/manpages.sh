@@ -88,3 +88,18 @@ if [ -f "$page5" ]; then
 else
 	fail qusgm-pack.5-exists "no $page5"
 fi
+# --help never shows 'nan' as a default (an option not given): it says what the default means
+# (issue 19)
+for t in densify frictionalize loadtest moduli packexport packgen packimport packinfo; do
+	if "$t" --help 2>&1 | grep -q 'default: nan'; then fail "$t --help: no [default: nan]" "$("$t" --help | grep 'default: nan' | head -n 1)"; else pass "$t --help: no [default: nan]"; fi
+done
+if loadtest --help | grep -q -- '--to-stress PA .*\[default: none\]$'; then pass "loadtest --help: --to-stress [default: none]"; else fail "loadtest --help: --to-stress [default: none]" "$(loadtest --help | grep -- --to-stress)"; fi
+# make install PREFIX=...: the tools, their pages and the docs land under PREFIX (it stopped
+# at a share/presets that does not exist; issue 19).  Against the tools under test: B is
+# their build directory, which is up to date, so nothing is rebuilt.
+if make -s -C "$TOP" install B="$(dirname "$BIN")" PREFIX="$PWD/inst" >inst.log 2>&1 &&
+	[ -x inst/bin/packgen ] && [ -f inst/share/man/man1/packinfo.1 ] && [ -f inst/share/qusgm/doc/pack-format.md ]; then
+	pass "make install PREFIX=..."
+else
+	fail "make install PREFIX=..." "$(tail -n 1 inst.log)"
+fi

@@ -43,7 +43,7 @@ expect_ok "--window 4" moduli --window 4 curve.tsv
 mv ok.out w4.tsv
 if [ "$(rows w4.tsv | cut -f 1-4 | tr '\t\n' ', ')" = "1,0,4,4 1,4,6,2 " ]; then pass "--window 4: intervals 0-4 (n 4), 4-6 (n 2)"; else fail "--window 4: intervals 0-4 (n 4), 4-6 (n 2)" "$(rows w4.tsv | cut -f 1-4 | tr '\t\n' ', ')"; fi
 expect_num "--window 6: one row" "$(moduli --window 6 curve.tsv 2>/dev/null | rows /dev/stdin | wc -l)" "==" 1
-expect_num "--window 100: one row" "$(moduli -k 100 curve.tsv 2>/dev/null | rows /dev/stdin | wc -l)" "==" 1
+expect_error "--window 100: longer than the 6 increments, refused" 1 "^moduli: curve\.tsv: --window 100 is longer than the table's 6 increments \(7 rows\)$" moduli -k 100 curve.tsv
 # segments: a window never spans two (loading 5, unloading 3, windows of 2)
 loadtest --path 'uniaxial steps=5; uniaxial step=-1e-4 steps=3' fr.pack >cycle.tsv 2>/dev/null
 expect_ok "--window 2 on a two-segment curve" moduli --window 2 cycle.tsv
@@ -181,6 +181,13 @@ expect_fail "last line without newline" 1 '^moduli: nonl\.tsv:14: ' nonl.tsv
 expect_fail "rows under a header with no columns" 1 '^moduli: nocols\.tsv:2: a row under a header with no columns$' nocols.tsv
 expect_fail "--emt without porosity column" 1 '^moduli: synth\.tsv: --emt needs the porosity' --emt glass synth.tsv
 expect_fail "missing input file" 1 '^moduli: .*no-such\.tsv' no-such.tsv
+# a table written with spaces for tabs: say the columns are TAB-separated, not quote the whole
+# header as one column name (issue 19)
+tr '\t' ' ' <synth.tsv >spaces.tsv
+expect_fail "spaces for tabs" 1 '^moduli: spaces\.tsv:[0-9]+: .*columns are TAB-separated$' spaces.tsv
+# a window longer than the table is refused with both numbers, not fitted as one interval
+nr=$(rows synth.tsv | wc -l)
+expect_fail "--window longer than the table" 1 "^moduli: synth\.tsv: --window 1000 is longer than the table's $((nr - 1)) increments \($nr rows\)$" --window 1000 synth.tsv
 expect_fail "--window 0" 2 '^moduli: --window' --window 0 synth.tsv
 expect_fail "--window nan" 2 '^moduli: --window' --window nan synth.tsv
 expect_fail "--stress bogus" 2 '^moduli: --stress' --stress bogus synth.tsv

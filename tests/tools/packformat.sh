@@ -165,7 +165,18 @@ expect_error missing-file 1 '^packinfo: no-such\.pack: ' packinfo no-such.pack
 # --- usage ---
 expect_error unknown-option 2 "^packinfo: unknown option '--no-such-option'" packinfo --no-such-option good.pack
 expect_error unknown-short-option 2 "^packinfo: unknown option '-x'" packinfo -x good.pack
-expect_error two-operands 2 '^packinfo: too many operands' packinfo good.pack good.pack
+# several FILEs, as the README writes it: one row (--tsv) or one block per pack, the same
+# as the packs concatenated on standard input (issue 19; two operands were a usage error)
+gzip -c good.pack >good2.pack.gz
+expect_ok two-operands-tsv packinfo --tsv good.pack good2.pack.gz
+mv ok.out two.tsv
+cat good.pack good.pack | packinfo --tsv >cat.tsv 2>/dev/null
+expect_same two-operands-tsv-as-a-stream two.tsv cat.tsv
+expect_ok two-operands packinfo good.pack good.pack
+mv ok.out two.info
+cat good.pack good.pack | packinfo >cat.info 2>/dev/null
+expect_same two-operands-as-a-stream two.info cat.info
+expect_error two-operands-empty-second 1 '^packinfo: empty\.pack:1: empty input' packinfo good.pack empty.pack
 
 # --- what reads ---
 expect_ok good packinfo good.pack
@@ -315,3 +326,8 @@ bad columns-in-v1 12 "columns: not in version 1 of the format \(a pack with a co
 columns id x y z r E nu rho'
 bad boundary-in-v1 7 "boundary: not in version 1 of the format" '6a\
 boundary walls walls walls'
+# a directory as input is named as one, not as a corrupt stream (issue 19)
+mkdir -p adir
+expect_error dir-input-packinfo 1 '^packinfo: adir: is a directory$' packinfo adir
+expect_error dir-input-densify 1 '^densify: adir: is a directory$' densify --stress 1e6 -o x.pack adir
+expect_error dir-input-moduli 1 '^moduli: adir: is a directory$' moduli adir

@@ -83,3 +83,9 @@ wait
 if [ -p out.fifo ]; then pass "-o FIFO: still a FIFO"; else fail "-o FIFO: still a FIFO" "$(ls -l out.fifo)"; fi
 packgen -n 20 --seed 3 >direct.pack 2>/dev/null
 expect_same "-o FIFO: the reader got the pack" from.fifo direct.pack
+# a few grains that do not fit at random: the message names --phi0 (issue 19), and a lower
+# one places them
+expect_error "-n 2: names --phi0" 1 '^packgen: cannot place grain 2 of 2 at random: .*\(--phi0, now 0\.3\)$' packgen -n 2 -o nothing.pack
+expect_ok "-n 2 --phi0 0.05" packgen -n 2 --phi0 0.05 -o two.pack
+# packgen reads no input: its --help does not say it does
+if packgen --help | grep -q 'standard input'; then fail "--help: no standard input" "$(packgen --help | grep 'standard input')"; else pass "--help: no standard input"; fi

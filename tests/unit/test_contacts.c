@@ -7,12 +7,14 @@
  * when the caller moves grains between iterations. */
 #include "unit.h"
 #include "unit_pack.h"
+#include "base/msg.h"
 #include "contact/contacts.h"
 #include "contact/law.h"
 #include "qs/functional.h"
 #include "qs/minimize.h"
 
 #include <gsl/gsl_randist.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -276,6 +278,29 @@ test_steppable(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* A nan energy (here from a nan radius): the error slot says why (the tools printed
+ * 'unknown error' for the minimisers' failures on it). */
+static void
+test_nan_energy(gsl_rng *rng)
+{
+	struct pack p;
+	struct qs_system s;
+	double *x, E;
+
+	random_pack(&p, rng, 50, 1e-4, 0.6, 0.02);
+	x = malloc(3 * p.n * sizeof *x);
+	memcpy(x, p.x, 3 * p.n * sizeof *x);
+	qs_init(&s, &p, 0.3);
+	p.r[1] = NAN;
+	msg_seterr("%s", "");
+	E = qs_energy(&s, x, NULL, NULL);
+	CHECK(isnan(E) && strstr(msg_geterr(), "the energy is not a number"),
+	    "nan energy (a nan radius): Pi %g, error slot '%s'", E, msg_geterr());
+	qs_free(&s);
+	free(x);
+	pack_free(&p);
+}
+
 int
 main(void)
 {
@@ -289,6 +314,7 @@ main(void)
 	test_history(rng);
 	test_laws(rng);
 	test_steppable(rng);
+	test_nan_energy(rng);
 	gsl_rng_free(rng);
 	return unit_summary();
 }
