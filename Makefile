@@ -39,17 +39,20 @@ UNIT_SRC  = $(wildcard tests/unit/*.c)
 UNIT_BIN  = $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
 BENCH_SRC = $(wildcard tests/bench/*.c)
 BENCH_BIN = $(BENCH_SRC:tests/bench/%.c=$(B)/bench/%)
+FUZZ_SRC  = $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ      = $(FUZZ_SRC:tests/fuzz/%.c=%)
+FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: all deps plotdeps pipelines check check-fast killtest run bench validate interop install uninstall clean help tools unit
+.PHONY: all deps plotdeps pipelines check check-fast killtest run bench validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
 	@$(MAKE) --no-print-directory tools unit
 
 tools: $(TOOL_BIN)
-unit: $(UNIT_BIN)
+unit: $(UNIT_BIN) $(FUZZ_REPLAY)
 
 # The dependencies come from Debian packages.  As root, install what is missing; otherwise
 # stop with the exact command to type.
@@ -85,6 +88,13 @@ $(B)/tests/%: tests/unit/%.c tests/unit/*.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -Itests/unit -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
+# The fuzz harnesses (tests/fuzz/) replayed on their seed corpora and crash reproducers with
+# the normal compiler: a unit test of each build, one PASS line per directory.
+$(B)/tests/replay_%: tests/fuzz/%.c tests/fuzz/replay.c tests/fuzz/*.h $(B)/libqusgm.a $(LIB_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -DFUZZ_NAME=\"$*\" -DFUZZ_CORPUS=\"$(CURDIR)/tests/fuzz/corpus\" \
+	  -DFUZZ_CRASHES=\"$(CURDIR)/tests/fuzz/crashes\" -o $@ tests/fuzz/replay.c $< $(B)/libqusgm.a $(ALL_LIBS)
+
 $(B)/bench/%: tests/bench/%.c $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
@@ -117,6 +127,45 @@ check-fast: all
 # deterministic part).  KILLTEST_SEED and KILLTEST_REPS (default 19 and 3) set the sequence.
 killtest: all
 	@sh tests/killtest.sh build/bin
+
+# make fuzz [FUZZ_SECONDS=60] [FUZZ_JOBS=NAME...]: each libFuzzer harness in turn for that
+# long, on a copy of its seed corpus (tests/fuzz/corpus/NAME, which it does not grow), the
+# library built with clang and the sanitizers in build-fuzz/.  Crashes are left in
+# build-fuzz/crashes/NAME/.  clang is installed as root when missing.
+FUZZ_SECONDS ?= 60
+FUZZ_JOBS    ?= $(FUZZ)
+FUZZ_CC       = clang
+FUZZ_FLAGS    = -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+
+fuzzdeps:
+	@if ! command -v $(FUZZ_CC) >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "qusgm: installing clang for make fuzz"; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq clang; } >/dev/null || \
+	      { echo "qusgm: apt-get install failed; run: apt-get install clang" >&2; exit 1; }; \
+	  else \
+	    echo "qusgm: clang not found; run: sudo apt-get install clang" >&2; exit 1; \
+	  fi; \
+	fi
+
+fuzz-build: deps fuzzdeps
+	@$(MAKE) --no-print-directory B=build-fuzz CC=$(FUZZ_CC) OPT="-O1 -g" EXTRA_CFLAGS="$(FUZZ_FLAGS)" \
+	  $(FUZZ:%=build-fuzz/fuzz/%)
+
+build-fuzz/fuzz/%: tests/fuzz/%.c tests/fuzz/*.h $(B)/libqusgm.a $(LIB_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -fsanitize=fuzzer -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+
+fuzz: fuzz-build
+	@for f in $(FUZZ_JOBS); do \
+	  rm -rf build-fuzz/corpus/$$f; mkdir -p build-fuzz/corpus/$$f build-fuzz/crashes/$$f; \
+	  cp tests/fuzz/corpus/$$f/* build-fuzz/corpus/$$f/; \
+	  echo "== $$f ($(FUZZ_SECONDS) s)"; \
+	  build-fuzz/fuzz/$$f -max_total_time=$(FUZZ_SECONDS) -max_len=8192 -timeout=10 -rss_limit_mb=2048 \
+	    -artifact_prefix=build-fuzz/crashes/$$f/ build-fuzz/corpus/$$f 2>build-fuzz/$$f.log || \
+	    { tail -n 40 build-fuzz/$$f.log; echo "$$f: crash, reproducer in build-fuzz/crashes/$$f/" >&2; exit 1; }; \
+	  grep -E '^#[0-9]+.*(DONE|pulse|NEW)' build-fuzz/$$f.log | tail -n 1; \
+	done
 
 run: all plotdeps
 	@sh share/run-default.sh build/bin
@@ -159,7 +208,7 @@ uninstall:
 	rm -rf $(DESTDIR)$(DATADIR)
 
 clean:
-	rm -rf build build-san tests/out
+	rm -rf build build-san build-fuzz tests/out
 
 help:
 	@echo "make            build the library and the tools ($(TOOLS))"
@@ -171,5 +220,6 @@ help:
 	@echo "make bench      benchmarks; results in bench/results.md"
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
+	@echo "make fuzz       each libFuzzer harness (tests/fuzz/) for FUZZ_SECONDS=$(FUZZ_SECONDS) s, built with clang in build-fuzz/"
 	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs"
 	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR"
