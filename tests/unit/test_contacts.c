@@ -228,6 +228,46 @@ test_laws(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* The laws' frozen tangential state and DEM force against their closed forms, for one
+ * contact: Hertz-Mindlin k* = 8 a / Ct, M_max = 3 pi / 16 a mu P, DEM normal force at rest
+ * 4/3 E* sqrt(R*) h^(3/2) and damping 2 zeta sqrt(m* k_n) v_n; the linear law k h, k_t =
+ * kt_ratio k_n, no torsion.  Tolerance 1e-14 relative: the same expressions, reordered. */
+static void
+test_law_closed_forms(void)
+{
+	const struct contact_law *hm = &contact_law_hertz_mindlin, *ln = &contact_law_linear;
+	struct law_pair lp = {5e10, 6e-5, 3e-11, 2e-11};
+	struct law_tangent t;
+	struct law_dem_in in = {2e-7, {0, 0, 1}, {0, 0, 0}, 3e-9, 1e-8, 0.3};
+	double hist[3] = {0, 0, 0}, ft[3], fel, fn, a = sqrt(lp.Rs * in.h), P = 1.5;
+	double kn = 2 * lp.Es * sqrt(lp.Rs * in.h);
+
+	hm->tangent(hm, &lp, in.h, P, 0.3, &t);
+	CHECK(unit_close(t.k, 8 * a / lp.Ct, 1e-14, 0) && unit_close(t.qmax, 0.3 * P, 1e-14, 0) &&
+	    unit_close(t.kt, 16.0 / 3 * a * a * a / lp.Ctor, 1e-14, 0) &&
+	    unit_close(t.mmax, 3 * M_PI / 16 * a * 0.3 * P, 1e-14, 0), "laws: Hertz-Mindlin's tangential state in closed form");
+	fn = hm->dem_force(hm, &lp, &in, hist, ft, &fel);
+	CHECK(unit_close(fn, 4.0 / 3 * lp.Es * sqrt(lp.Rs) * pow(in.h, 1.5), 1e-14, 0) && fel == fn && ft[0] == 0 &&
+	    ft[1] == 0 && ft[2] == 0, "laws: Hertz DEM force at rest is 4/3 E* sqrt(R*) h^1.5 (%.6g N)", fn);
+	in.vr[2] = -1e-3;	/* approaching: i moves towards j along -n */
+	fn = hm->dem_force(hm, &lp, &in, hist, ft, &fel);
+	CHECK(unit_close(fn - fel, 2 * hm->zeta * sqrt(in.meff * kn) * 1e-3, 1e-12, 0),
+	    "laws: the viscous normal damping is 2 zeta sqrt(m* k_n) v_n (%.6g N)", fn - fel);
+	in.vr[2] = 0;
+	in.vr[0] = 1e-2;	/* sliding along x: spring k_t v dt, clamped at mu fn */
+	hist[0] = hist[1] = hist[2] = 0;
+	fn = hm->dem_force(hm, &lp, &in, hist, ft, &fel);
+	CHECK(unit_close(-ft[0], fmin(hm->kt_ratio * kn * 1e-2 * in.dt, 0.3 * fn), 1e-12, 0),
+	    "laws: the tangential spring gives k_t v dt below the Coulomb limit (%.6g N)", -ft[0]);
+	ln->tangent(ln, &lp, in.h, P, 0.3, &t);
+	CHECK(t.k == ln->kt_ratio * ln->kn && t.qmax == 0.3 * P && t.kt == 0 && t.mmax == 0,
+	    "laws: the linear law's tangential state is kt_ratio k_n, mu P, no torsion");
+	in.vr[0] = 0;
+	hist[0] = hist[1] = hist[2] = 0;
+	fn = ln->dem_force(ln, &lp, &in, hist, ft, &fel);
+	CHECK(unit_close(fn, ln->kn * in.h, 1e-14, 0), "laws: the linear DEM force at rest is k_n h (%.6g N)", fn);
+}
+
 /* The steppable minimiser: the loop of qs_minimize, to the bit; and moving grains between
  * iterations (qs_minimizer_moved) still ends in equilibrium. */
 static void
@@ -313,6 +353,7 @@ main(void)
 	test_enumerator(rng, all, "periodic x y z");
 	test_history(rng);
 	test_laws(rng);
+	test_law_closed_forms();
 	test_steppable(rng);
 	test_nan_energy(rng);
 	gsl_rng_free(rng);
