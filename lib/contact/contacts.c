@@ -229,16 +229,15 @@ contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mod
 		return -2;
 	for (k = e->full_first[i]; k < e->full_first[i + 1]; k++) {
 		size_t j = e->full_nbr[k];
-		double sum = e->r[i] + e->r[j], dd;
+		double sum = e->r[i] + e->r[j];
+		double dd = contact_branch(e, &c, x[3 * i], x[3 * i + 1], x[3 * i + 2], x, j, e->any_periodic);
 
-		c.dx[0] = x[3 * i] - x[3 * j], c.dx[1] = x[3 * i + 1] - x[3 * j + 1], c.dx[2] = x[3 * i + 2] - x[3 * j + 2];
-		if (e->any_periodic)
-			contact_min_image(e, c.dx);
-		dd = c.dx[0] * c.dx[0] + c.dx[1] * c.dx[1] + c.dx[2] * c.dx[2];
 		if (mode == CONTACT_TOUCHING && dd >= sum * sum)
 			continue;
 		c.i = i;
 		c.j = (long)j;
+		c.ri = e->r[i];
+		c.rj = e->r[j];
 		c.d = sqrt(dd);
 		c.h = sum - c.d;
 		c.hist = NULL;

@@ -108,6 +108,18 @@ contact_min_image(const struct contact_enum *e, double dx[3])
  * returns nonzero. */
 typedef int (*contact_fn)(const struct contact *c, void *ctx);
 
+/* The branch vector from grain j (its nearest image when per) to the centre (xi0, xi1, xi2)
+ * into c->dx; returns its squared length.  Every pair record starts here. */
+CONTACT_INLINE double
+contact_branch(const struct contact_enum *e, struct contact *c, double xi0, double xi1, double xi2, const double *x,
+    size_t j, int per)
+{
+	c->dx[0] = xi0 - x[3 * j], c->dx[1] = xi1 - x[3 * j + 1], c->dx[2] = xi2 - x[3 * j + 2];
+	if (per)
+		contact_min_image(e, c->dx);
+	return c->dx[0] * c->dx[0] + c->dx[1] * c->dx[1] + c->dx[2] * c->dx[2];
+}
+
 /* Zero hs doubles of history (a tangential spring: three stores, not a call to memset). */
 CONTACT_INLINE void
 row_clear(double *h, unsigned hs)
@@ -165,12 +177,8 @@ contact_foreach_row(const struct contact_enum *e, const double *x, size_t i, int
 	c.hist = NULL;
 	for (k = e->nl.first[i]; k < kend; k++) {
 		size_t j = e->nl.nbr[k];
-		double rj = r[j], sum = ri + rj, dd;
+		double rj = r[j], sum = ri + rj, dd = contact_branch(e, &c, xi0, xi1, xi2, x, j, per);
 
-		c.dx[0] = xi0 - x[3 * j], c.dx[1] = xi1 - x[3 * j + 1], c.dx[2] = xi2 - x[3 * j + 2];
-		if (per)
-			contact_min_image(e, c.dx);
-		dd = c.dx[0] * c.dx[0] + c.dx[1] * c.dx[1] + c.dx[2] * c.dx[2];
 		if (hp)
 			c.hist = hp + (size_t)hs * k;
 		if (mode == CONTACT_TOUCHING && dd >= sum * sum) {
