@@ -1,0 +1,72 @@
+/* plate: the element contacts of an interaction between two spheroplates, or between a
+ * spheroplate and a wall (physics.md §12, the platy-particle paper's §II B).
+ *
+ * A spheroplate (pack/shape.h) is a square core of side L swept by a sphere of radius r.
+ * Two of them interact when the distance between their cores is below r_i + r_j.  The
+ * interaction is made of element contacts (vertex-vertex, vertex-edge, vertex-face,
+ * edge-edge, and the corners of a face-face or edge-face overlap); the interaction's
+ * force is the sum of theirs (P eq. 5).  Each element contact k has the overlap
+ * h_k = r_i + r_j - d_k, d_k the distance of the closest points of its two elements, and a
+ * contact point; all share the interaction's unit normal n (from j to i), the direction of
+ * the closest points of the two cores.
+ *
+ * The rules are non-redundant (plate.c states them; redundant ones give ~4.5 element contacts
+ * per interaction where strict ones give 1.6, and make the interaction's stiffness jump in
+ * multiples of k_n).  When the two cores themselves intersect (d = 0: the normal is then not
+ * defined by closest points) the penetration depth and direction come from libccd (MPR) on
+ * the two spheroplates, as one element contact.
+ *
+ * Everything is in the caller's length unit.  No allocation; thread-safe. */
+#ifndef QUSGM_PLATE_H
+#define QUSGM_PLATE_H
+
+/* The most element contacts one interaction can have (two coplanar squares overlapping in an
+ * octagon: 8 corners; with margin). */
+#define PLATE_MAX_ELEMENTS 16
+
+/* A spheroplate placed in the lab frame. */
+struct plate_body {
+	double x[3];	/* centre */
+	double R[9];	/* rotation body -> lab, row-major (quat_to_matrix); column 2 is the face normal */
+	double half;	/* L / 2, half the core's side (0: a sphere) */
+	double r;	/* spheroradius */
+};
+
+enum plate_element_kind {
+	PLATE_VERTEX_VERTEX, PLATE_VERTEX_EDGE, PLATE_EDGE_VERTEX, PLATE_VERTEX_FACE, PLATE_FACE_VERTEX,
+	PLATE_EDGE_EDGE, PLATE_CORE_OVERLAP, PLATE_SPHERE	/* cores intersect (libccd); sphere-sphere */
+};
+
+struct plate_element {
+	double h;	/* overlap r_i + r_j - d_k (> 0 for a contact) */
+	double pi[3];	/* closest point on i's core */
+	double pj[3];	/* closest point on j's core (on the wall plane for a wall) */
+	double p[3];	/* contact point: halfway between the two surfaces along n */
+	int kind;	/* enum plate_element_kind, i's element first */
+};
+
+struct plate_interaction {
+	double n[3];	/* unit normal, from j to i (out of the wall for a wall) */
+	double d;	/* distance of the two cores (0 when they intersect) */
+	int m;		/* element contacts, 0 .. PLATE_MAX_ELEMENTS */
+	struct plate_element e[PLATE_MAX_ELEMENTS];
+};
+
+/* The element contacts between plates a (i) and b (j); b's centre is taken as given (the
+ * caller applies the nearest periodic image).  Only elements with h > -gap are kept (gap >= 0:
+ * 0 for contacts, a positive margin to see near ones).  Returns m (>= 0). */
+int plate_interaction(const struct plate_body *a, const struct plate_body *b, double gap,
+    struct plate_interaction *out);
+
+/* The element contacts of plate a with the wall plane through point w0 with inward unit normal
+ * wn (the wall's side is where wn points away from): the core's points nearest the plane,
+ * i.e. the corners (a face or an edge lying on the wall gives its 4 or 2 corners, which is the
+ * overlap polygon), each with h = r - (signed distance to the plane).  Returns m. */
+int plate_wall_interaction(const struct plate_body *a, const double w0[3], const double wn[3], double gap,
+    struct plate_interaction *out);
+
+/* The distance between the cores of a and b (0 when they intersect) and the closest points,
+ * into pa and pb unless NULL: the reference the element rules are checked against. */
+double plate_core_distance(const struct plate_body *a, const struct plate_body *b, double pa[3], double pb[3]);
+
+#endif
