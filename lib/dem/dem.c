@@ -1,5 +1,6 @@
 /* dem: explicit DEM compaction for loose packs (see dem.h). */
 #include "dem/dem.h"
+#include "dem/servo.h"
 #include "contact/cell.h"
 #include "contact/contacts.h"
 #include "contact/law.h"
@@ -262,33 +263,6 @@ integrate(struct dem *d)
 	}
 }
 
-/* Move the walls of each axis towards the target stress and map the grains affinely. */
-static void
-servo(struct dem *d, double ptarget, double *ratio_mean)
-{
-	double de[3], c[3], rs = 0;
-	size_t i;
-	int a;
-
-	for (a = 0; a < 3; a++) {
-		int b = (a + 1) % 3, e = (a + 2) % 3;
-		double area = (d->hi[b] - d->lo[b]) * (d->hi[e] - d->lo[e]);
-		double sig = (d->wallf[2 * a] + d->wallf[2 * a + 1]) / (2 * area), ratio = sig / ptarget, g;
-
-		rs += ratio / 3;
-		g = fmax(-1, fmin(1, 1 - ratio));
-		/* proportional control: full rate far from the target, slowing down near it */
-		de[a] = g * (d->unloading ? d->rate * 0.05 : d->rate);
-		c[a] = 0.5 * (d->lo[a] + d->hi[a]);
-		d->lo[a] = c[a] + (d->lo[a] - c[a]) * (1 - de[a]);
-		d->hi[a] = c[a] + (d->hi[a] - c[a]) * (1 - de[a]);
-	}
-	for (i = 0; i < d->n; i++)
-		for (a = 0; a < 3; a++)
-			d->x[3 * i + a] = c[a] + (d->x[3 * i + a] - c[a]) * (1 - de[a]);
-	*ratio_mean = rs;
-}
-
 struct overlap_acc {
 	const double *r;
 	double mo;
@@ -405,8 +379,6 @@ dem_settle(struct dem *d, const struct dem_params *dp, double pfinal, double vol
 
 	dt_for_overlap(d, mmin, rmin, fmax(dp->overlap, 1e-6) * pow(dp->preload, 2.0 / 3.0) * 10);
 	for (step = 1; step <= dp->max_steps; step++) {
-		double ratio;
-
 		if (contact_enum_update(&d->ce, d->x, 0))
 			return -1;
 		forces(d);
@@ -434,7 +406,7 @@ dem_settle(struct dem *d, const struct dem_params *dp, double pfinal, double vol
 			dt_for_overlap(d, mmin, rmin, fmax(st->max_overlap, dp->overlap));
 		}
 		integrate(d);
-		servo(d, ptarget, &ratio);
+		dem_servo(d->lo, d->hi, d->wallf, ptarget, d->unloading ? d->rate * 0.05 : d->rate, NULL, d->x, d->n);
 	}
 	if (!st->at_rest) {
 		msg_seterr("the pack did not come to rest in %ld steps (stress/target %.3g, unbalanced %.3g)",

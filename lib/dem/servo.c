@@ -1,0 +1,35 @@
+/* servo: the shared wall servo of the DEM compactions (see servo.h). */
+#include "dem/servo.h"
+
+#include <math.h>
+
+double
+dem_servo(double lo[3], double hi[3], const double wallf[6], double ptarget, double rate, const int *periodic,
+    double *x, size_t n)
+{
+	double de[3] = {0, 0, 0}, c[3], rs = 0;
+	size_t i;
+	int a, nw = 0;
+
+	for (a = 0; a < 3; a++)
+		nw += !(periodic && periodic[a]);
+	for (a = 0; a < 3; a++) {
+		int b = (a + 1) % 3, e = (a + 2) % 3;
+		double area = (hi[b] - lo[b]) * (hi[e] - lo[e]), sig, ratio, g;
+
+		c[a] = 0.5 * (lo[a] + hi[a]);
+		if (periodic && periodic[a])
+			continue;
+		sig = (wallf[2 * a] + wallf[2 * a + 1]) / (2 * area);
+		ratio = sig / ptarget;
+		rs += ratio / nw;
+		g = fmax(-1, fmin(1, 1 - ratio));
+		de[a] = g * rate;
+		lo[a] = c[a] + (lo[a] - c[a]) * (1 - de[a]);
+		hi[a] = c[a] + (hi[a] - c[a]) * (1 - de[a]);
+	}
+	for (i = 0; i < n; i++)
+		for (a = 0; a < 3; a++)
+			x[3 * i + a] = c[a] + (x[3 * i + a] - c[a]) * (1 - de[a]);
+	return rs;
+}
