@@ -107,10 +107,14 @@ read_pack(const char *input, struct pack *p)
 	size_t i;
 	int a;
 
+	const char *name = input && strcmp(input, "-") != 0 ? input : "<stdin>";
+
 	if (pack_read_path(input, p))
 		msg_die_err(EXIT_DATA);
+	if (pack_require_spheres(p, "densify"))
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	if (p->n < 5)
-		msg_die(EXIT_DATA, "%s: %zu grains: densify needs at least 5", input ? input : "<stdin>", p->n);
+		msg_die(EXIT_DATA, "%s: %zu grains: densify needs at least 5", name, p->n);
 	for (a = 0; a < 3; a++)
 		for (i = 0; i < p->n; i++)
 			if (pack_box_length(p->box, a) < 2 * p->r[i])

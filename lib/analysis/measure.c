@@ -1,8 +1,10 @@
 /* measure: porosity, coordination, stresses, residual, fabric (see measure.h). */
 #include "analysis/measure.h"
 #include "base/msg.h"
+#include "base/quat.h"
 #include "base/vec3.h"
 
+#include <gsl/gsl_eigen.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,21 +159,32 @@ measure_contact(const struct pack *p, const struct geo_contact *c, struct pack_m
 	}
 }
 
+/* Mean, sample standard deviation, min and max of n values, s[0..3]. */
+static void
+series_stats(const double *v, size_t n, double s[4])
+{
+	double sum = 0, sum2 = 0;
+	size_t k;
+
+	s[2] = INFINITY;
+	s[3] = 0;
+	for (k = 0; k < n; k++) {
+		sum += v[k];
+		sum2 += v[k] * v[k];
+		s[2] = fmin(s[2], v[k]);
+		s[3] = fmax(s[3], v[k]);
+	}
+	s[0] = sum / n;
+	s[1] = n > 1 ? sqrt(fmax(sum2 - sum * sum / n, 0) / (n - 1)) : 0;
+}
+
 static void
 measure_radii(const struct pack *p, struct pack_measures *m)
 {
-	double sumr = 0, sumr2 = 0;
-	size_t k;
+	double s[4];
 
-	m->r_min = INFINITY;
-	for (k = 0; k < p->n; k++) {
-		sumr += p->r[k];
-		sumr2 += p->r[k] * p->r[k];
-		m->r_min = fmin(m->r_min, p->r[k]);
-		m->r_max = fmax(m->r_max, p->r[k]);
-	}
-	m->r_mean = sumr / p->n;
-	m->r_std = p->n > 1 ? sqrt(fmax(sumr2 - sumr * sumr / p->n, 0) / (p->n - 1)) : 0;
+	series_stats(p->r, p->n, s);
+	m->r_mean = s[0], m->r_std = s[1], m->r_min = s[2], m->r_max = s[3];
 }
 
 static void
@@ -289,4 +302,98 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	measure_sliding(p, gc, m);
 	free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig);
 	return 0;
+}
+
+int
+measure_nematic(const double *u, size_t n, double *S, double director[3])
+{
+	double Q[9] = {0}, big = 0;
+	gsl_matrix_view A = gsl_matrix_view_array(Q, 3, 3);
+	gsl_vector *eval = gsl_vector_alloc(3);
+	gsl_matrix *evec = gsl_matrix_alloc(3, 3);
+	gsl_eigen_symmv_workspace *w = gsl_eigen_symmv_alloc(3);
+	size_t k;
+	int a, b, status = -1;
+
+	if (!eval || !evec || !w) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	if (n == 0) {
+		msg_seterr("no vectors: no nematic order");
+		goto out;
+	}
+	for (k = 0; k < n; k++)
+		for (a = 0; a < 3; a++)
+			for (b = 0; b < 3; b++)
+				Q[3 * a + b] += 1.5 * u[3 * k + a] * u[3 * k + b];
+	for (a = 0; a < 9; a++)
+		Q[a] /= n;
+	for (a = 0; a < 3; a++)
+		Q[4 * a] -= 0.5;
+	/* symmv destroys the lower triangle and diagonal of Q: it is not used after */
+	if (gsl_eigen_symmv(&A.matrix, eval, evec, w) || gsl_eigen_symmv_sort(eval, evec, GSL_EIGEN_SORT_VAL_DESC)) {
+		msg_seterr("nematic order: the eigensolver failed");
+		goto out;
+	}
+	*S = gsl_vector_get(eval, 0);
+	for (a = 0; a < 3; a++) {
+		director[a] = gsl_matrix_get(evec, a, 0);
+		if (fabs(director[a]) > fabs(big))
+			big = director[a];
+	}
+	/* u and -u are the same axis: one sign, so that the report is a function of the pack */
+	if (big < 0)
+		for (a = 0; a < 3; a++)
+			director[a] = -director[a];
+	status = 0;
+out:
+	gsl_eigen_symmv_free(w);
+	gsl_matrix_free(evec);
+	gsl_vector_free(eval);
+	return status;
+}
+
+int
+measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measures *m)
+{
+	double *v = calloc(3 * (p->n ? p->n : 1), sizeof *v), s[4], R[9];
+	size_t i;
+	int status = 0;
+
+	memset(m, 0, sizeof *m);
+	if (!v) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	m->grains = p->n;
+	m->packing_fraction = pack_grain_volume(p) / pack_box_volume(p->box);
+	m->porosity = 1 - m->packing_fraction;
+	series_stats(p->r, p->n, s);
+	m->r_mean = s[0], m->r_std = s[1], m->r_min = s[2], m->r_max = s[3];
+	for (i = 0; i < p->n; i++)
+		v[i] = p->has_shapes ? p->side[i] : 0;
+	series_stats(v, p->n, s);
+	m->side_mean = s[0], m->side_std = s[1], m->side_min = s[2], m->side_max = s[3];
+	for (i = 0; i < p->n; i++)
+		v[i] = shape_platyness(p->r[i], p->has_shapes ? p->side[i] : 0, conv);
+	series_stats(v, p->n, s);
+	/* min and max only where they say something: a monodisperse pack has one eta */
+	m->eta_mean = s[0], m->eta_min = s[2] < s[3] ? s[2] : NAN, m->eta_max = s[2] < s[3] ? s[3] : NAN;
+	for (i = 0; i < p->n; i++)
+		v[i] = 1 / (1 - v[i]);
+	series_stats(v, p->n, s);
+	m->aspect_mean = s[0], m->aspect_min = s[2] < s[3] ? s[2] : NAN, m->aspect_max = s[2] < s[3] ? s[3] : NAN;
+	/* the face normals n = R(q) e3, the third column of R(q), of the plates */
+	for (i = 0; i < p->n; i++)
+		if (p->has_shapes && p->side[i] > 0) {
+			quat_to_matrix(p->q + 4 * i, R);
+			v[3 * m->plates] = R[2], v[3 * m->plates + 1] = R[5], v[3 * m->plates + 2] = R[8];
+			m->plates++;
+		}
+	m->nematic = m->director[0] = m->director[1] = m->director[2] = NAN;
+	if (m->plates)
+		status = measure_nematic(v, m->plates, &m->nematic, m->director);
+	free(v);
+	return status;
 }

@@ -44,4 +44,31 @@ void measure_coordination(const struct pack *p, const struct geo_contacts *gc, u
 /* Marks rattlers (1) in flag[p->n]; returns their number. */
 size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned char *flag);
 
+/* What can be said of a pack with spheroplates (pack/shape.h) from the grains alone: its
+ * packing fraction with the plates' volume, the spheroradius r and core side L, the
+ * platyness eta = (R - r)/R and aspect ratio R/r under a convention for R (the pack's meta
+ * plate-radius, pack_plate_radius), and the nematic order of the face normals.  Every
+ * grain counts in the statistics (a sphere is a plate of side 0, eta 0, aspect 1); only
+ * the plates (side > 0), whose face normal exists, count in the nematic order.  Contact
+ * measures (coordination, forces, fabric) need the plate contacts of contact/plate.h and
+ * are not here: measure_pack finds sphere contacts only. */
+struct plate_measures {
+	size_t grains, plates;
+	double porosity, packing_fraction;
+	double r_mean, r_std, r_min, r_max;		/* m */
+	double side_mean, side_std, side_min, side_max;	/* m */
+	double eta_mean, eta_min, eta_max;		/* min and max NaN when all grains share eta */
+	double aspect_mean, aspect_min, aspect_max;	/* likewise */
+	double nematic, director[3];			/* NaN without plates */
+};
+
+int measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measures *m);
+/* The nematic order of n unit vectors u (3 each): the largest eigenvalue S of
+ * Q = <(3 u u - I)/2> (1 when all are parallel, 1/4 when they spread evenly over a plane,
+ * of order 1/sqrt(n) for isotropic ones: see test_measure.c) and its unit eigenvector, the
+ * director, signed so that its largest component is positive (u and -u are one axis).  A
+ * degenerate largest eigenvalue leaves the director one of its eigenvectors.  0, or -1 with
+ * msg_seterr (n = 0, GSL failure). */
+int measure_nematic(const double *u, size_t n, double *S, double director[3]);
+
 #endif

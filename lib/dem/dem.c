@@ -436,6 +436,21 @@ dem_write_back(const struct dem *d, struct pack *p, const size_t *order, double 
 		for (i = 0; i < n; i++)
 			arrs[q][i] = tmp[order[i]];
 	}
+	/* a pack with shape columns keeps each grain's side and orientation with it (the
+	 * spheres packgen makes have none; this is for any caller that gives some) */
+	if (p->has_shapes) {
+		memcpy(tmp, p->side, n * sizeof *tmp);
+		for (i = 0; i < n; i++)
+			p->side[i] = tmp[order[i]];
+		free(tmp);
+		if (!(tmp = malloc(4 * n * sizeof *tmp))) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		memcpy(tmp, p->q, 4 * n * sizeof *tmp);
+		for (i = 0; i < n; i++)
+			memcpy(p->q + 4 * i, tmp + 4 * order[i], 4 * sizeof *tmp);
+	}
 	free(tmp);
 	for (i = 0; i < n; i++) {
 		p->id[i] = (long)i + 1;

@@ -1,5 +1,6 @@
 /* pack: the data model (see pack.h). */
 #include "pack/pack.h"
+#include "pack/shape.h"
 #include "base/msg.h"
 
 #include <math.h>
@@ -26,6 +27,8 @@ pack_free(struct pack *p)
 	free(p->E);
 	free(p->nu);
 	free(p->rho);
+	free(p->side);
+	free(p->q);
 	free(p->c);
 	for (k = 0; k < p->nhist; k++)
 		free(p->history[k]);
@@ -60,8 +63,58 @@ pack_reserve(struct pack *p, size_t n)
 	    grow((void **)&p->r, n, sizeof *p->r) || grow((void **)&p->E, n, sizeof *p->E) ||
 	    grow((void **)&p->nu, n, sizeof *p->nu) || grow((void **)&p->rho, n, sizeof *p->rho))
 		return -1;
+	if (p->has_shapes && (grow((void **)&p->side, n, sizeof *p->side) || grow((void **)&p->q, 4 * n, sizeof *p->q)))
+		return -1;
 	p->cap = n;
 	return 0;
+}
+
+static const double quat_identity[4] = {1, 0, 0, 0};
+
+int
+pack_set_shapes(struct pack *p)
+{
+	size_t i;
+
+	if (p->has_shapes)
+		return 0;
+	/* room for cap grains, as pack_reserve keeps it for the other arrays */
+	if (grow((void **)&p->side, p->cap, sizeof *p->side) || grow((void **)&p->q, 4 * p->cap, sizeof *p->q))
+		return -1;
+	p->has_shapes = 1;
+	for (i = 0; i < p->n; i++)
+		pack_set_grain_shape(p, i, 0, quat_identity);
+	return 0;
+}
+
+void
+pack_set_grain_shape(struct pack *p, size_t i, double side, const double q[4])
+{
+	p->side[i] = side;
+	memcpy(p->q + 4 * i, q, 4 * sizeof *q);
+}
+
+size_t
+pack_first_plate(const struct pack *p)
+{
+	size_t i;
+
+	if (p->has_shapes)
+		for (i = 0; i < p->n; i++)
+			if (p->side[i] > 0)
+				return i;
+	return (size_t)-1;
+}
+
+int
+pack_require_spheres(const struct pack *p, const char *who)
+{
+	size_t i = pack_first_plate(p);
+
+	if (i == (size_t)-1)
+		return 0;
+	msg_seterr("grain %ld is a spheroplate (side > 0); %s handles spheres only", p->id[i], who);
+	return -1;
 }
 
 size_t
@@ -77,6 +130,8 @@ pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, d
 	p->E[i] = E;
 	p->nu[i] = nu;
 	p->rho[i] = rho;
+	if (p->has_shapes)
+		pack_set_grain_shape(p, i, 0, quat_identity);
 	p->n++;
 	return i;
 }
@@ -162,6 +217,24 @@ pack_get_meta_double(const struct pack *p, const char *key, double *v)
 	return 0;
 }
 
+int
+pack_plate_radius(const struct pack *p, enum shape_radius *conv)
+{
+	const char *s = pack_get_meta(p, PACK_META_PLATE_RADIUS);
+	int k;
+
+	*conv = SHAPE_R_EDGE;
+	if (!s)
+		return 0;
+	for (k = 0; k < 2; k++)
+		if (strcmp(s, shape_radius_names[k]) == 0) {
+			*conv = (enum shape_radius)k;
+			return 0;
+		}
+	msg_seterr("meta %s '%s' is neither 'edge' nor 'corner'", PACK_META_PLATE_RADIUS, s);
+	return -1;
+}
+
 double
 pack_box_length(const double box[6], int axis)
 {
@@ -177,12 +250,17 @@ pack_box_volume(const double box[6])
 double
 pack_grain_volume(const struct pack *p)
 {
-	double v = 0;
+	double v = 0, vp = 0;
 	size_t i;
 
+	/* the spheres summed as r^3 times 4 pi/3 at the end, as before the plates came: every
+	 * sphere pack keeps its porosity to the last bit, with or without shape columns */
 	for (i = 0; i < p->n; i++)
-		v += p->r[i] * p->r[i] * p->r[i];
-	return v * 4.0 / 3.0 * 3.14159265358979323846;
+		if (p->has_shapes && p->side[i] > 0)
+			vp += shape_volume(p->r[i], p->side[i]);
+		else
+			v += p->r[i] * p->r[i] * p->r[i];
+	return v * 4.0 / 3.0 * 3.14159265358979323846 + vp;
 }
 
 size_t

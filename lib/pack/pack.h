@@ -1,15 +1,21 @@
 /* pack: the data model every tool shares.
  *
- * A pack is N spherical grains in a rectangular box bounded by six walls, the reference box
+ * A pack is N grains in a rectangular box bounded by six walls (or periodic), the reference box
  * against which strains are measured, the contacts that carry history (normal force P0,
  * tangential force Q0 on the first grain, torsional couple M0, all at the last committed
  * equilibrium), and provenance (one history line per program that touched it).
  * Units are SI: m, Pa, kg/m^3, N, N m.  Grains are stored as parallel arrays so that the
- * minimisers can work on x[] directly. */
+ * minimisers can work on x[] directly.
+ *
+ * Grains are spheres unless the pack carries the shape columns (has_shapes): then each is a
+ * spheroplate (pack/shape.h) of spheroradius r[i], core side side[i] (0: a sphere) and
+ * orientation q[4 i .. 4 i + 3] (base/quat.h), and only a tool that knows plates may use it
+ * (pack_require_spheres). */
 #ifndef QUSGM_PACK_H
 #define QUSGM_PACK_H
 
 #include <stddef.h>
+#include "pack/shape.h"
 
 #define PACK_FORMAT_NAME "qusgm-pack"
 #define PACK_FORMAT_VERSION 2	/* the newest version read and written */
@@ -67,6 +73,14 @@ struct pack {
 	double *E;	/* Young's moduli (Pa) */
 	double *nu;	/* Poisson ratios */
 	double *rho;	/* densities (kg/m^3) */
+	/* The shape columns of format 2 (pack-format.md), all or none: has_shapes says which.
+	 * side: L >= 0 of the square core (m), 0 for a sphere; q: 4n, the unit quaternion
+	 * (w x y z) turning the grain's body frame (core in its z = 0 plane, edges along x and
+	 * y) into the lab frame.  NULL without the columns, which keeps every sphere-only pack
+	 * and its output as they were. */
+	int has_shapes;
+	double *side;
+	double *q;
 
 	double box[6];		/* xlo ylo zlo xhi yhi zhi (m) */
 	/* The boundary along each axis: 0, the two box faces are rigid walls (every pack of
@@ -90,9 +104,26 @@ struct pack {
 void pack_init(struct pack *p);
 void pack_free(struct pack *p);
 int pack_reserve(struct pack *p, size_t n);
-/* Append a grain; returns its index or (size_t)-1 when out of memory. */
+/* Append a grain; returns its index or (size_t)-1 when out of memory.  With the shape
+ * columns it is a sphere (side 0, q = (1, 0, 0, 0)) until pack_set_grain_shape. */
 size_t pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, double nu,
     double rho);
+/* Give p the shape columns, every grain a sphere (side 0, q the identity): what a tool that
+ * makes plates calls first, and what the reader calls for a columns line that names them.
+ * Nothing happens when p has them already.  0, or -1 (msg_seterr) when out of memory. */
+int pack_set_shapes(struct pack *p);
+/* Grain i's core side L (m) and orientation (a unit quaternion, copied); p has the shape
+ * columns.  The reader and pack_validate check the values. */
+void pack_set_grain_shape(struct pack *p, size_t i, double side, const double q[4]);
+/* How far from 1 the norm of a stored quaternion may be (pack-format.md, "Grain lines"). */
+#define PACK_QUAT_TOL 1e-6
+/* The index of the first spheroplate (side > 0), or (size_t)-1 when every grain is a
+ * sphere: no shape columns, or every side 0. */
+size_t pack_first_plate(const struct pack *p);
+/* The check of every tool that runs the sphere physics: 0 when every grain is a sphere;
+ * otherwise -1 with "grain ID is a spheroplate (side > 0); WHO handles spheres only" in the
+ * slot, for the tool to prefix with its input's name.  WHO names the tool (or its mode). */
+int pack_require_spheres(const struct pack *p, const char *who);
 int pack_add_contact(struct pack *p, const struct pack_contact *c);
 /* The history lines as sorted keys: three longs per line, (a, b, line) with a < b for a grain
  * pair (either order in the file: 'i j' and 'j i' name one pair) and (grain, wall) for a wall,
@@ -107,10 +138,18 @@ int pack_set_meta(struct pack *p, const char *key, const char *value);
 const char *pack_get_meta(const struct pack *p, const char *key);
 /* The meta value of key as a finite number: 0 with *v set, or -1 (absent or not a number). */
 int pack_get_meta_double(const struct pack *p, const char *key, double *v);
+/* The convention for a plate's outer radius R (pack/shape.h) under which this pack's
+ * platyness is given: meta 'plate-radius', 'edge' or 'corner', and SHAPE_R_EDGE when the key
+ * is absent.  A pack stores r and L, so only converting to and from the platyness needs it.
+ * 0, or -1 with msg_seterr for another value. */
+#define PACK_META_PLATE_RADIUS "plate-radius"
+int pack_plate_radius(const struct pack *p, enum shape_radius *conv);
 
 /* Box geometry: wall w's inward normal and position along its axis. */
 double pack_box_length(const double box[6], int axis);
 double pack_box_volume(const double box[6]);
+/* The sum of the grains' volumes, spheres and spheroplates (shape_volume), overlaps not
+ * subtracted (m^3). */
 double pack_grain_volume(const struct pack *p);
 /* Index of the grain with the given id, or (size_t)-1 (binary search over a cached sort). */
 size_t pack_find_id(const struct pack *p, long id, size_t *scratch_sorted);

@@ -4,6 +4,7 @@
 #include "base/lines.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
+#include "base/quat.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -158,6 +159,14 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 		snprintf(why, len, "grain %ld: Poisson ratio %g is outside (-1, 0.5)", p->id[i], p->nu[i]);
 	else if (!(p->rho[i] > 0))
 		snprintf(why, len, "grain %ld: density %g is not positive", p->id[i], p->rho[i]);
+	else if (p->has_shapes && !(isfinite(p->side[i]) && p->side[i] >= 0))
+		snprintf(why, len, "grain %ld: side %g is %s", p->id[i], p->side[i],
+		    isfinite(p->side[i]) ? "negative" : "not finite");
+	else if (p->has_shapes && !(fabs(quat_norm(p->q + 4 * i) - 1) <= PACK_QUAT_TOL))
+		/* not renormalised: what is read is what is written back (pack-format.md) */
+		snprintf(why, len, "grain %ld: (qw, qx, qy, qz) = (%.9g, %.9g, %.9g, %.9g) is not a unit quaternion (norm %.9g, off 1 by more than %g)",
+		    p->id[i], p->q[4 * i], p->q[4 * i + 1], p->q[4 * i + 2], p->q[4 * i + 3], quat_norm(p->q + 4 * i),
+		    PACK_QUAT_TOL);
 	else {
 		for (a = 0; a < 3; a++)
 			if (x[a] < p->box[a] || x[a] > p->box[a + 3]) {
@@ -272,19 +281,25 @@ find_same_centre(const struct pack *p, size_t *first, size_t *later)
 
 /* ---- the grain columns ---- */
 
-/* The grain columns a pack may have, in the order writers put them.  The required ones are
- * in every pack, first on each grain line and in this order, so that a script reading a
- * column by its position reads it from every pack; a version-1 pack has exactly these and
- * no columns line.  A later optional column (a phase tag, a shape, an orientation) is a row
- * with required 0, plus the storage of its values in struct pack, their parsing in
- * read_grain_line, and the test in pack_format_version that the pack has it. */
+/* The grain columns a pack may have, in the order writers put them.  The required ones
+ * (group 0) are in every pack, first on each grain line and in this order, so that a script
+ * reading a column by its position reads it from every pack; a version-1 pack has exactly
+ * these and no columns line.  An optional group comes all or none, its columns together and
+ * in this order, after the required ones: so a pack is spheres or shapes as a whole, and a
+ * reader never meets a side without its orientation.  A later group (a phase tag) is more
+ * rows with a new group number, a name in groups[], the storage of its values in struct
+ * pack, their parsing in read_grain_line and writing in format_pack, and a test in
+ * pack_format_version that the pack has it. */
 static const struct column {
 	const char *name;
-	int required;
+	int group;
 } columns[] = {
-	{"id", 1}, {"x", 1}, {"y", 1}, {"z", 1}, {"r", 1}, {"E", 1}, {"nu", 1}, {"rho", 1},
+	{"id", 0}, {"x", 0}, {"y", 0}, {"z", 0}, {"r", 0}, {"E", 0}, {"nu", 0}, {"rho", 0},
+	{"side", 1}, {"qw", 1}, {"qx", 1}, {"qy", 1}, {"qz", 1},
 };
 #define NCOLUMNS ((int)(sizeof columns / sizeof columns[0]))
+enum { COL_SIDE = 8, GROUP_SHAPE = 1, NGROUPS = 2 };
+static const char *const groups[NGROUPS] = {"required", "shape"};
 
 /* A columns line naming every known column once, and one more name, fits in tok[]: so the
  * unknown or repeated name of a longer line is among the fields kept. */
@@ -301,6 +316,28 @@ column_index(const char *name)
 	return -1;
 }
 
+/* The names of group g, "side qw qx qy qz", for messages and the columns line. */
+static void
+group_names(int g, char *buf, size_t len)
+{
+	int k;
+
+	buf[0] = 0;
+	for (k = 0; k < NCOLUMNS; k++)
+		if (columns[k].group == g)
+			snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", buf[0] ? " " : "", columns[k].name);
+}
+
+static int
+group_size(int g)
+{
+	int k, n = 0;
+
+	for (k = 0; k < NCOLUMNS; k++)
+		n += columns[k].group == g;
+	return n;
+}
+
 /* ---- the header ---- */
 
 /* The header being read: the version, what it declares, which keywords it has had, and
@@ -312,6 +349,7 @@ struct header {
 	long ngr, nco;
 	unsigned seen;	/* bit k: keywords[k] has been read */
 	int ncol;	/* fields of a grain line */
+	int col[MAXTOK];	/* the columns[] index of each field of a grain line */
 	char colnames[256];	/* the names, "id x y z r E nu rho", for messages */
 };
 
@@ -324,8 +362,8 @@ standard_columns(struct header *h)
 	h->ncol = 0;
 	h->colnames[0] = 0;
 	for (k = 0; k < NCOLUMNS; k++)
-		if (columns[k].required) {
-			h->ncol++;
+		if (columns[k].group == 0) {
+			h->col[h->ncol++] = k;
 			snprintf(h->colnames + strlen(h->colnames), sizeof h->colnames - strlen(h->colnames),
 			    "%s%s", h->colnames[0] ? " " : "", columns[k].name);
 		}
@@ -407,12 +445,14 @@ kw_count(struct header *h, char **tok, int n)
 	return 0;
 }
 
-/* "columns NAME ...": known names, each once, the required ones first and in order. */
+/* "columns NAME ...": known names, each once, the required ones first and in order, then
+ * each optional group whole, its names together and in order. */
 static int
 kw_columns(struct header *h, char **tok, int n)
 {
 	unsigned named = 0;
-	int k, c;
+	int k, c, g, have[NGROUPS] = {0};
+	char names[128];
 
 	if (n < 2)
 		return rd_error(h->rd, "columns: expected the names of the grain columns (%s ...)", h->colnames);
@@ -422,23 +462,49 @@ kw_columns(struct header *h, char **tok, int n)
 		if (named & 1u << c)
 			return rd_error(h->rd, "columns: column '%s' named twice", tok[k]);
 		named |= 1u << c;
+		have[columns[c].group]++;
 	}
 	for (c = 0; c < NCOLUMNS; c++)
-		if (columns[c].required && !(named & 1u << c))
+		if (columns[c].group == 0 && !(named & 1u << c))
 			return rd_error(h->rd, "columns: the required column '%s' is missing", columns[c].name);
 	for (c = 0, k = 1; c < NCOLUMNS; c++) {
-		if (!columns[c].required)
+		if (columns[c].group != 0)
 			continue;
 		if (strcmp(tok[k], columns[c].name) != 0)
 			return rd_error(h->rd, "columns: column %d must be '%s' (the required columns come first, in the order %s)",
 			    k, columns[c].name, h->colnames);
 		k++;
 	}
+	for (g = 1; g < NGROUPS; g++)
+		if (have[g] && have[g] < group_size(g)) {
+			for (c = 0; c < NCOLUMNS && (columns[c].group != g || named & 1u << c); c++)
+				;
+			group_names(g, names, sizeof names);
+			return rd_error(h->rd, "columns: only some of the %s columns (%s): they come all %d or none; '%s' is missing",
+			    groups[g], names, group_size(g), columns[c].name);
+		}
+	/* after the required columns, each group from its first column on, in order */
+	while (k < n) {
+		g = columns[column_index(tok[k])].group;
+		group_names(g, names, sizeof names);
+		for (c = 0; c < NCOLUMNS; c++) {
+			if (columns[c].group != g)
+				continue;
+			if (k >= n || strcmp(tok[k], columns[c].name) != 0)
+				return rd_error(h->rd, "columns: column %d must be '%s' (the %s columns come together, in the order %s)",
+				    k, columns[c].name, groups[g], names);
+			k++;
+		}
+	}
 	h->colnames[0] = 0;
-	for (k = 1; k < n; k++)
+	for (k = 1; k < n; k++) {
 		snprintf(h->colnames + strlen(h->colnames), sizeof h->colnames - strlen(h->colnames), "%s%s",
 		    k > 1 ? " " : "", tok[k]);
+		h->col[k - 1] = column_index(tok[k]);
+	}
 	h->ncol = n - 1;
+	if (have[GROUP_SHAPE] && pack_set_shapes(h->p))
+		return rd_error(h->rd, "out of memory");
 	return 0;
 }
 
@@ -582,24 +648,29 @@ read_header(struct header *h)
 
 /* ---- grains and contacts ---- */
 
-/* A grain line of the header's columns: the required ones come first, in columns[] order. */
+/* A grain line of the header's columns: the required ones come first, in columns[] order;
+ * the optional ones are found by the column each field is (h->col). */
 static int
 read_grain_line(const struct header *h, char *s)
 {
 	struct pack_reader *rd = h->rd;
 	char *tok[MAXTOK], why[256];
-	double v[7];
+	double v[NCOLUMNS];
 	long id;
-	int n = split(s, tok, MAXTOK);
+	int n = split(s, tok, MAXTOK), k;
 
 	if (n != h->ncol)
-		return rd_error(rd, "grain line: expected %d columns (%s), found %d", h->ncol, h->colnames, n);
+		return rd_error(rd, "grain line: expected %d columns (%s), found %d%s", h->ncol, h->colnames, n,
+		    h->version < 2 && n > h->ncol ? "; more columns need 'qusgm-pack 2' and a columns line" : "");
 	if (num_parse_long(tok[0], &id))
 		return rd_error(rd, "grain id '%s' is not an integer", tok[0]);
-	if (parse_numbers(rd, tok + 1, 7, v, "grain"))
-		return -1;
-	if (pack_add_grain(h->p, id, v, v[3], v[4], v[5], v[6]) == (size_t)-1)
+	for (k = 1; k < n; k++)
+		if (num_parse(tok[k], &v[h->col[k]]))
+			return rd_error(rd, "grain: '%s' is not a finite number", tok[k]);
+	if (pack_add_grain(h->p, id, v + 1, v[4], v[5], v[6], v[7]) == (size_t)-1)
 		return rd_error(rd, "out of memory");
+	if (h->p->has_shapes)
+		pack_set_grain_shape(h->p, h->p->n - 1, v[COL_SIDE], v + COL_SIDE + 1);
 	if (check_grain_values(h->p, h->p->n - 1, why, sizeof why))
 		return rd_error(rd, "%s", why);
 	return 0;
@@ -921,8 +992,7 @@ sb_printf(struct sbuf *b, const char *fmt, ...)
 int
 pack_format_version(const struct pack *p)
 {
-	/* every column of columns[] is required, so the columns are the standard ones */
-	return p->periodic[0] || p->periodic[1] || p->periodic[2] ? 2 : 1;
+	return p->periodic[0] || p->periodic[1] || p->periodic[2] || p->has_shapes ? 2 : 1;
 }
 
 /* The version-2 lines: the boundary along x y z, and the grain columns. */
@@ -938,13 +1008,13 @@ format_boundary(const struct pack *p, struct sbuf *b)
 }
 
 static void
-format_columns(struct sbuf *b)
+format_columns(const struct pack *p, struct sbuf *b)
 {
 	int k;
 
 	sb_puts(b, "columns");
 	for (k = 0; k < NCOLUMNS; k++)
-		if (columns[k].required) {
+		if (columns[k].group == 0 || (columns[k].group == GROUP_SHAPE && p->has_shapes)) {
 			sb_puts(b, " ");
 			sb_puts(b, columns[k].name);
 		}
@@ -981,7 +1051,7 @@ format_header(const struct pack *p, int version, struct sbuf *b)
 	sb_nums(b, &p->mu, 1);
 	sb_printf(b, "grains %zu\ncontacts %zu\n", p->n, p->nc);
 	if (version >= 2)
-		format_columns(b);
+		format_columns(p, b);
 	sb_puts(b, "end\n");
 }
 
@@ -990,6 +1060,7 @@ format_pack(const struct pack *p, struct sbuf *b)
 {
 	size_t k;
 	double v[7];
+	int a;
 
 	format_header(p, pack_format_version(p), b);
 	for (k = 0; k < p->n && !b->oom; k++) {
@@ -999,7 +1070,14 @@ format_pack(const struct pack *p, struct sbuf *b)
 		v[4] = p->E[k];
 		v[5] = p->nu[k];
 		v[6] = p->rho[k];
-		sb_nums(b, v, 7);
+		if (p->has_shapes) {	/* then side qw qx qy qz */
+			for (a = 0; a < 7; a++)
+				sb_num(b, v[a], ' ');
+			sb_num(b, p->side[k], ' ');
+			sb_nums(b, p->q + 4 * k, 4);
+		} else {
+			sb_nums(b, v, 7);
+		}
 	}
 	for (k = 0; k < p->nc && !b->oom; k++) {
 		const struct pack_contact *c = &p->c[k];

@@ -67,8 +67,8 @@ struct path_limits {
 
 /* Called with each row: segment index (-1 for the starting row) and the row. */
 /* Read the pack a loading starts from (loadtest's path, frictionalize's uniaxial run; input
- * NULL or "-" is stdin) and check it: at least 5 grains (who, the tool, is named in that
- * message), a reference box, and a contact history its friction coefficients allow
+ * NULL or "-" is stdin) and check it: spheres only (pack_require_spheres), at least 5 grains
+ * (who, the tool, is named in those messages), a reference box, and a contact history its friction coefficients allow
  * (fr_check_history).  *stale gets the number of history lines that name grains which do not
  * touch, which the first increment drops.  0; 1 with msg_seterr saying what is wrong with the
  * pack, for the tool to prefix the input's name; -1 with msg_seterr when reading (the message

@@ -2,7 +2,7 @@
 # One check for every error the reader reports (share/doc/pack-format.md, "Errors"), each
 # with exit status 1, an empty stdout and exactly one "packinfo: FILE:LINE: what" line on
 # stderr, and the positive cases: plain, gzip, stdin, '-', several packs in one stream, -o;
-# then the same for the lines of format version 2 (columns, boundary).
+# then the same for the lines of format version 2 (columns, boundary) and its shape columns.
 . "$TOP/tests/tools/lib.sh"
 
 # Line numbers of good.pack, used by the error checks below:
@@ -331,3 +331,66 @@ mkdir -p adir
 expect_error dir-input-packinfo 1 '^packinfo: adir: is a directory$' packinfo adir
 expect_error dir-input-densify 1 '^densify: adir: is a directory$' densify --stress 1e6 -o x.pack adir
 expect_error dir-input-moduli 1 '^moduli: adir: is a directory$' moduli adir
+
+# --- version 2: the shape columns side qw qx qy qz -----------------------------------------
+# Line numbers of good3.pack:
+#  1 magic   2 history   3 units   4 box   5 boundary   6 walls   7 friction   8 grains
+#  9 contacts   10 columns   11 end   12-14 grains (13 columns)   15 contact
+cat >good3.pack <<'EOF2'
+qusgm-pack 2
+history hand-written: three plates
+units SI
+box 0 0 0 1e-3 1e-3 1e-3
+boundary walls walls walls
+walls 7e12 0.495 0.3
+friction 0.3
+grains 3
+contacts 1
+columns id x y z r E nu rho side qw qx qy qz
+end
+1 2e-4 2e-4 2e-4 2e-5 7e10 0.2 2420 1e-4 1 0 0 0
+2 5e-4 5e-4 5e-4 2e-5 7e10 0.2 2420 1e-4 0.7071067811865476 0.7071067811865476 0 0
+3 8e-4 8e-4 8e-4 2e-5 7e10 0.2 2420 1e-4 0.5 0.5 0.5 0.5
+1 2 0.01 0 0 0 0
+EOF2
+
+bad3() {
+	name=$1 line=$2 re=$3
+	sed "$4" good3.pack >"$name.pack"
+	expect_error "$name" 1 "^packinfo: $name\\.pack:$line: .*$re" packinfo "$name.pack"
+}
+
+expect_ok shapes-good packinfo good3.pack
+packinfo good3.pack >good3.info 2>/dev/null
+gzip -c good3.pack >good3.pack.gz
+packinfo good3.pack.gz >good3gz.info 2>/dev/null
+expect_same shapes-gzip-same-output good3.info good3gz.info
+sed 's/$/\r/' good3.pack >crlf3.pack
+packinfo crlf3.pack >crlf3.info 2>/dev/null
+expect_same shapes-crlf-same-output good3.info crlf3.info
+# a quaternion typed by hand: %g's 6 significant digits (norm 1 + 3e-7) read, 4 do not
+sed '13s/0.7071067811865476 0.7071067811865476/0.707107 0.707107/' good3.pack >six-digits.pack
+expect_ok shapes-quaternion-six-digits packinfo six-digits.pack
+bad3 shapes-quaternion-four-digits 13 "grain 2: \(qw, qx, qy, qz\) = \(0.7071, 0.7071, 0, 0\) is not a unit quaternion \(norm 0.99999041, off 1 by more than 1e-06\)$" \
+    '13s/0.7071067811865476 0.7071067811865476/0.7071 0.7071/'
+bad3 shapes-quaternion-zero 14 'grain 3: .* is not a unit quaternion \(norm 0,' '14s/0.5 0.5 0.5 0.5$/0 0 0 0/'
+bad3 shapes-quaternion-long 12 'is not a unit quaternion \(norm 2,' '12s/1 0 0 0$/2 0 0 0/'
+bad3 shapes-quaternion-nan 12 "'nan' is not a finite number" '12s/1 0 0 0$/nan 0 0 0/'
+bad3 shapes-side-negative 12 'grain 1: side -0.0001 is negative$' '12s/1e-4 1 0 0 0$/-1e-4 1 0 0 0/'
+bad3 shapes-side-nan 12 "'nan' is not a finite number" '12s/1e-4 1 0 0 0$/nan 1 0 0 0/'
+bad3 shapes-side-inf 12 "'inf' is not a finite number" '12s/1e-4 1 0 0 0$/inf 1 0 0 0/'
+bad3 shapes-side-overflow 12 "'1e999' is not a finite number" '12s/1e-4 1 0 0 0$/1e999 1 0 0 0/'
+bad3 shapes-grain-short 12 'grain line: expected 13 columns \(id x y z r E nu rho side qw qx qy qz\), found 12$' '12s/ 0$//'
+bad3 shapes-grain-sphere-line 12 'expected 13 columns .*found 8$' '12s/ 1e-4 1 0 0 0$//'
+# all five or none, together and in order, after the eight required columns
+bad3 shapes-only-four 10 "columns: only some of the shape columns \(side qw qx qy qz\): they come all 5 or none; 'qz' is missing$" '10s/ qz$//'
+bad3 shapes-only-side 10 "only some of the shape columns .*'qw' is missing$" '10s/ qw qx qy qz$//'
+bad3 shapes-only-quaternion 10 "only some of the shape columns .*'side' is missing$" '10s/ side / /'
+bad3 shapes-order 10 "columns: column 9 must be 'side' \(the shape columns come together, in the order side qw qx qy qz\)$" '10s/side qw/qw side/'
+bad3 shapes-order-quaternion 10 "columns: column 10 must be 'qw'" '10s/qw qx qy qz$/qx qy qz qw/'
+bad3 shapes-before-rho 10 "columns: column 8 must be 'rho' \(the required columns come first" '10s/rho side qw qx qy qz$/side qw qx qy qz rho/'
+bad3 shapes-side-twice 10 "columns: column 'side' named twice" '10s/$/ side/'
+bad3 shapes-unknown 10 "columns: unknown column 'qs'" '10s/ qz$/ qs/'
+# version 1 has no columns line, so no shape columns
+bad3 shapes-in-v1 9 "columns: not in version 1 of the format" '1s/2$/1/;5d'
+bad3 shapes-lines-in-v1 10 "grain line: expected 8 columns \(id x y z r E nu rho\), found 13; more columns need 'qusgm-pack 2' and a columns line$" '1s/2$/1/;5d;10d'

@@ -10,9 +10,13 @@
 #include "contact/contacts.h"
 #include "contact/hertz.h"
 #include "analysis/measure.h"
+#include "base/msg.h"
+#include "base/quat.h"
 #include "pack/pack.h"
+#include "pack/shape.h"
 #include "unit.h"
 
+#include <gsl/gsl_rng.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -249,9 +253,152 @@ test_hertz(void)
 	}
 }
 
+/* A pack of n plates of spheroradius r and side L on a line (centres distinct; measure_plates
+ * looks at shapes only), orientations set by the caller. */
+static void
+plate_pack(struct pack *p, size_t n, double r, double L)
+{
+	size_t i;
+
+	pack_init(p);
+	p->box[3] = p->box[4] = p->box[5] = 1;
+	pack_set_shapes(p);
+	for (i = 0; i < n; i++) {
+		double x[3] = {(double)(i + 1) / (double)(n + 1), 0.5, 0.5};
+		pack_add_grain(p, (long)i + 1, x, r, E_, NU, 2420);
+		p->side[i] = L;
+	}
+}
+
+/* The director d is the unit vector w (|d - w| within tol). */
+static int
+is_axis(const double d[3], double x, double y, double z, double tol)
+{
+	return fabs(d[0] - x) <= tol && fabs(d[1] - y) <= tol && fabs(d[2] - z) <= tol;
+}
+
+/* The plate measures on closed-form cases.  Q is a sum of n exact dyads divided by n and
+ * one eigensolve of a 3 x 3 matrix: a few ulps, so 1e-14 on S and the director. */
+static void
+test_plates(void)
+{
+	struct pack p;
+	struct plate_measures m;
+	double q[4], R[9];
+	size_t i;
+
+	/* every normal along z: S = 1, director z */
+	plate_pack(&p, 10, 2e-5, 1e-4);
+	CHECK(measure_plates(&p, SHAPE_R_EDGE, &m) == 0 && m.plates == 10 && m.grains == 10, "plates: 10 plates counted");
+	CHECK(fabs(m.nematic - 1) <= 1e-14 && is_axis(m.director, 0, 0, 1, 1e-14),
+	    "nematic: every normal along z: S = %.17g, director (%g, %g, %g)", m.nematic, m.director[0], m.director[1],
+	    m.director[2]);
+	/* monodisperse: one platyness, edge and corner readings; min and max absent */
+	CHECK_CLOSE(m.eta_mean, 5e-5 / 7e-5, 1e-15, "plates: edge platyness (R - r)/R, R = r + L/2");
+	CHECK_CLOSE(m.aspect_mean, 7e-5 / 2e-5, 1e-15, "plates: edge aspect ratio R/r");
+	CHECK(isnan(m.eta_min) && isnan(m.eta_max) && isnan(m.aspect_min) && isnan(m.aspect_max),
+	    "plates: monodisperse, no platyness min and max");
+	CHECK_CLOSE(m.packing_fraction, 10 * shape_volume(2e-5, 1e-4), 1e-15, "plates: packing fraction with the plates' volume");
+	/* ten equal values summed and divided: a few ulps; sum2 - sum^2/n cancels to ~1e-24 */
+	CHECK(m.porosity == 1 - m.packing_fraction && unit_close(m.side_mean, 1e-4, 1e-15, 0) && m.side_std < 1e-15 &&
+	    unit_close(m.r_mean, 2e-5, 1e-15, 0) && m.side_min == 1e-4 && m.side_max == 1e-4,
+	    "plates: porosity, side and r statistics (side %.17g sd %.3g, r %.17g)", m.side_mean, m.side_std, m.r_mean);
+	measure_plates(&p, SHAPE_R_CORNER, &m);
+	CHECK_CLOSE(m.eta_mean, (1e-4 / M_SQRT2) / (2e-5 + 1e-4 / M_SQRT2), 1e-15, "plates: corner platyness, R = r + L/sqrt(2)");
+	/* all turned by 120 degrees about (1, 1, 1): z goes to x; and q -> -q changes nothing */
+	for (i = 0; i < p.n; i++) {
+		q[0] = q[1] = q[2] = q[3] = i % 2 ? 0.5 : -0.5;
+		pack_set_grain_shape(&p, i, 1e-4, q);
+	}
+	measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(fabs(m.nematic - 1) <= 1e-14 && is_axis(m.director, 1, 0, 0, 1e-14),
+	    "nematic: normals R(q) e3 = x for q = +-(1, 1, 1, 1)/2: S = %.17g, director (%g, %g, %g)", m.nematic,
+	    m.director[0], m.director[1], m.director[2]);
+	/* every normal along (1, 1, 1)/sqrt(3), from q turning e3 onto it; director of positive
+	 * sign whatever the sign of q's eigenvector */
+	for (i = 0; i < p.n; i++) {
+		double w[3] = {1 / sqrt(3.0), 1 / sqrt(3.0), 1 / sqrt(3.0)}, ax[3] = {-w[1], w[0], 0}, c = w[2];
+		double half = acos(c) / 2, s = sin(half) / sqrt(ax[0] * ax[0] + ax[1] * ax[1]);
+		q[0] = cos(half), q[1] = s * ax[0], q[2] = s * ax[1], q[3] = 0;
+		if (i % 2)
+			q[0] = -q[0], q[1] = -q[1], q[2] = -q[2];
+		pack_set_grain_shape(&p, i, 1e-4, q);
+	}
+	quat_to_matrix(q, R);
+	measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(fabs(m.nematic - 1) <= 1e-14 && is_axis(m.director, 1 / sqrt(3.0), 1 / sqrt(3.0), 1 / sqrt(3.0), 1e-14),
+	    "nematic: every normal along (1, 1, 1)/sqrt(3) (R(q) e3 = (%g, %g, %g)): S = %.17g, director (%.15g, %.15g, %.15g)",
+	    R[2], R[5], R[8], m.nematic, m.director[0], m.director[1], m.director[2]);
+	pack_free(&p);
+
+	/* three normals along z, one along x: <n n> = diag(1/4, 0, 3/4), Q = diag(-1/8, -1/2, 5/8) */
+	plate_pack(&p, 4, 2e-5, 1e-4);
+	q[0] = q[2] = 1 / M_SQRT2, q[1] = q[3] = 0;	/* 90 degrees about y: e3 -> x */
+	pack_set_grain_shape(&p, 2, 1e-4, q);
+	measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(fabs(m.nematic - 0.625) <= 1e-14 && is_axis(m.director, 0, 0, 1, 1e-14),
+	    "nematic: 3 normals z, 1 x: S = 5/8 (%.17g), director z", m.nematic);
+	/* a sphere among them: counted in the statistics, not in the nematic order */
+	pack_add_grain(&p, 99, (const double[3]){0.5, 0.9, 0.5}, 5e-5, E_, NU, 2420);
+	measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(m.plates == 4 && m.grains == 5 && fabs(m.nematic - 0.625) <= 1e-14, "nematic: a sphere (side 0) has no normal: 4 plates of 5 grains");
+	CHECK(m.eta_min == 0 && m.aspect_min == 1 && fabs(m.eta_max - m.eta_mean * 1.25) <= 1e-15 && m.side_min == 0 && m.r_max == 5e-5,
+	    "plates: a sphere is eta 0, aspect 1, side 0 in the statistics");
+	pack_free(&p);
+
+	/* normals z, -y and x (pack-format.md's example): <n n> = I/3, Q = 0 */
+	plate_pack(&p, 3, 2e-5, 1e-4);
+	pack_set_grain_shape(&p, 1, 1e-4, (const double[4]){1 / M_SQRT2, 1 / M_SQRT2, 0, 0});
+	pack_set_grain_shape(&p, 2, 1e-4, (const double[4]){0.5, 0.5, 0.5, 0.5});
+	measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(fabs(m.nematic) <= 1e-15, "nematic: normals z, -y, x: S = 0 (%.3g)", m.nematic);
+	pack_free(&p);
+
+	i = (size_t)measure_nematic(NULL, 0, &m.nematic, m.director);
+	CHECK(i != 0, "measure_nematic: no vectors is an error (%s)", msg_geterr());
+}
+
+/* Isotropic orientations: N uniformly random rotations (quat_from_uniform) give normals
+ * uniform on the sphere.  Each (3 n n - I)/2 is a traceless symmetric matrix with mean 0 and
+ * E[X:X] = (9 - 6 + 3)/4 = 3/2, isotropic over the 5 dimensions of such matrices, so by the
+ * central limit theorem Q:Q = (3/(2N)) chi2_5/5.  The largest eigenvalue of a traceless Q
+ * lies between sqrt(Q:Q/6) (eigenvalues a, a, -2a) and sqrt(2 Q:Q/3) (2a, -a, -a), so
+ * S sqrt(N) is of order 1 (its mean is 0.80, sd 0.29, by simulation), never 0 and never
+ * growing with N.  The band 0.1 < S sqrt(N) < 5: above it needs chi2_5 > 125 (probability
+ * 1e-24), below it chi2_5 < 0.2 (1e-3); the seed is fixed, so the check is deterministic,
+ * and the band is wide enough to hold for another seed or RNG.  A wrong normal (a row of
+ * R instead of a column, say) would still look isotropic here: the closed-form cases of
+ * test_plates catch that. */
+static void
+test_nematic_random(void)
+{
+	const size_t N = 20000;
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	struct pack p;
+	struct plate_measures m;
+	double q[4];
+	size_t i;
+
+	gsl_rng_set(rng, 1);
+	plate_pack(&p, N, 2e-5, 1e-4);
+	for (i = 0; i < N; i++) {
+		double u1 = gsl_rng_uniform(rng), u2 = gsl_rng_uniform(rng), u3 = gsl_rng_uniform(rng);
+		quat_from_uniform(u1, u2, u3, q);
+		pack_set_grain_shape(&p, i, 1e-4, q);
+	}
+	CHECK(measure_plates(&p, SHAPE_R_EDGE, &m) == 0 && m.plates == N, "nematic: 20000 random orientations measured");
+	CHECK(m.nematic * sqrt((double)N) > 0.1 && m.nematic * sqrt((double)N) < 5,
+	    "nematic: 20000 random orientations: S = %.4g, S sqrt(N) = %.3f in (0.1, 5): isotropic",
+	    m.nematic, m.nematic * sqrt((double)N));
+	pack_free(&p);
+	gsl_rng_free(rng);
+}
+
 int
 main(void)
 {
+	test_plates();
+	test_nematic_random();
 	test_lattice();
 	test_sliding();
 	test_small();

@@ -1,12 +1,15 @@
 /* test_packio: the pack writer and reader are exact inverses, and num_format is the shortest
  * round-trip-safe form (share/doc/pack-format.md, "Numbers").
  *
- * No tolerance anywhere in this file: every comparison is of bytes or of bit patterns,
- * because the format promises that write -> read -> write is the identity. */
+ * No tolerance in this file but one (a volume summed in another order, in shapes()): every
+ * other comparison is of bytes or of bit patterns, because the format promises that
+ * write -> read -> write is the identity. */
 #include "base/msg.h"
 #include "base/numfmt.h"
+#include "base/quat.h"
 #include "pack/pack.h"
 #include "pack/packio.h"
+#include "pack/shape.h"
 #include "unit.h"
 
 #include <gsl/gsl_rng.h>
@@ -164,6 +167,9 @@ check_fields(const struct pack *a, const struct pack *b, const char *how)
 		ok = same_bits(a->c[k].P0, b->c[k].P0) && same_array(a->c[k].Q0, b->c[k].Q0, 3) &&
 		    same_bits(a->c[k].M0, b->c[k].M0);
 	CHECK(ok, "%s: contact P0 Q0 M0 (bit patterns)", how);
+	CHECK(a->has_shapes == b->has_shapes && (!a->has_shapes || (same_array(a->side, b->side, a->n) &&
+	    same_array(a->q, b->q, 4 * a->n))), "%s: shape columns side qw qx qy qz (%s)", how,
+	    a->has_shapes ? "present, bit patterns" : "absent");
 	ok = a->nhist == b->nhist;
 	for (k = 0; ok && k < a->nhist; k++)
 		ok = strcmp(a->history[k], b->history[k]) == 0;
@@ -488,6 +494,157 @@ carriage_returns(const char *dir)
 	unlink(b);
 }
 
+/* build's pack with the shape columns: a sphere (side 0, the identity), sides without a
+ * short decimal form, 1e-300 and -0, and unit quaternions whose components have none. */
+static void
+build_shapes(struct pack *p)
+{
+	double q[4];
+
+	build(p);
+	pack_set_shapes(p);
+	q[0] = 1, q[1] = 2, q[2] = 3, q[3] = 4;
+	quat_normalize(q);
+	pack_set_grain_shape(p, 1, 1e-4 / 3.0, q);
+	q[0] = cos(M_PI / 8), q[1] = 0, q[2] = 0, q[3] = sin(M_PI / 8);
+	pack_set_grain_shape(p, 2, 2.5e-5, q);
+	q[0] = q[1] = q[2] = q[3] = 0.5;
+	pack_set_grain_shape(p, 3, 1e-300, q);
+	q[0] = -0.0, q[1] = 0, q[2] = 0, q[3] = -1;
+	pack_set_grain_shape(p, 4, -0.0, q);
+}
+
+static int
+is_sphere(const struct pack *p, size_t i)
+{
+	return p->side[i] == 0 && p->q[4 * i] == 1 && p->q[4 * i + 1] == 0 && p->q[4 * i + 2] == 0 &&
+	    p->q[4 * i + 3] == 0;
+}
+
+/* The shape columns (side qw qx qy qz): storage, growth, the writer's version 2 and its
+ * columns line, the round trip to the bit, and what pack_validate refuses. */
+static void
+shapes(const char *dir)
+{
+	struct pack p, q, s;
+	char a[160], b[160], how[64], *t;
+	double x[3] = {0.5e-4, 0.5e-4, 0.5e-4}, vs, qq[4];
+	size_t k;
+	int gz, ok;
+	enum shape_radius conv;
+
+	build(&p);
+	CHECK(!p.has_shapes && !p.side && !p.q, "a pack has no shape columns until pack_set_shapes");
+	vs = pack_grain_volume(&p);
+	CHECK(pack_first_plate(&p) == (size_t)-1 && pack_require_spheres(&p, "densify") == 0,
+	    "no shape columns: every grain a sphere, pack_require_spheres passes");
+	CHECK(pack_set_shapes(&p) == 0 && p.has_shapes, "pack_set_shapes");
+	for (k = 0, ok = 1; k < p.n; k++)
+		ok = ok && is_sphere(&p, k);
+	CHECK(ok, "pack_set_shapes: every grain side 0 and q = (1, 0, 0, 0)");
+	CHECK(pack_set_shapes(&p) == 0 && is_sphere(&p, 0), "pack_set_shapes twice changes nothing");
+	CHECK(same_bits(pack_grain_volume(&p), vs), "pack_grain_volume: shape columns with every side 0 give the spheres' volume, to the bit");
+	CHECK(pack_format_version(&p) == 2, "pack_format_version: 2 with the shape columns");
+	CHECK(pack_validate(&p) == 0, "pack_validate: shape columns, every side 0 (%s)", msg_geterr());
+	/* growth past the capacity (64, then doubling) keeps the shape arrays in step */
+	for (k = 0, ok = 1; k < 300; k++) {
+		x[0] = 1e-7 * (double)(k + 1);
+		ok = ok && pack_add_grain(&p, 1000 + (long)k, x, 1e-5, 7e10, 0.2, 2420) != (size_t)-1;
+	}
+	for (k = 0; k < p.n; k++)
+		ok = ok && is_sphere(&p, k);
+	CHECK(ok && p.n == 305 && p.cap >= 305, "pack_add_grain with shape columns: 300 more grains, each a sphere (%zu grains, cap %zu)",
+	    p.n, p.cap);
+	qq[0] = 0, qq[1] = 1, qq[2] = 0, qq[3] = 0;
+	pack_set_grain_shape(&p, 304, 3e-5, qq);
+	CHECK(p.side[304] == 3e-5 && p.q[4 * 304 + 1] == 1 && pack_first_plate(&p) == 304,
+	    "pack_set_grain_shape, pack_first_plate: the last grain");
+	CHECK(pack_require_spheres(&p, "frictionalize") != 0 &&
+	    strcmp(msg_geterr(), "grain 1299 is a spheroplate (side > 0); frictionalize handles spheres only") == 0,
+	    "pack_require_spheres: '%s'", msg_geterr());
+	/* the one tolerance of this file: 305 terms summed in another order, 305 roundings of
+	 * 1.1e-16 at most, 3.4e-14 */
+	CHECK(fabs(pack_grain_volume(&p) - (vs + 299 * 4.0 / 3 * M_PI * 1e-15 + shape_volume(1e-5, 3e-5))) <=
+	    1e-13 * pack_grain_volume(&p), "pack_grain_volume: spheres plus shape_volume(r, L) of the plate (%.17g, want %.17g)",
+	    pack_grain_volume(&p), vs + 299 * 4.0 / 3 * M_PI * 1e-15 + shape_volume(1e-5, 3e-5));
+	pack_free(&p);
+
+	/* the round trip, plain and gzip */
+	for (gz = 0; gz < 2; gz++) {
+		snprintf(how, sizeof how, "shape columns round trip%s", gz ? " .gz" : "");
+		snprintf(a, sizeof a, "%s/s-a.pack%s", dir, gz ? ".gz" : "");
+		snprintf(b, sizeof b, "%s/s-b.pack%s", dir, gz ? ".gz" : "");
+		build_shapes(&p);
+		CHECK(pack_validate(&p) == 0, "%s: the built pack is valid (%s)", how, msg_geterr());
+		CHECK(pack_write_path(&p, a) == 0, "%s: write", how);
+		t = text_of(a);
+		CHECK(t && strncmp(t, "qusgm-pack 2\n", 13) == 0 && strstr(t, "\nboundary walls walls walls\n") &&
+		    strstr(t, "\ncolumns id x y z r E nu rho side qw qx qy qz\nend\n"),
+		    "%s: version 2, 'columns id x y z r E nu rho side qw qx qy qz'", how);
+		CHECK(t && strstr(t, " 2420.123456789123 0 1 0 0 0\n") && strstr(t, " 1e-300 0.5 0.5 0.5 0.5\n") &&
+		    strstr(t, " -0 -0 0 0 -1\n"), "%s: side and q follow rho on each grain line", how);
+		free(t);
+		CHECK(pack_read_path(a, &q) == 0, "%s: read back (%s)", how, msg_geterr());
+		check_fields(&p, &q, how);
+		CHECK(pack_write_path(&q, b) == 0 && same_file(a, b, 0), "%s: write-read-write is byte-identical", how);
+		pack_free(&p);
+		pack_free(&q);
+		unlink(a);
+		unlink(b);
+	}
+	/* the same with a periodic axis: the two version-2 features together */
+	snprintf(a, sizeof a, "%s/sp-a.pack", dir);
+	snprintf(b, sizeof b, "%s/sp-b.pack", dir);
+	build_periodic(&p);
+	pack_set_shapes(&p);
+	pack_set_grain_shape(&p, 0, 1.0 / 3.0, (const double[4]){0, 0, 1, 0});
+	CHECK(pack_write_path(&p, a) == 0 && pack_read_path(a, &q) == 0 && pack_write_path(&q, b) == 0 &&
+	    same_file(a, b, 0), "shape columns and a periodic axis: write-read-write is byte-identical");
+	check_fields(&p, &q, "shape columns and a periodic axis");
+	pack_free(&p);
+	pack_free(&q);
+	unlink(a);
+	unlink(b);
+
+	/* what pack_validate refuses, as the reader does */
+	build_shapes(&s);
+	s.side[2] = -1e-5;
+	CHECK(pack_validate(&s) != 0 && strstr(msg_geterr(), "grain 86: side -1e-05 is negative"),
+	    "pack_validate: a negative side (%s)", msg_geterr());
+	s.side[2] = INFINITY;
+	CHECK(pack_validate(&s) != 0 && strstr(msg_geterr(), "side inf is not finite"), "pack_validate: an infinite side (%s)",
+	    msg_geterr());
+	s.side[2] = NAN;
+	CHECK(pack_validate(&s) != 0 && strstr(msg_geterr(), "is not finite"), "pack_validate: a NaN side (%s)", msg_geterr());
+	s.side[2] = 2.5e-5;
+	s.q[4] = 1 + 2e-6, s.q[5] = s.q[6] = s.q[7] = 0;
+	CHECK(pack_validate(&s) != 0 && strstr(msg_geterr(), "grain 93: (qw, qx, qy, qz) = (1.000002, 0, 0, 0) is not a unit quaternion (norm 1.000002"),
+	    "pack_validate: |q| - 1 = 2e-6 (%s)", msg_geterr());
+	s.q[4] = 1 - 0.9e-6;
+	CHECK(pack_validate(&s) == 0, "pack_validate: |q| - 1 = -0.9e-6 is within 1e-6 (%s)", msg_geterr());
+	s.q[4] = 0.7071, s.q[5] = 0.7071;
+	CHECK(pack_validate(&s) != 0 && strstr(msg_geterr(), "(norm 0.99999041"), "pack_validate: (0.7071, 0.7071, 0, 0), norm 1 - 9.6e-6 (%s)",
+	    msg_geterr());
+	s.q[4] = s.q[5] = 0.707107;
+	CHECK(pack_validate(&s) == 0, "pack_validate: (0.707107, 0.707107, 0, 0), %%g's 6 digits, reads (%s)", msg_geterr());
+	s.q[4] = NAN;
+	CHECK(pack_validate(&s) != 0 && strstr(msg_geterr(), "not a unit quaternion"), "pack_validate: a NaN component (%s)",
+	    msg_geterr());
+	pack_free(&s);
+
+	/* the plate-radius convention of the pack */
+	build(&s);
+	CHECK(pack_plate_radius(&s, &conv) == 0 && conv == SHAPE_R_EDGE, "pack_plate_radius: edge when the meta key is absent");
+	pack_set_meta(&s, "plate-radius", "corner");
+	CHECK(pack_plate_radius(&s, &conv) == 0 && conv == SHAPE_R_CORNER, "pack_plate_radius: meta plate-radius corner");
+	pack_set_meta(&s, "plate-radius", "edge");
+	CHECK(pack_plate_radius(&s, &conv) == 0 && conv == SHAPE_R_EDGE, "pack_plate_radius: meta plate-radius edge");
+	pack_set_meta(&s, "plate-radius", "Edge");
+	CHECK(pack_plate_radius(&s, &conv) != 0 && strcmp(msg_geterr(), "meta plate-radius 'Edge' is neither 'edge' nor 'corner'") == 0,
+	    "pack_plate_radius: another value is refused (%s)", msg_geterr());
+	pack_free(&s);
+}
+
 int
 main(void)
 {
@@ -513,6 +670,7 @@ main(void)
 	}
 	two_in_a_stream(b);
 	format_2(dir);
+	shapes(dir);
 	carriage_returns(dir);
 	unlink(a);
 	unlink(b);
