@@ -6,7 +6,9 @@
 #    (build/bench/increment): iterations, evaluations, time per evaluation per contact;
 #  - frictionalize, and uniaxial increments with and without friction (build/bench/fincrement);
 #  - the cost of one evaluation of the functional on the first size's dense pack tiled up to
-#    BENCH_TILES (default "1 2 3 4": 2740 to 175360 grains; build/bench/evalscale).
+#    BENCH_TILES (default "1 2 3 4": 2740 to 175360 grains; build/bench/evalscale);
+#  - the spheroplate element contacts against libccd's penetration queries on random
+#    near-contact pairs at platyness 0.14, 0.5, 0.8 (build/bench/platecontact, ~10 s).
 # Results go to bench/results.md (readable tables) with the machine and the commit.
 #
 # Knobs: BENCH_SIZES (e.g. "2740 10000" for a quicker run); BENCH_METHODS (densify's
@@ -23,6 +25,7 @@ case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
 incr="$bin/../bench/increment"
 fincr="$bin/../bench/fincrement"
 escale="$bin/../bench/evalscale"
+platec="$bin/../bench/platecontact"
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/bench"
 mkdir -p "$out"
@@ -149,6 +152,13 @@ if [ "$first" -le 10000 ]; then
 fi
 first=$(cat "$out/rows-scale.size" 2>/dev/null || echo "$first")
 
+# the spheroplate contacts: independent of the sizes, so run every time
+if [ -x "$platec" ] && "$platec" >"$tmp.plate" 2>"$tmp.err"; then
+	awk -F '\t' '!/^#/ { printf "| %s | %.2f | %d | %.3f | %s | %s |\n", $1, $2, $3, $4, $5, $6 }' "$tmp.plate" >"$out/rows-plate"
+else
+	echo "| failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | |" >"$out/rows-plate"
+fi
+
 # every size measured so far, this run's and earlier runs', in order of size
 all=$(for f in "$out"/rows-*.stamp; do [ -f "$f" ] && basename "$f" .stamp | sed 's/^rows-//'; done | sort -n)
 rows() { for k in $all; do cat "$out/rows-$k.$1" 2>/dev/null; done; }
@@ -213,6 +223,17 @@ rows() { for k in $all; do cat "$out/rows-$k.$1" 2>/dev/null; done; }
 	echo "| copies | grains | contacts | first evaluation (s) | evaluation (s) | ns per evaluation per contact |"
 	echo "| ---: | ---: | ---: | ---: | ---: | ---: |"
 	cat "$out/rows-scale" 2>/dev/null
+	echo
+	echo "## spheroplate element contacts against libccd (build/bench/platecontact)"
+	echo
+	echo "Random pairs of outer radius 1 (SHAPE_R_EDGE) and random orientations whose cores are"
+	echo "r_i + r_j - delta apart, delta uniform in [0, 0.02); each method sweeps them for 0.4 s."
+	echo "libccd with its default tolerances (1e-4) and with 1e-8; 'depth off' is the fraction of"
+	echo "pairs whose depth differs from r_i + r_j - d by more than 10 %."
+	echo
+	echo "| method | platyness | pairs | us per call | element contacts per interaction | depth off by > 10 % |"
+	echo "| :--- | ---: | ---: | ---: | ---: | ---: |"
+	cat "$out/rows-plate" 2>/dev/null
 } >"$res"
 rm -f "$tmp".*
 cat "$res"

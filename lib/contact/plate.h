@@ -12,9 +12,18 @@
  *
  * The rules are non-redundant (plate.c states them; redundant ones give ~4.5 element contacts
  * per interaction where strict ones give 1.6, and make the interaction's stiffness jump in
- * multiples of k_n).  When the two cores themselves intersect (d = 0: the normal is then not
- * defined by closest points) the penetration depth and direction come from libccd (MPR) on
- * the two spheroplates, as one element contact.
+ * multiples of k_n): a face-face or edge-face overlap gives the corners of its overlap
+ * polygon, a line contact its two ends, anything else one element, and the closest pair of
+ * the cores always has an element.  When the two cores themselves intersect (d = 0, or below
+ * 1e-9 of the pair's size: the normal is then not defined by closest points) the penetration
+ * depth and direction come from libccd (MPR) on the two spheroplates, as one element contact
+ * of kind PLATE_CORE_OVERLAP.
+ *
+ * A sphere (half = 0) is a point core, its centre its one vertex: against a plate it gives one
+ * element, the centre against the square (PLATE_FACE_VERTEX, PLATE_EDGE_VERTEX or
+ * PLATE_VERTEX_VERTEX when j is the sphere; the mirrored kinds when i is); two spheres give
+ * one PLATE_SPHERE element with exactly h = r_i + r_j - |x_i - x_j| and n along x_i - x_j
+ * (e3 when the centres coincide).
  *
  * Everything is in the caller's length unit.  No allocation; thread-safe. */
 #ifndef QUSGM_PLATE_H
@@ -39,15 +48,18 @@ enum plate_element_kind {
 
 struct plate_element {
 	double h;	/* overlap r_i + r_j - d_k (> 0 for a contact) */
-	double pi[3];	/* closest point on i's core */
-	double pj[3];	/* closest point on j's core (on the wall plane for a wall) */
-	double p[3];	/* contact point: halfway between the two surfaces along n */
+	double pi[3];	/* closest point on i's core (PLATE_CORE_OVERLAP: a point common to both cores) */
+	double pj[3];	/* closest point on j's core (on the wall plane for a wall; as pi for a core overlap) */
+	double p[3];	/* contact point, halfway between the two surfaces along n:
+			 * (pi + pj)/2 + (r_j - r_i)/2 n (r_j = 0 for a wall), the centre of the lens
+			 * when pi - pj is along n; for PLATE_CORE_OVERLAP, libccd's contact position */
 	int kind;	/* enum plate_element_kind, i's element first */
 };
 
 struct plate_interaction {
 	double n[3];	/* unit normal, from j to i (out of the wall for a wall) */
-	double d;	/* distance of the two cores (0 when they intersect) */
+	double d;	/* distance of the two cores (0 when they intersect); for a wall, the signed
+			 * distance of the core's nearest point, negative when it crosses the plane */
 	int m;		/* element contacts, 0 .. PLATE_MAX_ELEMENTS */
 	struct plate_element e[PLATE_MAX_ELEMENTS];
 };
@@ -61,11 +73,14 @@ int plate_interaction(const struct plate_body *a, const struct plate_body *b, do
 /* The element contacts of plate a with the wall plane through point w0 with inward unit normal
  * wn (the wall's side is where wn points away from): the core's points nearest the plane,
  * i.e. the corners (a face or an edge lying on the wall gives its 4 or 2 corners, which is the
- * overlap polygon), each with h = r - (signed distance to the plane).  Returns m. */
+ * overlap polygon), each with h = r - (signed distance to the plane), kind PLATE_VERTEX_FACE;
+ * a sphere gives its centre, kind PLATE_SPHERE.  n = wn.  Returns m. */
 int plate_wall_interaction(const struct plate_body *a, const double w0[3], const double wn[3], double gap,
     struct plate_interaction *out);
 
-/* The distance between the cores of a and b (0 when they intersect) and the closest points,
+/* The distance between the cores of a and b (0 when they intersect; an overlap of two coplanar
+ * squares is found as a vertex in the other square, at distance 0 up to round-off) and the
+ * closest points,
  * into pa and pb unless NULL: the reference the element rules are checked against. */
 double plate_core_distance(const struct plate_body *a, const struct plate_body *b, double pa[3], double pb[3]);
 
