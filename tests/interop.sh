@@ -3,7 +3,8 @@
 # Usage: sh tests/interop.sh BINDIR
 #
 # Always: python3's own parsers (xml.etree for VTK, plain text for LAMMPS and YADE).
-# If present: ParaView (pvpython: XMLPolyDataReader, XMLMultiBlockDataReader), OVITO (ovitos
+# If present: ParaView (pvpython: XMLPolyDataReader, XMLMultiBlockDataReader; the plates
+# .vtp: closed boxes of the right volume and area), OVITO (ovitos
 # or the python module ovito: LAMMPS dump and data, VTP), YADE (SpherePack.load), LAMMPS
 # (lmp, lmp_serial: read_data).  Prints one PASS/FAIL line per check, which readers were
 # found and ran, and a closing "N passed, N failed"; exits 1 if anything failed.
@@ -115,6 +116,60 @@ EOF
 	grep '^paraview:' check.log
 else
 	missing="$missing pvpython"
+fi
+
+# --- ParaView: spheroplates -------------------------------------------------------------
+# 27 plates on a 3 x 3 x 3 grid, turned by quaternions made from awk's sines (normalised
+# to the last bits, so the reader takes them), the middle one a sphere (side 0): the .vtp of
+# closed boxes must read, be closed (no boundary or non-manifold edge), and enclose the
+# boxes' volume and area, sum (L + 2r)^2 2r and sum 2 (L + 2r)^2 + 8 r (L + 2r).
+awk 'BEGIN {
+	print "qusgm-pack 2\nunits SI\nbox 0 0 0 3e-3 3e-3 3e-3\nboundary walls walls walls\nwalls 7e12 0.495 0.3"
+	print "friction 0.3\ngrains 27\ncontacts 0\ncolumns id x y z r E nu rho side qw qx qy qz\nend"
+	for (k = 0; k < 27; k++) {
+		a = 0.7 * k + 0.3; b = 1.3 * k + 0.1; h = 0.37 * k
+		w = cos(h); x = sin(h) * sin(a) * cos(b); y = sin(h) * sin(a) * sin(b); z = sin(h) * cos(a)
+		n = sqrt(w * w + x * x + y * y + z * z)
+		printf "%d %.17g %.17g %.17g %.17g 7e10 0.2 2420 %.17g %.17g %.17g %.17g %.17g\n", k + 1,
+		    5e-4 + 1e-3 * (k % 3), 5e-4 + 1e-3 * (int(k / 3) % 3), 5e-4 + 1e-3 * int(k / 9),
+		    2e-5 + 1e-6 * k, k == 13 ? 0 : 3e-4 + 1e-5 * k, w / n, x / n, y / n, z / n
+	} }' >plates.pack
+if command -v pvpython >/dev/null 2>&1 && packexport --vtk -o plates.vtp plates.pack 2>err.txt; then
+	cat >pvplates.py <<'PYEOF'
+from paraview.simple import XMLPolyDataReader
+from paraview import servermanager
+from vtkmodules.vtkFiltersCore import vtkFeatureEdges, vtkMassProperties, vtkTriangleFilter
+g = [l.split() for l in open("plates.pack") if len(l.split()) == 13]
+n = len(g)
+r = XMLPolyDataReader(FileName=["plates.vtp"])
+r.UpdatePipeline()
+i = r.GetDataInformation()
+assert i.GetNumberOfPoints() == 8 * n and i.GetNumberOfCells() == 6 * n, (i.GetNumberOfPoints(), i.GetNumberOfCells())
+assert sorted(r.CellData.keys()) == ["E", "id", "normal", "nu", "radius", "side"], r.CellData.keys()
+d = servermanager.Fetch(r)
+fe = vtkFeatureEdges()
+fe.SetInputData(d)
+fe.BoundaryEdgesOn()
+fe.NonManifoldEdgesOn()
+fe.FeatureEdgesOff()
+fe.ManifoldEdgesOff()
+fe.Update()
+assert fe.GetOutput().GetNumberOfCells() == 0, fe.GetOutput().GetNumberOfCells()
+t = vtkTriangleFilter()
+t.SetInputData(d)
+t.Update()
+m = vtkMassProperties()
+m.SetInputData(t.GetOutput())
+m.Update()
+V = sum((float(x[8]) + 2 * float(x[4])) ** 2 * 2 * float(x[4]) for x in g)
+A = sum(2 * (float(x[8]) + 2 * float(x[4])) ** 2 + 8 * float(x[4]) * (float(x[8]) + 2 * float(x[4])) for x in g)
+assert abs(m.GetVolume() - V) < 1e-9 * V and abs(m.GetSurfaceArea() - A) < 1e-9 * A, (m.GetVolume(), V, m.GetSurfaceArea(), A)
+print("paraview: %d plates as %d closed quadrilaterals, volume %.6g m^3, area %.6g m^2" % (n, 6 * n, V, A))
+PYEOF
+	check "pvpython: plates .vtp reads, closed boxes of the plates' volume and area" pvpython pvplates.py
+	grep '^paraview:' check.log
+elif command -v pvpython >/dev/null 2>&1; then
+	fail "plates export" "$(cat err.txt)"
 fi
 
 # --- OVITO -----------------------------------------------------------------------------

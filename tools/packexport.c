@@ -13,17 +13,17 @@
 static int vtk, lammps, lammps_data, xyzr, periodic;
 
 static struct cli_opt opts[] = {
-	{"vtk", 0, CLI_FLAG, &vtk, NULL, "VTK XML PolyData; -o NAME.vtm also writes NAME_grains.vtp and NAME_contacts.vtp, stdout gets the grains .vtp only", NULL},
-	{"lammps", 0, CLI_FLAG, &lammps, NULL, "LAMMPS dump, one frame per pack of the input", NULL},
-	{"lammps-data", 0, CLI_FLAG, &lammps_data, NULL, "LAMMPS data file (atom_style sphere)", NULL},
-	{"xyzr", 0, CLI_FLAG, &xyzr, NULL, "'x y z r' lines, as YADE's SpherePack.load reads them", NULL},
+	{"vtk", 0, CLI_FLAG, &vtk, NULL, "VTK XML PolyData; -o NAME.vtm also writes NAME_grains.vtp and NAME_contacts.vtp, stdout gets the grains .vtp only; plates as closed boxes (.vtp only)", NULL},
+	{"lammps", 0, CLI_FLAG, &lammps, NULL, "LAMMPS dump, one frame per pack of the input; plates with quaternion and shape", NULL},
+	{"lammps-data", 0, CLI_FLAG, &lammps_data, NULL, "LAMMPS data file (atom_style sphere; spheres only)", NULL},
+	{"xyzr", 0, CLI_FLAG, &xyzr, NULL, "'x y z r' lines, as YADE's SpherePack.load reads them (spheres only)", NULL},
 	{"periodic", 0, CLI_FLAG, &periodic, NULL, "with --xyzr: first line '##PERIODIC:: Lx Ly Lz' (box lengths)", NULL},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
 static const struct cli_tool tool = {
 	"packexport", "--vtk|--lammps|--lammps-data|--xyzr [--periodic] [-o FILE] [FILE]",
-	"Write a pack in the formats of ParaView and OVITO (VTK), LAMMPS and YADE.",
+	"Write a pack in the formats of ParaView and OVITO (VTK), LAMMPS and YADE; spheroplates for ParaView and OVITO.",
 	opts, 1,
 };
 
@@ -149,8 +149,8 @@ main(int argc, char **argv)
 	struct cli_state st;
 	struct pack p;
 	struct text t;
-	const char *out;
-	int r = 0;
+	const char *out, *name, *who;
+	int r = 0, plates;
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
@@ -170,6 +170,14 @@ main(int argc, char **argv)
 	}
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
+	name = st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>";
+	plates = pack_first_plate(&p) != (size_t)-1;
+	/* what cannot hold a plate: the .vtm's contacts file (sphere contacts; plate contacts
+	 * are not in lib/ yet), atom_style sphere, and YADE's x y z r */
+	who = vtk ? (out && has_suffix(out, ".vtm") ? "the contacts file of --vtk -o NAME.vtm" : NULL) :
+	    lammps_data ? "--lammps-data" : "--xyzr";
+	if (who && pack_require_spheres(&p, who))
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	if (vtk && out && has_suffix(out, ".vtm")) {
 		write_vtm(&p, out);
 		pack_free(&p);
@@ -177,14 +185,13 @@ main(int argc, char **argv)
 	}
 	text_open(&t);
 	if (vtk)
-		r = export_vtp_grains(&p, t.fp);
+		r = plates ? export_vtp_plates(&p, t.fp) : export_vtp_grains(&p, t.fp);
 	else if (lammps_data)
 		r = export_lammps_data(&p, t.fp);
 	else
 		r = export_xyzr(&p, t.fp, periodic);
 	if (r)
-		msg_die(EXIT_DATA, "%s: %s", st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>",
-		    msg_geterr());
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	text_close(&t);
 	emit(out, &t);
 	pack_free(&p);

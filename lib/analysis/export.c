@@ -4,6 +4,7 @@
 #include "base/lines.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
+#include "base/quat.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -92,11 +93,11 @@ vtk_cells(FILE *fp, const char *kind, size_t n, int k)
 }
 
 static void
-vtk_piece_open(FILE *fp, size_t npoints, size_t nverts, size_t nlines)
+vtk_piece_open(FILE *fp, size_t npoints, size_t nverts, size_t nlines, size_t npolys)
 {
 	fprintf(fp, "<PolyData>\n<Piece NumberOfPoints=\"%zu\" NumberOfVerts=\"%zu\" "
-	    "NumberOfLines=\"%zu\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n",
-	    npoints, nverts, nlines);
+	    "NumberOfLines=\"%zu\" NumberOfStrips=\"0\" NumberOfPolys=\"%zu\">\n",
+	    npoints, nverts, nlines, npolys);
 }
 
 static void
@@ -111,7 +112,7 @@ export_vtp_grains(const struct pack *p, FILE *fp)
 	size_t i;
 
 	vtk_open(fp, "PolyData");
-	vtk_piece_open(fp, p->n, p->n, 0);
+	vtk_piece_open(fp, p->n, p->n, 0, 0);
 	fputs("<PointData Scalars=\"radius\">\n", fp);
 	vtk_array_open(fp, "Int64", "id", 1);
 	for (i = 0; i < p->n; i++)
@@ -127,6 +128,104 @@ export_vtp_grains(const struct pack *p, FILE *fp)
 	fputs("</DataArray>\n</Points>\n", fp);
 	vtk_cells(fp, "Verts", p->n, 1);
 	vtk_close(fp);
+	return finish(fp);
+}
+
+/* The six faces of a box whose corner k (0..7) is at (+-a, +-a, +-c) with bit 0 of k the sign
+ * of x, bit 1 of y and bit 2 of z: each face counter-clockwise seen from outside, so that its
+ * normal by the right-hand rule points out (ParaView lights and culls by it). */
+static const int box_faces[6][4] = {
+	{0, 2, 3, 1}, {4, 5, 7, 6},	/* z = -c, z = +c: the plate's faces */
+	{0, 1, 5, 4}, {2, 6, 7, 3},	/* y = -a, y = +a */
+	{0, 4, 6, 2}, {1, 3, 7, 5},	/* x = -a, x = +a */
+};
+
+/* The cell arrays of the plates file: one value per grain, repeated over its six faces. */
+static void
+vtk_cell_doubles(FILE *fp, const char *name, const double *v, size_t n, int ncomp)
+{
+	size_t i;
+	int f;
+
+	vtk_array_open(fp, "Float64", name, ncomp);
+	for (i = 0; i < n; i++)
+		for (f = 0; f < 6; f++)
+			put_nums(fp, v + (size_t)ncomp * i, ncomp);
+	fputs("</DataArray>\n", fp);
+}
+
+/* R(q) of grain i; the identity for a pack without shape columns. */
+static void
+grain_rotation(const struct pack *p, size_t i, double R[9])
+{
+	static const double one[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+	if (p->has_shapes)
+		quat_to_matrix(p->q + 4 * i, R);
+	else
+		memcpy(R, one, sizeof one);
+}
+
+int
+export_vtp_plates(const struct pack *p, FILE *fp)
+{
+	double *nrm = malloc(3 * (p->n ? p->n : 1) * sizeof *nrm), *side = malloc((p->n ? p->n : 1) * sizeof *side);
+	double R[9], b[3], x[3];
+	size_t i;
+	int k, f, a;
+
+	if (!nrm || !side) {
+		free(nrm), free(side);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	for (i = 0; i < p->n; i++) {
+		side[i] = p->has_shapes ? p->side[i] : 0;
+		grain_rotation(p, i, R);
+		nrm[3 * i] = R[2], nrm[3 * i + 1] = R[5], nrm[3 * i + 2] = R[8];
+	}
+	vtk_open(fp, "PolyData");
+	vtk_piece_open(fp, 8 * p->n, 0, 0, 6 * p->n);
+	fputs("<CellData Scalars=\"side\">\n", fp);
+	vtk_array_open(fp, "Int64", "id", 1);
+	for (i = 0; i < p->n; i++)
+		for (f = 0; f < 6; f++)
+			fprintf(fp, "%ld\n", p->id[i]);
+	fputs("</DataArray>\n", fp);
+	vtk_cell_doubles(fp, "side", side, p->n, 1);
+	vtk_cell_doubles(fp, "radius", p->r, p->n, 1);
+	vtk_cell_doubles(fp, "E", p->E, p->n, 1);
+	vtk_cell_doubles(fp, "nu", p->nu, p->n, 1);
+	vtk_cell_doubles(fp, "normal", nrm, p->n, 3);
+	fputs("</CellData>\n<Points>\n", fp);
+	vtk_array_open(fp, "Float64", "Points", 3);
+	for (i = 0; i < p->n; i++) {
+		double half = side[i] / 2 + p->r[i];
+
+		grain_rotation(p, i, R);
+		for (k = 0; k < 8; k++) {
+			b[0] = k & 1 ? half : -half;
+			b[1] = k & 2 ? half : -half;
+			b[2] = k & 4 ? p->r[i] : -p->r[i];
+			for (a = 0; a < 3; a++)
+				x[a] = p->x[3 * i + a] + R[3 * a] * b[0] + R[3 * a + 1] * b[1] + R[3 * a + 2] * b[2];
+			put_nums(fp, x, 3);
+		}
+	}
+	fputs("</DataArray>\n</Points>\n<Polys>\n", fp);
+	vtk_array_open(fp, "Int64", "connectivity", 1);
+	for (i = 0; i < p->n; i++)
+		for (f = 0; f < 6; f++)
+			fprintf(fp, "%zu %zu %zu %zu\n", 8 * i + (size_t)box_faces[f][0], 8 * i + (size_t)box_faces[f][1],
+			    8 * i + (size_t)box_faces[f][2], 8 * i + (size_t)box_faces[f][3]);
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Int64", "offsets", 1);
+	for (i = 1; i <= 6 * p->n; i++)
+		fprintf(fp, "%zu\n", 4 * i);
+	fputs("</DataArray>\n</Polys>\n", fp);
+	vtk_close(fp);
+	free(nrm);
+	free(side);
 	return finish(fp);
 }
 
@@ -155,7 +254,7 @@ export_vtp_contacts(const struct pack *p, FILE *fp)
 		return -1;
 	}
 	vtk_open(fp, "PolyData");
-	vtk_piece_open(fp, 2 * gc.n, 0, gc.n);
+	vtk_piece_open(fp, 2 * gc.n, 0, gc.n, 0);
 	fputs("<CellData Scalars=\"normal_force\">\n", fp);
 	vtk_array_open(fp, "Int64", "id1", 1);
 	for (k = 0; k < gc.n; k++)
@@ -251,20 +350,33 @@ lammps_bounds(FILE *fp, const struct pack *p, const char *suffix)
 int
 export_lammps_dump(const struct pack *p, FILE *fp, long timestep)
 {
+	int plates = pack_first_plate(p) != (size_t)-1;
 	size_t i;
-	double v[4];
+	double v[10];
 
 	if (lammps_check_ids(p))
 		return -1;
 	fprintf(fp, "ITEM: TIMESTEP\n%ld\nITEM: NUMBER OF ATOMS\n%zu\nITEM: BOX BOUNDS ff ff ff\n",
 	    timestep, p->n);
 	lammps_bounds(fp, p, "");
-	fputs("ITEM: ATOMS id type x y z radius\n", fp);
+	fputs(plates ? "ITEM: ATOMS id type x y z quatw quati quatj quatk shapex shapey shapez\n" :
+	    "ITEM: ATOMS id type x y z radius\n", fp);
 	for (i = 0; i < p->n; i++) {
 		memcpy(v, p->x + 3 * i, 3 * sizeof *v);
-		v[3] = p->r[i];
-		fprintf(fp, "%ld 1 ", p->id[i]);
-		put_nums(fp, v, 4);
+		if (!plates) {
+			v[3] = p->r[i];
+			fprintf(fp, "%ld 1 ", p->id[i]);
+			put_nums(fp, v, 4);
+			continue;
+		}
+		/* LAMMPS's quaternion (w, i, j, k) turns the body frame into the lab frame, as
+		 * ours does; shape is the full extent along each body axis, as LAMMPS writes
+		 * shapex (a diameter).  Type 2 marks a sphere, for OVITO's per-type shape. */
+		memcpy(v + 3, p->q + 4 * i, 4 * sizeof *v);
+		v[7] = v[8] = p->side[i] + 2 * p->r[i];
+		v[9] = 2 * p->r[i];
+		fprintf(fp, "%ld %d ", p->id[i], p->side[i] > 0 ? 1 : 2);
+		put_nums(fp, v, 10);
 	}
 	return finish(fp);
 }

@@ -174,3 +174,137 @@ expect_error "truncated pack" 1 '^packexport: trunc.pack:4: ' packexport --vtk t
 expect_error "empty input" 1 '^packexport: <stdin>:1: ' packexport --xyzr <empty.pack
 cat in.pack in.pack >two.pack
 expect_error "xyzr takes one pack" 1 '^packexport: two.pack:[0-9]+: a second pack' packexport --xyzr two.pack
+
+# --- spheroplates ----------------------------------------------------------------------
+# Four grains with sparse ids: plates flat, turned 90 degrees about x, turned about an
+# oblique axis (a quaternion with no short decimal form), and a sphere (side 0).
+cat >plates.pack <<'EOF2'
+qusgm-pack 2
+units SI
+box 0 0 0 1 1 1
+boundary walls walls walls
+walls 7000000000000 0.495 0.3
+friction 0.3
+grains 4
+contacts 0
+columns id x y z r E nu rho side qw qx qy qz
+end
+3 0.2 0.2 0.2 0.01 70000000000 0.2 2420 0.1 1 0 0 0
+8 0.5 0.5 0.5 0.02 60000000000 0.25 2420 0.15 0.7071067811865476 0.7071067811865476 0 0
+11 0.8 0.3 0.6 0.005 70000000000 0.2 2500 0.05 0.18257418583505536 0.3651483716701107 0.5477225575051661 0.7302967433402214
+14 0.3 0.8 0.7 0.04 70000000000 0.2 2420 0 1 0 0 0
+EOF2
+# id x y z r side qw qx qy qz, as the pack writes them
+awk 'f { print $1, $2, $3, $4, $5, $9, $10, $11, $12, $13 } $1 == "end" { f = 1 }' plates.pack >plates.ref
+
+expect_ok "plates: vtk" packexport --vtk -o plates.vtp plates.pack
+packexport --vtk plates.pack >plates-stdout.vtp
+expect_same "plates: vtk stdout is the .vtp" plates-stdout.vtp plates.vtp
+if [ "$have_py" = 1 ]; then
+	# An independent reader: the XML, the counts, and the geometry of every box against R(q)
+	# computed here from the quaternion (not through lib/base/quat.h).  Coordinates are
+	# O(1) and every step a few roundings, so 1e-12 holds with room.
+	cat >check_plates.py <<'EOF2'
+import math, xml.etree.ElementTree as ET
+ref = [[float(v) for v in l.split()] for l in open("plates.ref")]
+root = ET.parse("plates.vtp").getroot()
+assert root.get("type") == "PolyData" and root.get("version") == "1.0", root.attrib
+p = root.find("PolyData").find("Piece")
+n = len(ref)
+assert p.get("NumberOfPoints") == str(8 * n) and p.get("NumberOfPolys") == str(6 * n), p.attrib
+assert p.get("NumberOfVerts") == "0" and p.get("NumberOfLines") == "0", p.attrib
+def arrays(section):
+    return {a.get("Name"): (a.get("type"), a.get("NumberOfComponents", "1"), a.text.split()) for a in p.find(section).findall("DataArray")}
+cd = arrays("CellData")
+assert sorted(cd) == ["E", "id", "normal", "nu", "radius", "side"], sorted(cd)
+assert cd["id"][0] == "Int64" and cd["normal"][1] == "3", (cd["id"][:2], cd["normal"][:2])
+for name, k in (("id", 0), ("radius", 4), ("side", 5)):
+    vals = [float(v) for v in cd[name][2]]
+    assert vals == [r[k] for r in ref for f in range(6)], (name, vals)
+pts = [float(v) for v in p.find("Points").find("DataArray").text.split()]
+pts = [pts[3 * k:3 * k + 3] for k in range(8 * n)]
+polys = arrays("Polys")
+conn = [int(v) for v in polys["connectivity"][2]]
+assert [int(v) for v in polys["offsets"][2]] == [4 * (c + 1) for c in range(6 * n)]
+sub = lambda a, b: [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+dot = lambda a, b: a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+cross = lambda a, b: [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+norm = lambda a: math.sqrt(dot(a, a))
+def rot(w, x, y, z):   # columns: the body axes in the lab
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+tol = 1e-12
+nrm = [float(v) for v in cd["normal"][2]]
+for g, r in enumerate(ref):
+    c, rad, L, R = r[1:4], r[4], r[5], rot(*r[6:10])
+    e = [[R[0][k], R[1][k], R[2][k]] for k in range(3)]
+    corners = pts[8 * g:8 * g + 8]
+    mid = [sum(q[a] for q in corners) / 8 for a in range(3)]
+    assert norm(sub(mid, c)) < tol, ("centre", g, mid, c)
+    kinds = []
+    for f in range(6):
+        ids = conn[4 * (6 * g + f):4 * (6 * g + f) + 4]
+        assert all(8 * g <= i < 8 * g + 8 for i in ids), ("a face uses another grain's points", g, ids)
+        q = [pts[i] for i in ids]
+        nf = cross(sub(q[1], q[0]), sub(q[2], q[0]))
+        nf = [v / norm(nf) for v in nf]
+        assert all(abs(dot(sub(v, q[0]), nf)) < tol for v in q), ("face not planar", g, f)
+        edges = [norm(sub(q[(k + 1) % 4], q[k])) for k in range(4)]
+        assert abs(edges[0] - edges[2]) < tol and abs(edges[1] - edges[3]) < tol, ("not a rectangle", g, f, edges)
+        assert abs(norm(sub(q[2], q[0])) - norm(sub(q[3], q[1]))) < tol, ("diagonals differ", g, f)
+        fc = [sum(v[a] for v in q) / 4 for a in range(3)]
+        assert dot(sub(fc, c), nf) > 0, ("face turned inward", g, f)
+        assert all(abs(float(x) - y) < tol for x, y in zip(nrm[18 * g + 3 * f:18 * g + 3 * f + 3], e[2])), ("normal array", g, f)
+        if abs(abs(dot(nf, e[2])) - 1) < tol:
+            # a face of the plate: a square of side L + 2r, normal +-R(q) e3, r from the centre,
+            # edges along R(q) e1 and e2
+            assert all(abs(s - (L + 2 * rad)) < tol for s in edges), ("face side", g, f, edges, L + 2 * rad)
+            assert abs(abs(dot(sub(fc, c), e[2])) - rad) < tol and norm(cross(sub(fc, c), e[2])) < tol, ("face offset", g, f)
+            u = sub(q[1], q[0])
+            assert abs(abs(dot(u, e[0])) - norm(u)) < tol or abs(abs(dot(u, e[1])) - norm(u)) < tol, ("edge direction", g, f)
+            kinds.append(2)
+        else:
+            # a rim face: (L + 2r) by 2r, normal +-R(q) e1 or e2, L/2 + r from the centre
+            want = sorted([L + 2 * rad, L + 2 * rad, 2 * rad, 2 * rad])
+            assert all(abs(a - b) < tol for a, b in zip(sorted(edges), want)), ("rim sides", g, f, edges, want)
+            k = 0 if abs(abs(dot(nf, e[0])) - 1) < tol else 1
+            assert abs(abs(dot(nf, e[k])) - 1) < tol, ("rim normal", g, f)
+            assert abs(dot(sub(fc, c), nf) - (L / 2 + rad)) < tol, ("rim offset", g, f)
+            kinds.append(k)
+    assert sorted(kinds) == [0, 0, 1, 1, 2, 2], ("two faces and four rim faces, one per side", g, kinds)
+print("ok")
+EOF2
+	if python3 check_plates.py >py.out 2>&1; then pass "plates: vtk boxes: planar faces, squares of side L + 2r, normals R(q) e3, outward"; else fail "plates: vtk geometry" "$(tail -n 3 py.out)"; fi
+fi
+expect_ok "plates: lammps dump" packexport --lammps -o plates.dump plates.pack
+if grep -q '^ITEM: ATOMS id type x y z quatw quati quatj quatk shapex shapey shapez$' plates.dump; then
+	pass "plates: lammps dump columns for OVITO's orientation and shape"
+else
+	fail "plates: lammps dump columns" "$(grep '^ITEM: ATOMS' plates.dump)"
+fi
+# id type x y z q(4) then L + 2r, L + 2r, 2r: checked against the pack with awk's own numbers
+awk 'NR == FNR { L[$1] = $6 + 2 * $5; T[$1] = 2 * $5; C[$1] = $2 " " $3 " " $4 " " $7 " " $8 " " $9 " " $10; S[$1] = $6; next }
+    /^ITEM: ATOMS/ { f = 1; next }
+    f { n++; c = $3 " " $4 " " $5 " " $6 " " $7 " " $8 " " $9
+        if (!($1 in C) || c != C[$1] || $10 != L[$1] || $11 != L[$1] || $12 != T[$1] || $2 != (S[$1] > 0 ? 1 : 2)) bad = bad " " $1 }
+    END { if (bad || n != 4) { print "bad:" bad " n=" n; exit 1 } }' plates.ref plates.dump >awk.out 2>&1
+if [ $? -eq 0 ]; then pass "plates: lammps dump: centres, quaternions, extents L+2r L+2r 2r, type 2 for the sphere"; else fail "plates: lammps dump values" "$(cat awk.out)"; fi
+cat plates.pack plates.pack | packexport --lammps >plates2.dump
+expect_num "plates: lammps dump: two packs give two frames" "$(grep -c '^ITEM: ATOMS id type x y z quatw' plates2.dump)" == 2
+expect_error "plates: xyzr refuses plates" 1 '^packexport: plates\.pack: grain 3 is a spheroplate \(side > 0\); --xyzr handles spheres only$' \
+    packexport --xyzr plates.pack
+expect_error "plates: lammps-data refuses plates" 1 '^packexport: plates\.pack: grain 3 is a spheroplate \(side > 0\); --lammps-data handles spheres only$' \
+    packexport --lammps-data plates.pack
+expect_refused "nothing written" "nothing.vtm nothing_grains.vtp nothing_contacts.vtp" "plates: vtk -o NAME.vtm refuses plates" 1 \
+    '^packexport: <stdin>: grain 3 is a spheroplate \(side > 0\); the contacts file of --vtk -o NAME\.vtm handles spheres only$' \
+    sh -c 'packexport --vtk -o nothing.vtm <plates.pack'
+# shape columns with every side 0: spheres, the sphere files byte for byte
+awk 'NR == 1 { print "qusgm-pack 2"; next }
+    $1 == "end" { print "boundary walls walls walls"; print "columns id x y z r E nu rho side qw qx qy qz"; print; f = 1; next }
+    f { print $0, 0, 1, 0, 0, 0; next } { print }' in.pack >in0.pack
+for fmt in vtk lammps lammps-data xyzr; do
+	packexport --$fmt in.pack >a.out 2>/dev/null
+	packexport --$fmt in0.pack >b.out 2>/dev/null
+	if [ -s a.out ] && cmp -s a.out b.out; then pass "shape columns with side 0: --$fmt as for spheres"; else fail "shape columns with side 0: --$fmt" "differs"; fi
+done
