@@ -1,0 +1,516 @@
+/* platedem: explicit DEM of spheroplates (see platedem.h). */
+#include "dem/platedem.h"
+#include "contact/law.h"
+#include "contact/plate.h"
+#include "pack/shape.h"
+#include "base/msg.h"
+#include "base/quat.h"
+#include "base/vec3.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void
+pdem_params_default(struct pdem_params *pp)
+{
+	pp->kn = pp->kt = 1.5e3;	/* P §II C: 1.5e-3 N/um */
+	pp->mu = pp->wall_mu = 0.58;	/* P: tan 30 deg, kaolinite */
+	pp->restitution = 0.6;
+	pp->damping = 0;
+	/* a collision lasts pi sqrt(m* / k) >= 2.2 sqrt(m_min/k_n); a corner contact on a thin
+	 * plate turns it with an effective mass about half its mass, and a grain may carry a
+	 * dozen elements at once: 0.05 keeps more than 20 steps in the stiffest oscillation */
+	pp->dt_factor = 0.05;
+}
+
+void
+pdem_free(struct pdem *d)
+{
+	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
+	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb);
+	contact_enum_free(&d->ce);
+	memset(d, 0, sizeof *d);
+}
+
+/* The restitution of a linear spring-dashpot collision at damping ratio z when the force is
+ * never attractive: the grains part when k h + gamma dh/dt reaches 0, before h does, so
+ * e = exp(-(b/w) (pi - atan2(2 b w, w^2 - b^2))), b = z w0, w = w0 sqrt(1 - z^2)
+ * (Schwager & Poschel, Granular Matter 9, 465, 2007), not the classical exp(-pi b / w), which
+ * would give e = 0.623 where 0.6 is asked.  Valid for z < 1/sqrt(2). */
+static double
+restitution_of_zeta(double z)
+{
+	double w = sqrt(1 - z * z);
+
+	return exp(-(z / w) * (M_PI - atan2(2 * z * w, w * w - z * z)));
+}
+
+/* Its inverse by bisection (e decreases with z; at z = 1/sqrt(2), e = exp(-pi/2) = 0.208). */
+static double
+zeta_of_restitution(double e)
+{
+	double lo = 0, hi = M_SQRT1_2;
+	int it;
+
+	if (e >= 1)
+		return 0;
+	for (it = 0; it < 100; it++) {
+		double mid = 0.5 * (lo + hi);
+		if (restitution_of_zeta(mid) > e)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return 0.5 * (lo + hi);
+}
+
+static int
+pdem_alloc(struct pdem *d, size_t n)
+{
+	d->n = n;
+	d->x = calloc(3 * n, sizeof *d->x), d->v = calloc(3 * n, sizeof *d->v);
+	d->q = calloc(4 * n, sizeof *d->q), d->w = calloc(3 * n, sizeof *d->w);
+	d->f = calloc(3 * n, sizeof *d->f), d->t = calloc(3 * n, sizeof *d->t);
+	d->R = calloc(9 * n, sizeof *d->R), d->m = calloc(n, sizeof *d->m);
+	d->J = calloc(3 * n, sizeof *d->J), d->r = calloc(n, sizeof *d->r);
+	d->half = calloc(n, sizeof *d->half), d->rb = calloc(n, sizeof *d->rb);
+	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
+	    !d->rb) {
+		msg_seterr("out of memory for %zu grains", n);
+		return -1;
+	}
+	return 0;
+}
+
+int
+pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
+{
+	double r0 = 0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY;
+	size_t i, n = p->n;
+	int a;
+
+	memset(d, 0, sizeof *d);
+	if (n == 0 || pdem_alloc(d, n))
+		return n == 0 ? (msg_seterr("no grains"), -1) : (pdem_free(d), -1);
+	for (i = 0; i < n; i++)
+		r0 += p->r[i] / n, rho0 += p->rho[i] / n;
+	d->u_len = r0;
+	d->u_mass = rho0 * r0 * r0 * r0;
+	d->u_time = sqrt(d->u_mass / pp->kn);
+	d->u_force = pp->kn * r0;
+	for (i = 0; i < n; i++) {
+		double L = p->side ? p->side[i] / r0 : 0, rho = p->rho[i] / rho0, In, Ip;
+
+		d->r[i] = p->r[i] / r0;
+		d->half[i] = L / 2;
+		d->rb[i] = shape_bounding_radius(d->r[i], L);
+		d->m[i] = rho * shape_volume(d->r[i], L);
+		shape_inertia(d->r[i], L, &In, &Ip);
+		d->J[3 * i] = d->J[3 * i + 1] = rho * Ip;
+		d->J[3 * i + 2] = rho * In;
+		for (a = 0; a < 3; a++)
+			d->x[3 * i + a] = p->x[3 * i + a] / r0;
+		if (p->q)
+			memcpy(d->q + 4 * i, p->q + 4 * i, 4 * sizeof *d->q);
+		else
+			d->q[4 * i] = 1;
+		quat_normalize(d->q + 4 * i);
+		mmin = fmin(mmin, d->m[i]);
+		rbmin = fmin(rbmin, d->rb[i]);
+	}
+	for (a = 0; a < 3; a++) {
+		d->lo[a] = p->box[a] / r0, d->hi[a] = p->box[3 + a] / r0;
+		d->periodic[a] = p->periodic[a];
+	}
+	d->kt_ratio = pp->kt / pp->kn;
+	d->mu = pp->mu, d->wall_mu = pp->wall_mu;
+	d->zeta = zeta_of_restitution(pp->restitution);
+	d->damping = pp->damping;
+	d->dt = pp->dt_factor * sqrt(mmin);
+	/* the skin: a tenth of the smallest bounding radius, so the list lasts many steps */
+	if (contact_enum_init(&d->ce, n, d->rb, d->lo, d->hi, d->periodic, 0.1 * rbmin, 3)) {
+		pdem_free(d);
+		return -1;
+	}
+	return 0;
+}
+
+static void
+body_of(const struct pdem *d, size_t i, const double *x, struct plate_body *b)
+{
+	memcpy(b->x, x, sizeof b->x);
+	memcpy(b->R, d->R + 9 * i, sizeof b->R);
+	b->half = d->half[i];
+	b->r = d->r[i];
+}
+
+/* Velocity of grain i's material point p (lab frame): v + R w_body x (p - x). */
+static void
+point_velocity(const struct pdem *d, size_t i, const double *xi, const double p[3], double v[3])
+{
+	const double *R = d->R + 9 * i, *wb = d->w + 3 * i;
+	double wl[3], arm[3] = {p[0] - xi[0], p[1] - xi[1], p[2] - xi[2]}, c[3];
+	int a;
+
+	for (a = 0; a < 3; a++)
+		wl[a] = R[3 * a] * wb[0] + R[3 * a + 1] * wb[1] + R[3 * a + 2] * wb[2];
+	vec3_cross(wl, arm, c);
+	for (a = 0; a < 3; a++)
+		v[a] = d->v[3 * i + a] + c[a];
+}
+
+/* Force F at point p on grain i (centre xi): into f and t with sign s. */
+static void
+apply(struct pdem *d, size_t i, const double *xi, const double p[3], const double F[3], double s)
+{
+	double arm[3] = {p[0] - xi[0], p[1] - xi[1], p[2] - xi[2]}, c[3];
+	int a;
+
+	vec3_cross(arm, F, c);
+	for (a = 0; a < 3; a++) {
+		d->f[3 * i + a] += s * F[a];
+		d->t[3 * i + a] += s * c[a];
+	}
+}
+
+/* The forces of interaction it between grain i and grain j (j < 0: a wall, at rest), with
+ * j's centre xj (its nearest image), onto both; hist is the tangential spring. */
+static void
+interaction_force(struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist)
+{
+	const double *n = it->n, *xi = d->x + 3 * i;
+	int wall = PACK_IS_WALL(j), M = it->m, k, a;
+	double meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
+	double gn = 2 * d->zeta * sqrt(meff / M), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
+	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn;
+
+	for (k = 0; k < M; k++) {
+		const struct plate_element *e = &it->e[k];
+		double fk, h = e->h > 0 ? e->h : 0;
+
+		point_velocity(d, i, xi, e->p, vi);
+		if (!wall)
+			point_velocity(d, (size_t)j, xj, e->p, vj);
+		vn = (vi[0] - vj[0]) * n[0] + (vi[1] - vj[1]) * n[1] + (vi[2] - vj[2]) * n[2];
+		/* k_n = 1 in these units; dh/dt = -vn */
+		fk = h - gn * vn;
+		if (fk < 0)
+			fk = 0;
+		fel += h, fsum += fk;
+		for (a = 0; a < 3; a++) {
+			Fk[a] = fk * n[a];
+			pc[a] += h * e->p[a];
+		}
+		hsum += h;
+		apply(d, i, xi, e->p, Fk, 1);
+		if (!wall)
+			apply(d, (size_t)j, xj, e->p, Fk, -1);
+	}
+	if (hsum <= 0)
+		memcpy(pc, it->e[0].p, sizeof pc);
+	else
+		for (a = 0; a < 3; a++)
+			pc[a] /= hsum;
+	point_velocity(d, i, xi, pc, vi);
+	if (!wall)
+		point_velocity(d, (size_t)j, xj, pc, vj);
+	for (a = 0; a < 3; a++)
+		vt[a] = vi[a] - vj[a];
+	vn = vec3_dot(vt, n);
+	for (a = 0; a < 3; a++)
+		vt[a] -= vn * n[a];
+	tn = (wall ? d->wall_mu : d->mu) * fsum;
+	law_dem_spring(hist, n, vt, d->dt, Kt, tn, ft);
+	/* P eq. 4's tangential dashpot, at the normal's damping ratio, within the Coulomb cap */
+	{
+		double gt = 2 * d->zeta * sqrt(meff * Kt), fm;
+
+		for (a = 0; a < 3; a++)
+			ft[a] -= gt * vt[a];
+		fm = vec3_norm(ft);
+		if (fm > tn && fm > 0)
+			for (a = 0; a < 3; a++)
+				ft[a] *= tn / fm;
+	}
+	apply(d, i, xi, pc, ft, 1);
+	if (!wall)
+		apply(d, (size_t)j, xj, pc, ft, -1);
+	else
+		d->wallf[PACK_WALL_INDEX(j)] += fel;
+	d->ninter++;
+	d->nelem += (size_t)M;
+	d->sum_f += sqrt(fsum * fsum + vec3_dot(ft, ft));
+}
+
+/* The interaction of record c (a pair, or a grain and a wall) at the current state, with j's
+ * centre (its nearest image) into xj for a pair: its element count, 0 when the bounding
+ * spheres overlap but the grains do not touch. */
+static int
+interaction_of(const struct pdem *d, const struct contact *c, struct plate_interaction *it, double xj[3])
+{
+	struct plate_body a, b;
+	int k;
+
+	body_of(d, c->i, d->x + 3 * c->i, &a);
+	if (PACK_IS_WALL(c->j)) {
+		int w = PACK_WALL_INDEX(c->j), ax = w / 2;
+		double w0[3] = {0, 0, 0}, wn[3] = {0, 0, 0};
+
+		w0[ax] = w % 2 ? d->hi[ax] : d->lo[ax];
+		wn[ax] = w % 2 ? -1 : 1;
+		return plate_wall_interaction(&a, w0, wn, 0, it);
+	}
+	for (k = 0; k < 3; k++)
+		xj[k] = d->x[3 * c->i + k] - c->dx[k];
+	body_of(d, (size_t)c->j, xj, &b);
+	return plate_interaction(&a, &b, 0, it);
+}
+
+static int
+on_contact(const struct contact *c, void *vd)
+{
+	struct pdem *d = vd;
+	struct plate_interaction it;
+	double xj[3];
+
+	if (c->h <= 0)
+		return 0;	/* bounding spheres apart (their spring zeroed by the enumerator) */
+	if (interaction_of(d, c, &it, xj) == 0) {
+		c->hist[0] = c->hist[1] = c->hist[2] = 0;
+		return 0;
+	}
+	interaction_force(d, c->i, c->j, PACK_IS_WALL(c->j) ? NULL : xj, &it, c->hist);
+	return 0;
+}
+
+static void
+refresh_rotations(struct pdem *d)
+{
+	size_t i;
+
+	for (i = 0; i < d->n; i++)
+		quat_to_matrix(d->q + 4 * i, d->R + 9 * i);
+}
+
+int
+pdem_forces(struct pdem *d)
+{
+	if (contact_enum_update(&d->ce, d->x, 0))
+		return -1;
+	refresh_rotations(d);
+	memset(d->f, 0, 3 * d->n * sizeof *d->f);
+	memset(d->t, 0, 3 * d->n * sizeof *d->t);
+	memset(d->wallf, 0, sizeof d->wallf);
+	d->ninter = d->nelem = 0;
+	d->sum_f = 0;
+	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_contact, d) < 0 ? -1 : 0;
+}
+
+static double
+local_damping(double f, double v, double alpha)
+{
+	return f - alpha * fabs(f) * (v > 0 ? 1 : v < 0 ? -1 : 0);
+}
+
+/* Euler's equations in the body frame by the implicit midpoint rule: w <- w + dt J^-1
+ * (tau + (J w~) x w~ ... ) with w~ the mean of the old and new w, by fixed-point iteration
+ * (it contracts by about dt |w|, far below 1). */
+static void
+euler_midpoint(double w[3], const double J[3], const double tau[3], double dt)
+{
+	double w0[3] = {w[0], w[1], w[2]}, wn[3], m[3];
+	int it, a;
+
+	for (it = 0; it < 20; it++) {
+		double change = 0;
+
+		for (a = 0; a < 3; a++)
+			m[a] = 0.5 * (w0[a] + w[a]);
+		for (a = 0; a < 3; a++) {
+			int b = (a + 1) % 3, c = (a + 2) % 3;
+			wn[a] = w0[a] + dt / J[a] * (tau[a] + (J[b] - J[c]) * m[b] * m[c]);
+			change = fmax(change, fabs(wn[a] - w[a]));
+		}
+		memcpy(w, wn, sizeof wn);
+		if (change <= 1e-15 * (fabs(wn[0]) + fabs(wn[1]) + fabs(wn[2])))
+			break;
+	}
+}
+
+void
+pdem_integrate(struct pdem *d)
+{
+	size_t i;
+	double dt = d->dt, al = d->damping;
+	int a;
+
+	for (i = 0; i < d->n; i++) {
+		const double *R = d->R + 9 * i;
+		double tb[3];
+
+		for (a = 0; a < 3; a++) {
+			size_t k = 3 * i + a;
+			double f = al > 0 ? local_damping(d->f[k], d->v[k], al) : d->f[k];
+			d->v[k] += f / d->m[i] * dt;
+			d->x[k] += d->v[k] * dt;
+		}
+		for (a = 0; a < 3; a++) {	/* torque into the body frame: R^T t */
+			tb[a] = R[a] * d->t[3 * i] + R[3 + a] * d->t[3 * i + 1] + R[6 + a] * d->t[3 * i + 2];
+			if (al > 0)
+				tb[a] = local_damping(tb[a], d->w[3 * i + a], al);
+		}
+		euler_midpoint(d->w + 3 * i, d->J + 3 * i, tb, dt);
+		quat_step_body(d->q + 4 * i, d->w + 3 * i, dt);
+		quat_normalize(d->q + 4 * i);
+	}
+}
+
+double
+pdem_kinetic(const struct pdem *d, double L[3])
+{
+	double e = 0, Lt[3] = {0, 0, 0}, R[9];
+	size_t i;
+	int a, b;
+
+	for (i = 0; i < d->n; i++) {
+		const double *v = d->v + 3 * i, *w = d->w + 3 * i, *J = d->J + 3 * i, *x = d->x + 3 * i;
+		double c[3];
+
+		quat_to_matrix(d->q + 4 * i, R);
+		e += 0.5 * d->m[i] * vec3_dot(v, v);
+		for (a = 0; a < 3; a++)
+			e += 0.5 * J[a] * w[a] * w[a];
+		vec3_cross(x, v, c);
+		for (a = 0; a < 3; a++) {
+			Lt[a] += d->m[i] * c[a];
+			for (b = 0; b < 3; b++)
+				Lt[a] += R[3 * a + b] * J[b] * w[b];
+		}
+	}
+	if (L)
+		memcpy(L, Lt, sizeof Lt);
+	return e;
+}
+
+double
+pdem_unbalanced(const struct pdem *d)
+{
+	double s = 0;
+	size_t i;
+
+	if (d->ninter == 0 || d->sum_f == 0)
+		return INFINITY;
+	for (i = 0; i < d->n; i++)
+		s += vec3_norm(d->f + 3 * i);
+	return (s / d->n) / (d->sum_f / d->ninter);
+}
+
+void
+pdem_wrap(struct pdem *d)
+{
+	size_t i;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		double L = d->hi[a] - d->lo[a];
+		if (!d->periodic[a])
+			continue;
+		for (i = 0; i < d->n; i++) {
+			double *y = d->x + 3 * i + a;
+			*y -= L * floor((*y - d->lo[a]) / L);
+			if (*y >= d->hi[a])	/* rounding of floor at the upper face */
+				*y = d->lo[a];
+		}
+	}
+}
+
+/* The frictional history of the pack's contact lines (pack-format.md), so that a static
+ * pack read back is static: P0 the interaction's elastic normal force, Q0 its tangential
+ * spring's force on i, M0 0 (no rolling or twisting resistance); the spring's displacement
+ * is Q0 / (M k_t) for its M elements. */
+struct history_pass {
+	struct pdem *d;
+	struct pack *p;
+	const long *keys;	/* reading: the pack's sorted history keys; writing: NULL */
+	int err;
+};
+
+static int
+on_history(const struct contact *c, void *vh)
+{
+	struct history_pass *hp = vh;
+	struct pdem *d = hp->d;
+	struct plate_interaction it;
+	double xj[3], Kt;
+	int k, a;
+
+	if (c->h <= 0 || interaction_of(d, c, &it, xj) == 0)
+		return 0;
+	Kt = it.m * d->kt_ratio;
+	if (hp->keys) {
+		long line = pack_history_lookup(hp->keys, hp->p->nc, c->i, c->j);
+		double Q[3];
+
+		if (line < 0)
+			return 0;
+		pack_contact_q0_on(&hp->p->c[line], c->i, Q);
+		for (a = 0; a < 3; a++)
+			c->hist[a] = Kt > 0 ? -Q[a] / d->u_force / Kt : 0;
+	} else {
+		struct pack_contact pc = {c->i, c->j, 0, {0, 0, 0}, 0};
+
+		for (k = 0; k < it.m; k++)
+			pc.P0 += fmax(it.e[k].h, 0) * d->u_force;
+		for (a = 0; a < 3; a++)
+			pc.Q0[a] = -Kt * c->hist[a] * d->u_force;
+		if (pack_add_contact(hp->p, &pc))
+			return hp->err = -1;
+	}
+	return 0;
+}
+
+int
+pdem_read_history(struct pdem *d, struct pack *p)
+{
+	struct history_pass hp = {d, p, NULL, 0};
+	long *keys;
+
+	if (p->nc == 0)
+		return 0;
+	if (contact_enum_update(&d->ce, d->x, 1) || !(keys = pack_history_keys(p)))
+		return -1;
+	refresh_rotations(d);
+	hp.keys = keys;
+	contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_history, &hp);
+	free(keys);
+	return 0;
+}
+
+int
+pdem_write_back(struct pdem *d, struct pack *p)
+{
+	struct history_pass hp = {d, p, NULL, 0};
+	size_t i;
+	int a;
+
+	for (i = 0; i < d->n; i++) {
+		for (a = 0; a < 3; a++)
+			p->x[3 * i + a] = d->x[3 * i + a] * d->u_len;
+		if (p->q)
+			memcpy(p->q + 4 * i, d->q + 4 * i, 4 * sizeof *p->q);
+	}
+	for (a = 0; a < 3; a++) {
+		p->box[a] = d->lo[a] * d->u_len, p->box[3 + a] = d->hi[a] * d->u_len;
+		p->periodic[a] = d->periodic[a];
+	}
+	p->nc = 0;
+	if (contact_enum_update(&d->ce, d->x, 0))
+		return -1;
+	refresh_rotations(d);
+	if (contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_history, &hp) < 0 || hp.err) {
+		msg_seterr("out of memory for the contact lines");
+		return -1;
+	}
+	return 0;
+}

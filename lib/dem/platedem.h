@@ -1,0 +1,90 @@
+/* platedem: explicit DEM of spheroplates, the platy-particle paper's engine (P §II B,
+ * App. A; physics.md §12).
+ *
+ * Grains are spheroplates (pack/shape.h; a sphere is one of side 0).  An interaction is the
+ * element contacts of contact/plate.h; each element carries a linear spring-dashpot normal
+ * force k_n h + gamma_n dh/dt, never attractive (P eq. 2), at its own contact point.  The
+ * interaction has one tangential spring (3 history doubles in the enumerator's slot), its
+ * displacement the relative sliding at the overlap-weighted centre of the elements, turned
+ * into the current tangent plane each step and carried across list rebuilds; its stiffness
+ * is M k_t and its dashpot M-fold too for M elements (each element sharing the tangential
+ * displacement, as P's common tangent t implies), capped at mu times the interaction's
+ * normal force (P eqs. 3-4).  The dashpots come from a restitution coefficient e, through
+ * the damping ratio zeta whose collision returns e with the never-attractive force
+ * (platedem.c: Schwager and Poschel's closed form, not the classical exp(-pi zeta/...)), and
+ * each of M elements gets gamma = 2 zeta sqrt(m* k_n / M), so the interaction's damping ratio is zeta whether a collision meets a
+ * corner (M = 1) or a face (M = 4): a head-on collision returns e either way.
+ *
+ * Integration: leapfrog translations; rotations by Euler's equations in the principal
+ * (body) frame, P eq. A2, with the angular velocity at the full step taken as the mean of
+ * the two half steps (the implicit midpoint rule, solved by fixed-point iteration): P's A2
+ * needs Omega_t, which a leapfrog does not have, and the midpoint keeps the kinetic energy
+ * and |L| of a free body exactly.  The quaternion then turns by P's eq. A4 step
+ * (quat_step_body).  Optionally Cundall's local damping (P uses none; packgen uses it to
+ * reach rest sooner: it removes kinetic energy, not the equilibrium).
+ *
+ * Units inside: length r0 (the mean spheroradius), mass rho0 r0^3, stiffness k_n, so time
+ * sqrt(rho0 r0^3 / k_n) and stress k_n / r0; the pack (SI) is converted in and out. */
+#ifndef QUSGM_PLATEDEM_H
+#define QUSGM_PLATEDEM_H
+
+#include <stddef.h>
+#include "contact/contacts.h"
+#include "pack/pack.h"
+
+struct pdem_params {
+	double kn, kt;		/* normal, tangential stiffness (N/m) */
+	double mu, wall_mu;	/* friction grain-grain, grain-wall (during the dynamics) */
+	double restitution;	/* of a binary collision, [0.21, 1] (below exp(-pi/2): overdamped) */
+	double damping;		/* Cundall local damping, [0, 1) */
+	double dt_factor;	/* dt = dt_factor sqrt(m_min / k_n) */
+};
+
+struct pdem {
+	size_t n;
+	double *x, *v;		/* centres, velocities (3n) */
+	double *q;		/* orientations (4n), body -> lab */
+	double *w;		/* angular velocities in the body frame (3n), at half steps */
+	double *f, *t;		/* forces, torques in the lab frame (3n) */
+	double *R;		/* rotation matrices of q (9n), refreshed by pdem_forces */
+	double *m, *J;		/* masses (n), principal moments (3n: in-plane, in-plane, normal) */
+	double *r, *half;	/* spheroradii, half sides (n) */
+	double *rb;		/* bounding radii (n): what the enumerator sees */
+	double lo[3], hi[3];
+	int periodic[3];
+	struct contact_enum ce;
+	double kt_ratio, mu, wall_mu, zeta, damping, dt;
+	/* the last pdem_forces: elastic normal force on each wall, interactions with at least one
+	 * element, elements, sum of interaction force magnitudes */
+	double wallf[NWALLS];
+	size_t ninter, nelem;
+	double sum_f;
+	/* the scales: SI value = scaled value times these */
+	double u_len, u_mass, u_time, u_force;
+};
+
+void pdem_params_default(struct pdem_params *pp);
+/* The engine for pack p (SI): scaled copies of its grains and box, at rest, the boundary of
+ * the pack.  0 or -1 (msg_seterr). */
+int pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp);
+void pdem_free(struct pdem *d);
+/* Forces and torques at the current state (the contact list brought up to date). 0 or -1. */
+int pdem_forces(struct pdem *d);
+/* One leapfrog step from the forces of pdem_forces. */
+void pdem_integrate(struct pdem *d);
+/* Kinetic energy (translation + rotation) and total angular momentum about the origin, lab
+ * frame, into L unless NULL (scaled units). */
+double pdem_kinetic(const struct pdem *d, double L[3]);
+/* Mean |net force| over the grains over the mean interaction force (INFINITY without one). */
+double pdem_unbalanced(const struct pdem *d);
+/* Wrap the centres into the box along the periodic axes. */
+void pdem_wrap(struct pdem *d);
+/* Positions, orientations, box and frictional history (one contact line per interaction:
+ * P0 its elastic normal force, Q0 its tangential spring's force on i, M0 0) back into p
+ * (SI), replacing p's contact lines.  0 or -1. */
+int pdem_write_back(struct pdem *d, struct pack *p);
+/* Set the tangential springs from p's contact lines (pdem_write_back's), for the
+ * interactions that touch now; the others start from zero.  0 or -1. */
+int pdem_read_history(struct pdem *d, struct pack *p);
+
+#endif
