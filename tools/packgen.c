@@ -1,11 +1,15 @@
-/* packgen: a loose, irregular pack of polydisperse elastic spheres in a box. */
+/* packgen: a loose, irregular pack of polydisperse elastic spheres in a box, or a static pack
+ * of monodisperse spheroplates (--shape spheroplate: the platy-particle paper's samples). */
 #include "base/cli.h"
 #include "dem/dem.h"
+#include "dem/platepack.h"
 #include "pack/material.h"
 #include "base/msg.h"
+#include "base/numfmt.h"
 #include "pack/pack.h"
 #include "pack/packio.h"
 #include "pack/psd.h"
+#include "pack/shape.h"
 
 #include <gsl/gsl_rng.h>
 #include <math.h>
@@ -17,16 +21,23 @@
 static struct opts {
 	long ngrains, seed, max_steps;
 	const char *psd_spec, *material_name, *aspect_spec;
+	const char *shape_name, *plate_radius_name, *periodic_spec;
 	double wall_E, wall_nu, mu, wall_mu;
 	double dem_mu, overlap, damping, phi0, rest_tol;
+	double eta, spheroradius, kn, kt, restitution, sigma0, density;
 	struct psd psd;
 	struct material mat;
 	double aspect[3];
+	int plates, periodic[3];
+	enum shape_radius conv;
 } o = {
 	.ngrains = 2740, .seed = 1, .max_steps = 2000000,
 	.psd_spec = "uniform:7e-5,1.3e-4", .material_name = "glass", .aspect_spec = "1,1,1",
-	.wall_E = 0, .wall_nu = 0.495, .mu = 0.3, .wall_mu = -1,
-	.dem_mu = 0.5, .overlap = 1e-4, .damping = 0.7, .phi0 = 0.3, .rest_tol = 2e-2,
+	.shape_name = "sphere", .plate_radius_name = "edge", .periodic_spec = "none",
+	.wall_E = 0, .wall_nu = 0.495, .mu = NAN, .wall_mu = -1,
+	.dem_mu = NAN, .overlap = 1e-4, .damping = NAN, .phi0 = 0.3, .rest_tol = NAN,
+	.eta = 0.5, .spheroradius = 3e-8, .kn = 1.5e3, .kt = 1.5e3, .restitution = 0.6, .sigma0 = NAN,
+	.density = NAN,
 };
 
 static struct cli_opt opt_table[] = {
@@ -37,20 +48,30 @@ static struct cli_opt opt_table[] = {
 	{"aspect", 0, CLI_STRING, &o.aspect_spec, "AX,AY,AZ", "box side ratios", NULL},
 	{"wall-E", 0, CLI_DOUBLE, &o.wall_E, "PA", "Young's modulus of the walls (0: 100 x the material's)", "Pa"},
 	{"wall-nu", 0, CLI_DOUBLE, &o.wall_nu, "NU", "Poisson ratio of the walls", NULL},
-	{"friction", 0, CLI_DOUBLE, &o.mu, "MU", "grain-grain friction coefficient recorded in the pack", NULL},
+	{"friction", 0, CLI_DOUBLE, &o.mu, "MU", "grain-grain friction coefficient recorded in the pack (default: 0.3 spheres, 0.58 spheroplates)", NULL},
 	{"wall-friction", 0, CLI_DOUBLE, &o.wall_mu, "MU", "grain-wall friction coefficient (negative: same as --friction)", NULL},
-	{"dem-friction", 0, CLI_DOUBLE, &o.dem_mu, "MU", "friction during the DEM compaction (higher: looser pack)", NULL},
-	{"overlap", 0, CLI_DOUBLE, &o.overlap, "RATIO", "target mean overlap / radius when the DEM pack is at rest", NULL},
-	{"damping", 0, CLI_DOUBLE, &o.damping, "ALPHA", "Cundall local damping of the DEM (0..1)", NULL},
-	{"phi0", 0, CLI_DOUBLE, &o.phi0, "PHI", "packing fraction of the initial random placement", NULL},
-	{"rest-tol", 0, CLI_DOUBLE, &o.rest_tol, "RATIO", "at rest when mean |net force| / mean contact force is below this", NULL},
+	{"dem-friction", 0, CLI_DOUBLE, &o.dem_mu, "MU", "friction during the DEM compaction, higher: looser pack (default: 0.5 spheres, 0.58 spheroplates)", NULL},
+	{"overlap", 0, CLI_DOUBLE, &o.overlap, "RATIO", "spheres: target mean overlap / radius when the DEM pack is at rest", NULL},
+	{"damping", 0, CLI_DOUBLE, &o.damping, "ALPHA", "Cundall local damping of the DEM, 0..1 (default: 0.7 spheres, 0.3 spheroplates)", NULL},
+	{"phi0", 0, CLI_DOUBLE, &o.phi0, "PHI", "spheres: packing fraction of the initial random placement", NULL},
+	{"rest-tol", 0, CLI_DOUBLE, &o.rest_tol, "RATIO", "at rest when mean |net force| / mean contact force is below this (default: 0.02 spheres, 0.001 spheroplates)", NULL},
+	{"shape", 0, CLI_STRING, &o.shape_name, "SHAPE", "grain shape: sphere | spheroplate", NULL},
+	{"platyness", 0, CLI_DOUBLE, &o.eta, "ETA", "spheroplates: platyness (R - r)/R in [0, 1); 0 makes spheres by the plate engine", NULL},
+	{"spheroradius", 0, CLI_DOUBLE, &o.spheroradius, "R", "spheroplates: spheroradius r", "m"},
+	{"plate-radius", 0, CLI_STRING, &o.plate_radius_name, "CONV", "spheroplates: the outer radius R reaches the core's edge (side 2(R-r)) or corner (sqrt2 (R-r))", NULL},
+	{"kn", 0, CLI_DOUBLE, &o.kn, "K", "spheroplates: normal contact stiffness", "N/m"},
+	{"kt", 0, CLI_DOUBLE, &o.kt, "K", "spheroplates: tangential contact stiffness", "N/m"},
+	{"restitution", 0, CLI_DOUBLE, &o.restitution, "E", "spheroplates: restitution coefficient of a binary collision, [0.21, 1]", NULL},
+	{"stress", 0, CLI_DOUBLE, &o.sigma0, "PA", "spheroplates: isotropic compaction stress sigma0 (default: kappa = kn/(sigma0 r) = 1e4)", "Pa"},
+	{"density", 0, CLI_DOUBLE, &o.density, "RHO", "grain density (default: the material's for spheres, 2700 for spheroplates)", "kg/m^3"},
+	{"periodic", 0, CLI_STRING, &o.periodic_spec, "AXES", "spheroplates: after compaction, replace the walls of these axes (e.g. xz) by periodic boundaries, or none", NULL},
 	{"max-steps", 0, CLI_LONG, &o.max_steps, "N", "DEM step limit", NULL},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
 static const struct cli_tool tool = {
 	"packgen", "[options]",
-	"Make a loose random pack of polydisperse elastic spheres in a box by DEM compaction (writes a qusgm pack).",
+	"Make a loose random pack of polydisperse elastic spheres in a box by DEM compaction, or a static pack of spheroplates (writes a qusgm pack).",
 	opt_table, 0,
 };
 
@@ -60,6 +81,54 @@ progress(const struct dem_status *s, void *ctx)
 	(void)ctx;
 	cli_progress("stage %d step %ld  packing %.4f  stress/target %.3g  coordination %.2f  unbalanced %.2e",
 	    s->stage, s->step, s->phi, s->p_ratio, s->coordination, s->unbalanced);
+}
+
+static void
+plate_progress(const struct platepack_status *s, void *ctx)
+{
+	(void)ctx;
+	cli_progress("stage %d step %ld  packing %.4f  stress/target %.3g  interactions/grain %.2f  elements/interaction %.2f  unbalanced %.2e",
+	    s->stage, s->step, s->phi, s->p_ratio, s->z, s->elements, s->unbalanced);
+}
+
+/* The per-shape defaults of the options that have two (NAN: not given). */
+static void
+shape_defaults(void)
+{
+	if (isnan(o.mu))
+		o.mu = o.plates ? 0.58 : 0.3;
+	if (isnan(o.dem_mu))
+		o.dem_mu = o.plates ? 0.58 : 0.5;
+	if (isnan(o.damping))
+		o.damping = o.plates ? 0.3 : 0.7;
+	if (isnan(o.rest_tol))
+		o.rest_tol = o.plates ? 1e-3 : 2e-2;
+	if (isnan(o.density))
+		o.density = o.plates ? 2700 : o.mat.rho;
+	if (isnan(o.sigma0))
+		o.sigma0 = o.kn / (1e4 * o.spheroradius);
+}
+
+/* --periodic: 'none' or a set of axis letters, not all three (the walls of one axis load the
+ * pack). */
+static void
+parse_periodic(void)
+{
+	const char *c;
+
+	if (strcmp(o.periodic_spec, "none") == 0)
+		return;
+	for (c = o.periodic_spec; *c; c++) {
+		int a = *c == 'x' ? 0 : *c == 'y' ? 1 : *c == 'z' ? 2 : -1;
+		if (a < 0 || o.periodic[a])
+			cli_usage_error("--periodic: expected 'none' or distinct axes among x, y, z (e.g. xz), got '%s'",
+			    o.periodic_spec);
+		o.periodic[a] = 1;
+	}
+	if (o.periodic[0] && o.periodic[1] && o.periodic[2])
+		cli_usage_error("--periodic: one axis must keep its walls, which load the pack");
+	if (!*o.periodic_spec)
+		cli_usage_error("--periodic: expected 'none' or axes among x, y, z");
 }
 
 static void
@@ -83,21 +152,49 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--wall-E: must be positive (or 0 for 100 x E)");
 	if (!(o.wall_nu > -1 && o.wall_nu < 0.5))
 		cli_usage_error("--wall-nu: must be in (-1, 0.5)");
-	if (o.mu < 0)
+	if (strcmp(o.shape_name, "sphere") == 0)
+		o.plates = 0;
+	else if (strcmp(o.shape_name, "spheroplate") == 0)
+		o.plates = 1;
+	else
+		cli_usage_error("--shape: expected sphere or spheroplate, got '%s'", o.shape_name);
+	if (strcmp(o.plate_radius_name, "edge") == 0)
+		o.conv = SHAPE_R_EDGE;
+	else if (strcmp(o.plate_radius_name, "corner") == 0)
+		o.conv = SHAPE_R_CORNER;
+	else
+		cli_usage_error("--plate-radius: expected edge or corner, got '%s'", o.plate_radius_name);
+	if (!(o.eta >= 0 && o.eta < 1))
+		cli_usage_error("--platyness: must be in [0, 1), got %g", o.eta);
+	if (!(o.spheroradius > 0 && isfinite(o.spheroradius)))
+		cli_usage_error("--spheroradius: must be positive");
+	if (!(o.kn > 0 && isfinite(o.kn)) || !(o.kt >= 0 && isfinite(o.kt)))
+		cli_usage_error("--kn must be positive and --kt non-negative");
+	if (!(o.restitution >= 0.21 && o.restitution <= 1))
+		cli_usage_error("--restitution: must be in [0.21, 1] (a linear dashpot returns no less than exp(-pi/2))");
+	if (!isnan(o.sigma0) && !(o.sigma0 > 0 && isfinite(o.sigma0)))
+		cli_usage_error("--stress: must be positive");
+	if (!isnan(o.density) && !(o.density > 0 && isfinite(o.density)))
+		cli_usage_error("--density: must be positive");
+	parse_periodic();
+	if (!o.plates && o.periodic_spec && strcmp(o.periodic_spec, "none") != 0)
+		cli_usage_error("--periodic: only with --shape spheroplate");
+	if (!isnan(o.mu) && o.mu < 0)
 		cli_usage_error("--friction: must be non-negative");
-	if (o.dem_mu < 0)
+	if (!isnan(o.dem_mu) && o.dem_mu < 0)
 		cli_usage_error("--dem-friction: must be non-negative");
 	if (!(o.overlap > 0 && o.overlap <= 1e-2))
 		cli_usage_error("--overlap: must be in (0, 0.01]");
-	if (!(o.damping >= 0 && o.damping < 1))
+	if (!isnan(o.damping) && !(o.damping >= 0 && o.damping < 1))
 		cli_usage_error("--damping: must be in [0, 1)");
 	if (!(o.phi0 > 0 && o.phi0 <= 0.35))
 		cli_usage_error("--phi0: must be in (0, 0.35]");
-	if (!(o.rest_tol > 0))
+	if (!isnan(o.rest_tol) && !(o.rest_tol > 0))
 		cli_usage_error("--rest-tol: must be positive");
 	if (o.max_steps < 1)
 		cli_usage_error("--max-steps: must be positive");
 	cli_usage_done();
+	shape_defaults();
 	if (o.wall_E == 0)
 		o.wall_E = 100 * o.mat.E;
 	if (o.wall_mu < 0)
@@ -114,11 +211,63 @@ draw_grains(struct pack *p, gsl_rng *rng)
 	pack_init(p);
 	if (pack_reserve(p, (size_t)o.ngrains))
 		msg_die_err(EXIT_DATA);
+	if (o.plates && pack_set_shapes(p))
+		msg_die_err(EXIT_DATA);
 	for (k = 0; k < o.ngrains; k++) {
-		double x[3] = {0, 0, 0}, r = psd_draw(&o.psd, rng), E, nu;
+		double x[3] = {0, 0, 0}, r = o.plates ? o.spheroradius : psd_draw(&o.psd, rng), E, nu;
 		material_sample(&o.mat, rng, &E, &nu);
-		pack_add_grain(p, k + 1, x, r, E, nu, o.mat.rho);
+		pack_add_grain(p, k + 1, x, r, E, nu, o.density);
 	}
+}
+
+static void
+set_meta_number(struct pack *p, const char *key, double v)
+{
+	char buf[40];
+
+	num_format(buf, v);
+	if (pack_set_meta(p, key, buf))
+		msg_die_err(EXIT_DATA);
+}
+
+/* Monodisperse spheroplates (P §II C): side from the platyness under the --plate-radius
+ * reading, the grid of spacing 2 sqrt(2) R, the compaction and the periodic switch of
+ * platepack.h.  The pack records the contact law in its meta lines. */
+static void
+compact_plates(struct pack *p, gsl_rng *rng)
+{
+	struct platepack_params pp;
+	struct platepack_status st;
+	double R = o.spheroradius / (1 - o.eta), L = shape_plate_side(R, o.eta, o.conv), q[4] = {1, 0, 0, 0};
+	size_t i;
+
+	for (i = 0; i < p->n; i++)
+		pack_set_grain_shape(p, i, L, q);
+	platepack_params_default(&pp);
+	pp.dyn.kn = o.kn, pp.dyn.kt = o.kt;
+	pp.dyn.mu = o.dem_mu, pp.dyn.wall_mu = o.dem_mu;
+	pp.dyn.restitution = o.restitution;
+	pp.dyn.damping = o.damping;
+	pp.spacing = 2 * M_SQRT2 * R;
+	pp.sigma0 = o.sigma0;
+	pp.rest_tol = o.rest_tol;
+	pp.max_steps = o.max_steps;
+	memcpy(pp.periodic, o.periodic, sizeof o.periodic);
+	if (platepack_make(p, &pp, rng, plate_progress, NULL, &st))
+		msg_die_err(EXIT_DATA);
+	cli_progress_end();
+	msg_info(1, "at rest after %ld steps (stage %d): packing %.4f, %.3f interactions per grain, %.3f elements per interaction",
+	    st.step, st.stage, st.phi, st.z, st.elements);
+	msg_info(1, "eta %g, mu %g during compaction (%g recorded), e %g, kappa %.4g, inertial number at full rate %.3g",
+	    o.eta, o.dem_mu, o.mu, o.restitution, st.kappa, st.inertial);
+	pack_set_meta(p, "plate-radius", shape_radius_names[o.conv]);
+	pack_set_meta(p, "contact-law", "linear");
+	set_meta_number(p, "platyness", o.eta);
+	set_meta_number(p, "kn", o.kn);
+	set_meta_number(p, "kt", o.kt);
+	set_meta_number(p, "restitution", o.restitution);
+	set_meta_number(p, "sigma0", o.sigma0);
+	set_meta_number(p, "kappa", st.kappa);
 }
 
 static void
@@ -158,7 +307,10 @@ main(int argc, char **argv)
 	rng = gsl_rng_alloc(gsl_rng_mt19937);
 	gsl_rng_set(rng, (unsigned long)o.seed);
 	draw_grains(&p, rng);
-	compact(&p, rng);
+	if (o.plates)
+		compact_plates(&p, rng);
+	else
+		compact(&p, rng);
 	p.wall_E = o.wall_E;
 	p.wall_nu = o.wall_nu;
 	p.mu = o.mu;
