@@ -75,8 +75,9 @@ cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3], c
 	}
 	for (a = 0; a < 3; a++)
 		if (g->periodic[a] && g->nc[a] < 3) {
-			msg_seterr("the box is too short along periodic axis %c (%.6g m) for grains of this size: it must "
-			    "hold three interaction distances", "xyz"[a], g->len[a]);
+			/* no unit: the DEM engines call this in their scaled units */
+			msg_seterr("the box is too short along periodic axis %c (length %.6g) for grains of this size: it "
+			    "must hold three interaction distances", "xyz"[a], g->len[a]);
 			return -1;
 		}
 	if (ncells != g->ncells || !g->start) {

@@ -59,7 +59,9 @@ struct plate_element {
 struct plate_interaction {
 	double n[3];	/* unit normal, from j to i (out of the wall for a wall) */
 	double d;	/* distance of the two cores (0 when they intersect); for a wall, the signed
-			 * distance of the core's nearest point, negative when it crosses the plane */
+			 * distance of the core's nearest point, negative when it crosses the plane.
+			 * When m = 0 it may be only a lower bound above r_i + r_j + gap (a separating
+			 * axis told the pair apart without computing the distance). */
 	int m;		/* element contacts, 0 .. PLATE_MAX_ELEMENTS */
 	struct plate_element e[PLATE_MAX_ELEMENTS];
 };

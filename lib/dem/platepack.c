@@ -111,9 +111,20 @@ settle(struct pdem *d, const struct platepack_params *pp, double target, int sta
 static int
 make_periodic(struct pdem *d, const int periodic[3])
 {
-	double skin = d->ce.skin;
+	double skin = d->ce.skin, rbmax = 0;
+	size_t i;
 	int a;
 
+	for (i = 0; i < d->n; i++)
+		rbmax = fmax(rbmax, d->rb[i]);
+	for (a = 0; a < 3; a++)
+		if (periodic[a] && d->hi[a] - d->lo[a] < 3 * (2 * rbmax + skin)) {
+			/* the enumerator's cell grid needs three cells of an interaction distance */
+			msg_seterr("the compacted box is %.3g bounding diameters long along %c, too short for a periodic "
+			    "axis (it must hold 3 interaction distances): use more grains", (d->hi[a] - d->lo[a]) / (2 * rbmax),
+			    "xyz"[a]);
+			return -1;
+		}
 	for (a = 0; a < 3; a++)
 		d->periodic[a] = d->periodic[a] || periodic[a];
 	pdem_wrap(d);

@@ -89,3 +89,37 @@ expect_error "-n 2: names --phi0" 1 '^packgen: cannot place grain 2 of 2 at rand
 expect_ok "-n 2 --phi0 0.05" packgen -n 2 --phi0 0.05 -o two.pack
 # packgen reads no input: its --help does not say it does
 if packgen --help | grep -q 'standard input'; then fail "--help: no standard input" "$(packgen --help | grep 'standard input')"; else pass "--help: no standard input"; fi
+
+# Spheroplates (issue 13): 27 plates of platyness 0.5, a static pack in a couple of seconds.
+expect_ok "spheroplates: packgen --shape spheroplate -n 27" packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 -o p.pack
+expect_ok "spheroplates: again with the same seed" packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 -o p2.pack
+expect_same "spheroplates: same seed, same bytes" p.pack p2.pack
+packinfo p.pack >pinfo.txt 2>/dev/null
+expect_num "spheroplates: 27 plates" "$(info_value pinfo.txt plates)" == 27
+expect_num "spheroplates: platyness read back 0.5" "$(info_value pinfo.txt platyness)" == 0.5
+# r = 30 nm and side 2 (R - r) = 2 r at eta 0.5 (the edge reading): R = 60 nm
+expect_num "spheroplates: side 60 nm" "$(rel "$(info_value pinfo.txt side_mean)" 6e-8)" "<" 1e-12
+# a static pack of frictional plates: denser than the grid (0.14) and than a loose
+# random placement, looser than close packing of spheres
+expect_num "spheroplates: packing above 0.35" "$(info_value pinfo.txt packing_fraction)" ">" 0.35
+expect_num "spheroplates: packing below 0.64" "$(info_value pinfo.txt packing_fraction)" "<" 0.64
+grep -q '^columns id x y z r E nu rho side qw qx qy qz$' p.pack && pass "spheroplates: shape columns" || fail "spheroplates: shape columns" "$(grep ^columns p.pack)"
+for k in plate-radius contact-law kn kt restitution sigma0 kappa; do
+	grep -q "^meta $k " p.pack && pass "spheroplates: meta $k" || fail "spheroplates: meta $k" "missing"
+done
+# the frictional history: one contact line per touching interaction
+expect_num "spheroplates: contact lines written" "$(awk '$1 == "contacts" { print $2 }' p.pack)" ">" 10
+expect_ok "spheroplates: corner reading" packgen --shape spheroplate --platyness 0.5 --plate-radius corner -n 8 --seed 2 -o pc.pack
+# corner: side = sqrt(2) (R - r) = sqrt(2) r
+expect_num "spheroplates: corner side sqrt(2) r" "$(rel "$(packinfo pc.pack | awk '$1 == "side_mean" { print $2 }')" 4.242640687119285e-8)" "<" 1e-12
+expect_error "spheroplates: 27 plates are too few for a periodic axis" 1 '^packgen: the compacted box is .* too short for a periodic axis .*: use more grains$' packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 --periodic xz -o pp.pack
+expect_ok "spheroplates: periodic x and z" packgen --shape spheroplate --platyness 0.5 -n 125 --seed 2 --periodic xz -o pp.pack
+grep -q '^boundary periodic walls periodic$' pp.pack && pass "spheroplates: boundary periodic walls periodic" || fail "spheroplates: boundary line" "$(grep ^boundary pp.pack)"
+expect_error "spheroplates: densify refuses plates" 1 'spheroplate.*densify handles spheres only' densify p.pack
+expect_error "--shape unknown" 2 '^packgen: --shape: expected sphere or spheroplate' packgen --shape cube
+expect_error "--platyness 1" 2 '^packgen: --platyness: must be in \[0, 1\)' packgen --shape spheroplate --platyness 1
+expect_error "--plate-radius unknown" 2 '^packgen: --plate-radius: expected edge or corner' packgen --shape spheroplate --plate-radius mid
+expect_error "--restitution 0.1" 2 '^packgen: --restitution' packgen --shape spheroplate --restitution 0.1
+expect_error "--periodic xyz" 2 '^packgen: --periodic: one axis must keep its walls' packgen --shape spheroplate --periodic xyz
+expect_error "--periodic for spheres" 2 '^packgen: --periodic: only with --shape spheroplate' packgen --periodic x
+expect_error "--periodic bad" 2 '^packgen: --periodic: expected' packgen --shape spheroplate --periodic xq
