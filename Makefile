@@ -45,7 +45,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: all deps plotdeps pipelines check check-fast killtest run bench validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: all deps plotdeps pipelines check check-fast killtest run bench bench-plates validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -178,6 +178,12 @@ pipelines: all plotdeps
 bench: all
 	@$(MAKE) --no-print-directory B=build $(BENCH_SRC:tests/bench/%.c=build/bench/%)
 	@sh tests/bench.sh build/bin
+	@sh tests/bench-plates.sh build/bin
+
+# The spheroplate DEM alone (bench/plates.md): make bench-plates [BENCH_PLATE_SIZES=1000]
+bench-plates: all
+	@$(MAKE) --no-print-directory B=build build/bench/platestep
+	@sh tests/bench-plates.sh build/bin
 
 # Validation against the papers: densify's frictionless compaction (validate/results.md), then
 # the frictional and polyaxial studies at the papers' sizes, their reports gathered in
@@ -217,7 +223,8 @@ help:
 	@echo "make killtest   kill every writing tool with TERM/INT/HUP/KILL at seeded random moments; check outputs and temporaries"
 	@echo "make run        the default job: packgen | densify | frictionalize | loadtest | moduli on G2740 (out/)"
 	@echo "make pipelines  the papers' studies (STUDY=name, SMALL=1 for small packs; pipelines/README.md)"
-	@echo "make bench      benchmarks; results in bench/results.md"
+	@echo "make bench      benchmarks; results in bench/results.md and bench/plates.md"
+	@echo "make bench-plates  the spheroplate DEM's benchmarks alone (bench/plates.md)"
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
 	@echo "make fuzz       each libFuzzer harness (tests/fuzz/) for FUZZ_SECONDS=$(FUZZ_SECONDS) s, built with clang in build-fuzz/"

@@ -19,9 +19,12 @@ pdem_params_default(struct pdem_params *pp)
 	pp->restitution = 0.6;
 	pp->damping = 0;
 	/* a collision lasts pi sqrt(m* / k) >= 2.2 sqrt(m_min/k_n); a corner contact on a thin
-	 * plate turns it with an effective mass about half its mass, and a grain may carry a
-	 * dozen elements at once: 0.05 keeps more than 20 steps in the stiffest oscillation */
-	pp->dt_factor = 0.05;
+	 * plate turns it with an effective mass about half its mass, and a grain carries a
+	 * handful of interactions of one to eight elements: 0.1 keeps the stiffest oscillation
+	 * at omega dt below 0.5 (stable below 2) and a binary collision above 20 steps.  0.05
+	 * took 2.2x the steps to the same rest (1000 plates at eta 0.5: 66800 against 29900
+	 * steps, packing 0.5417 against 0.5454) */
+	pp->dt_factor = 0.1;
 }
 
 void
