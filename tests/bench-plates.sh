@@ -46,8 +46,9 @@ done
 	echo
 	echo "| plates | eta | packgen wall time (s) | peak memory (MiB) | steps to rest | packing fraction | interactions | element contacts | us per step per plate | element contacts per s |"
 	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-	for n in $sizes; do
-		for eta in $etas; do
+	# every pack measured so far, this run's and earlier runs'
+	for n in $(ls "$out" | sed -n 's/^plates-\([0-9]*\)-.*\.gen$/\1/p' | sort -nu); do
+		for eta in $(ls "$out" | sed -n "s/^plates-$n-\(.*\)\.gen\$/\1/p" | sort -n); do
 			g="$out/plates-$n-$eta.gen" s="$out/plates-$n-$eta.step"
 			[ -s "$g" ] || continue
 			if grep -q '^|' "$g"; then cat "$g"; continue; fi
