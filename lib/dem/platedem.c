@@ -224,7 +224,15 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 	for (a = 0; a < 3; a++)
 		vt[a] -= vn * n[a];
 	tn = (wall ? d->wall_mu : d->mu) * fsum;
-	law_dem_spring(hist, n, vt, d->dt, Kt, tn, ft);
+	/* the spring keeps its force, not its displacement (hist = minus the force on i): when an
+	 * element comes or goes, M and so the stiffness change, and a stored displacement would
+	 * make the force jump by k_t times it at every touch of a rocking corner, a pump that
+	 * kept 27 plates from rest (unbalanced 1e-2 for 2e6 steps); increments of force do not */
+	{
+		double kv[3] = {Kt * vt[0], Kt * vt[1], Kt * vt[2]};
+
+		law_dem_spring(hist, n, kv, d->dt, 1.0, tn, ft);
+	}
 	/* P eq. 4's tangential dashpot, at the normal's damping ratio, within the Coulomb cap */
 	{
 		double gt = 2 * d->zeta * sqrt(meff * Kt), fm;
@@ -430,8 +438,7 @@ pdem_wrap(struct pdem *d)
 
 /* The frictional history of the pack's contact lines (pack-format.md), so that a static
  * pack read back is static: P0 the interaction's elastic normal force, Q0 its tangential
- * spring's force on i, M0 0 (no rolling or twisting resistance); the spring's displacement
- * is Q0 / (M k_t) for its M elements. */
+ * spring's force on i (what the spring keeps), M0 0 (no rolling or twisting resistance). */
 struct history_pass {
 	struct pdem *d;
 	struct pack *p;
@@ -445,12 +452,11 @@ on_history(const struct contact *c, void *vh)
 	struct history_pass *hp = vh;
 	struct pdem *d = hp->d;
 	struct plate_interaction it;
-	double xj[3], Kt;
+	double xj[3];
 	int k, a;
 
 	if (c->h <= 0 || interaction_of(d, c, &it, xj) == 0)
 		return 0;
-	Kt = it.m * d->kt_ratio;
 	if (hp->keys) {
 		long line = pack_history_lookup(hp->keys, hp->p->nc, c->i, c->j);
 		double Q[3];
@@ -459,14 +465,14 @@ on_history(const struct contact *c, void *vh)
 			return 0;
 		pack_contact_q0_on(&hp->p->c[line], c->i, Q);
 		for (a = 0; a < 3; a++)
-			c->hist[a] = Kt > 0 ? -Q[a] / d->u_force / Kt : 0;
+			c->hist[a] = -Q[a] / d->u_force;
 	} else {
 		struct pack_contact pc = {c->i, c->j, 0, {0, 0, 0}, 0};
 
 		for (k = 0; k < it.m; k++)
 			pc.P0 += fmax(it.e[k].h, 0) * d->u_force;
 		for (a = 0; a < 3; a++)
-			pc.Q0[a] = -Kt * c->hist[a] * d->u_force;
+			pc.Q0[a] = -c->hist[a] * d->u_force;
 		if (pack_add_contact(hp->p, &pc))
 			return hp->err = -1;
 	}

@@ -4,16 +4,18 @@
  * Grains are spheroplates (pack/shape.h; a sphere is one of side 0).  An interaction is the
  * element contacts of contact/plate.h; each element carries a linear spring-dashpot normal
  * force k_n h + gamma_n dh/dt, never attractive (P eq. 2), at its own contact point.  The
- * interaction has one tangential spring (3 history doubles in the enumerator's slot), its
- * displacement the relative sliding at the overlap-weighted centre of the elements, turned
- * into the current tangent plane each step and carried across list rebuilds; its stiffness
- * is M k_t and its dashpot M-fold too for M elements (each element sharing the tangential
- * displacement, as P's common tangent t implies), capped at mu times the interaction's
- * normal force (P eqs. 3-4).  The dashpots come from a restitution coefficient e, through
+ * interaction has one tangential spring (3 history doubles in the enumerator's slot: its
+ * force), advanced by the relative sliding at the overlap-weighted centre of the elements
+ * with the stiffness M k_t of its M elements (each sharing the tangential displacement, as
+ * P's common tangent t implies), turned into the current tangent plane each step and carried
+ * across list rebuilds, with a dashpot M-fold too, capped at mu times the interaction's
+ * normal force (P eqs. 3-4).  The spring keeps its force and takes increments of M k_t times
+ * the sliding, so an element coming or going changes the stiffness, not the force.  The dashpots come from a restitution coefficient e, through
  * the damping ratio zeta whose collision returns e with the never-attractive force
  * (platedem.c: Schwager and Poschel's closed form, not the classical exp(-pi zeta/...)), and
- * each of M elements gets gamma = 2 zeta sqrt(m* k_n / M), so the interaction's damping ratio is zeta whether a collision meets a
- * corner (M = 1) or a face (M = 4): a head-on collision returns e either way.
+ * each of M elements gets gamma = 2 zeta sqrt(m* k_n / M), so the interaction's damping
+ * ratio is zeta whether a collision meets a corner (M = 1) or a face (M = 4): a head-on
+ * collision returns e either way.
  *
  * Integration: leapfrog translations; rotations by Euler's equations in the principal
  * (body) frame, P eq. A2, with the angular velocity at the full step taken as the mean of
