@@ -312,9 +312,9 @@ largest_move(struct pack *p, const struct pdem_params *dyn, int history, long ns
  * equilibrium (residual force 1e-3 of the mean interaction force), written back with their
  * frictional history, read again and stepped on with P's law alone (no local damping).
  * The residual forces and the contacts at the Coulomb limit let grains creep a little; 1 %
- * of the spheroradius in 20000 steps (~5 mean overlaps; 1e-4 measured) is the bound.  The
+ * of the spheroradius in 20000 steps (~5 mean overlaps; 1e-3 measured) is the bound.  The
  * same pack read without its history is not static: its tangential forces vanish and the
- * grains slide, at least ten times further (110 times measured, 1.1e-2 r), which is why the
+ * grains slide, at least ten times further (13 times measured, 1.3e-2 r), which is why the
  * pack carries them. */
 static void
 test_pack_at_rest(void)
