@@ -18,16 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench.h"
 
 static void
 tile(const struct pack *p, int m, struct pack *t)
@@ -86,13 +77,13 @@ main(int argc, char **argv)
 		if (!x || !g || qs_init(&s, &t, 0.3))
 			msg_die(EXIT_DATA, "out of memory");
 		memcpy(x, t.x, 3 * t.n * sizeof *x);
-		t0 = now();
+		t0 = bench_now();
 		qs_energy(&s, x, g, NULL);
-		t1 = now();
+		t1 = bench_now();
 		do {
 			qs_energy(&s, x, g, NULL);
 			n++;
-			dt = now() - t1;
+			dt = bench_now() - t1;
 		} while (dt < 1.0);
 		printf("%d\t%zu\t%zu\t%.4f\t%.6f\t%.2f\n", m * m * m, t.n, s.ncontacts, t1 - t0, dt / n,
 		    1e9 * dt / n / (double)s.ncontacts);

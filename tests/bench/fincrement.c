@@ -16,16 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench.h"
 
 int
 main(int argc, char **argv)
@@ -71,7 +62,7 @@ main(int argc, char **argv)
 			lp.min.method = methods[m];
 			if (loader_open(&L, &p, &lp))
 				msg_die_err(EXIT_DATA);
-			t0 = now();
+			t0 = bench_now();
 			for (k = 0; k < steps && st == 0; k++) {
 				st = loader_step(&L, de, &row);
 				if (st < 0)
@@ -81,7 +72,7 @@ main(int argc, char **argv)
 				if (row.res_max > resmax)
 					resmax = row.res_max;
 			}
-			t1 = now();
+			t1 = bench_now();
 			nc = p.nc;
 			printf("%s\t%s\t%zu\t%zu\t%ld\t%.1f\t%.1f\t%.4f\t%.1f\t%.3g\t%.4f\t%.6g\n", fr ? "mu" : "none",
 			    qs_method_name(methods[m]), p.n, nc, k, (double)iters / k, (double)evals / k, (t1 - t0) / k,

@@ -17,16 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench.h"
 
 int
 main(int argc, char **argv)
@@ -65,11 +56,11 @@ main(int argc, char **argv)
 		memcpy(x, p.x, 3 * p.n * sizeof *x);
 		qs_min_params_default(&mp);
 		mp.method = methods[m];
-		t0 = now();
+		t0 = bench_now();
 		if (qs_init(&s, &p, 0.3))
 			msg_die_err(EXIT_DATA);
 		st = load_increment(&s, x, de, 1, 10, &mp, &rep);
-		t1 = now();
+		t1 = bench_now();
 		if (st < 0)
 			msg_die_err(EXIT_DATA);
 		qs_wall_stress(&s, sig);

@@ -23,7 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
+#include "bench.h"
 
 enum { M_PLATE, M_DIST, M_MPR, M_GJK, M_MPR_TIGHT, M_GJK_TIGHT, NMETHODS };
 
@@ -34,15 +34,6 @@ struct bpair {
 	struct plate_body a, b;
 	double h;	/* r_i + r_j - d */
 };
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 static void
 body_random(gsl_rng *rng, double eta, struct plate_body *b)
@@ -147,12 +138,12 @@ run(int m, double eta, const struct bpair *p, int n, const ccd_t ccd[2])
 		first += v;
 		off += !(fabs(v - p[i].h) <= 0.1 * p[i].h);
 	}
-	t0 = now();
+	t0 = bench_now();
 	do {
 		for (i = 0; i < n; i++)
 			sink += call(m, &p[i], ccd);
 		calls += n;
-	} while ((dt = now() - t0) < 0.4);
+	} while ((dt = bench_now() - t0) < 0.4);
 	printf("%s\t%.2f\t%d\t%.3f\t", method_names[m], eta, n, 1e6 * dt / calls);
 	if (m == M_PLATE)
 		printf("%.3f\t-\n", first / n);

@@ -13,16 +13,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "bench.h"
 
 int
 main(int argc, char **argv)
@@ -43,14 +34,14 @@ main(int argc, char **argv)
 	pdem_params_default(&pp);
 	if (pdem_init(&d, &p, &pp) || pdem_forces(&d))
 		msg_die_err(1);
-	t0 = now();
+	t0 = bench_now();
 	for (s = 0; s < steps; s++) {
 		pdem_integrate(&d);
 		if (pdem_forces(&d))
 			msg_die_err(1);
 		elements += (double)d.nelem;
 	}
-	t = now() - t0;
+	t = bench_now() - t0;
 	printf("# grains\tsteps\tinteractions\telements\ts_per_step\tus_per_step_per_grain\telements_per_s\n");
 	printf("%zu\t%ld\t%zu\t%zu\t%.6f\t%.4f\t%.4g\n", d.n, steps, d.ninter, d.nelem, t / steps, 1e6 * t / steps / d.n,
 	    elements / t);

@@ -1,0 +1,17 @@
+/* bench: what the benchmark programs share: a monotonic wall clock. */
+#ifndef QUSGM_BENCH_H
+#define QUSGM_BENCH_H
+
+#include <time.h>
+
+/* Seconds on CLOCK_MONOTONIC: differences are wall time, immune to clock changes. */
+static inline double
+bench_now(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+#endif
