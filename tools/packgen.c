@@ -120,9 +120,11 @@ parse_periodic(void)
 		return;
 	for (c = o.periodic_spec; *c; c++) {
 		int a = *c == 'x' ? 0 : *c == 'y' ? 1 : *c == 'z' ? 2 : -1;
-		if (a < 0 || o.periodic[a])
+		if (a < 0 || o.periodic[a]) {	/* cli_usage_error reports and returns */
 			cli_usage_error("--periodic: expected 'none' or distinct axes among x, y, z (e.g. xz), got '%s'",
 			    o.periodic_spec);
+			return;
+		}
 		o.periodic[a] = 1;
 	}
 	if (o.periodic[0] && o.periodic[1] && o.periodic[2])
