@@ -23,7 +23,7 @@ static struct opts {
 	const char *psd_spec, *material_name, *aspect_spec;
 	const char *shape_name, *plate_radius_name, *periodic_spec;
 	double wall_E, wall_nu, mu, wall_mu;
-	double dem_mu, overlap, damping, phi0, rest_tol;
+	double dem_mu, dem_wall_mu, overlap, damping, phi0, rest_tol;
 	double eta, spheroradius, kn, kt, restitution, sigma0, density;
 	struct psd psd;
 	struct material mat;
@@ -35,7 +35,7 @@ static struct opts {
 	.psd_spec = "uniform:7e-5,1.3e-4", .material_name = "glass", .aspect_spec = "1,1,1",
 	.shape_name = "sphere", .plate_radius_name = "edge", .periodic_spec = "none",
 	.wall_E = 0, .wall_nu = 0.495, .mu = NAN, .wall_mu = -1,
-	.dem_mu = NAN, .overlap = 1e-4, .damping = NAN, .phi0 = 0.3, .rest_tol = NAN,
+	.dem_mu = NAN, .dem_wall_mu = NAN, .overlap = 1e-4, .damping = NAN, .phi0 = 0.3, .rest_tol = NAN,
 	.eta = 0.5, .spheroradius = 3e-8, .kn = 1.5e3, .kt = 1.5e3, .restitution = 0.6, .sigma0 = NAN,
 	.density = NAN,
 };
@@ -51,6 +51,7 @@ static struct cli_opt opt_table[] = {
 	{"friction", 0, CLI_DOUBLE, &o.mu, "MU", "grain-grain friction coefficient recorded in the pack (default: 0.3 spheres, 0.58 spheroplates)", NULL},
 	{"wall-friction", 0, CLI_DOUBLE, &o.wall_mu, "MU", "grain-wall friction coefficient (negative: same as --friction)", NULL},
 	{"dem-friction", 0, CLI_DOUBLE, &o.dem_mu, "MU", "friction during the DEM compaction, higher: looser pack (default: 0.5 spheres, 0.58 spheroplates)", NULL},
+	{"dem-wall-friction", 0, CLI_DOUBLE, &o.dem_wall_mu, "MU", "grain-wall friction during the compaction of spheroplates (default 0: frictionless walls, so the pack's own stress is the isotropic target; spheres use --dem-friction)", NULL},
 	{"overlap", 0, CLI_DOUBLE, &o.overlap, "RATIO", "spheres: target mean overlap / radius when the DEM pack is at rest", NULL},
 	{"damping", 0, CLI_DOUBLE, &o.damping, "ALPHA", "Cundall local damping of the DEM, 0..1 (default: 0.7 spheres, 0.3 spheroplates)", NULL},
 	{"phi0", 0, CLI_DOUBLE, &o.phi0, "PHI", "spheres: packing fraction of the initial random placement", NULL},
@@ -99,6 +100,8 @@ shape_defaults(void)
 		o.mu = o.plates ? 0.58 : 0.3;
 	if (isnan(o.dem_mu))
 		o.dem_mu = o.plates ? 0.58 : 0.5;
+	if (isnan(o.dem_wall_mu))
+		o.dem_wall_mu = o.plates ? 0 : o.dem_mu;
 	if (isnan(o.damping))
 		o.damping = o.plates ? 0.3 : 0.7;
 	if (isnan(o.rest_tol))
@@ -185,6 +188,10 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--friction: must be non-negative");
 	if (!isnan(o.dem_mu) && o.dem_mu < 0)
 		cli_usage_error("--dem-friction: must be non-negative");
+	if (!isnan(o.dem_wall_mu) && !o.plates)
+		cli_usage_error("--dem-wall-friction: only with --shape spheroplate (the sphere DEM uses --dem-friction at the walls)");
+	else if (!isnan(o.dem_wall_mu) && !(o.dem_wall_mu >= 0 && isfinite(o.dem_wall_mu)))
+		cli_usage_error("--dem-wall-friction: must be non-negative");
 	if (!(o.overlap > 0 && o.overlap <= 1e-2))
 		cli_usage_error("--overlap: must be in (0, 0.01]");
 	if (!isnan(o.damping) && !(o.damping >= 0 && o.damping < 1))
@@ -247,7 +254,7 @@ compact_plates(struct pack *p, gsl_rng *rng)
 		pack_set_grain_shape(p, i, L, q);
 	platepack_params_default(&pp);
 	pp.dyn.kn = o.kn, pp.dyn.kt = o.kt;
-	pp.dyn.mu = o.dem_mu, pp.dyn.wall_mu = o.dem_mu;
+	pp.dyn.mu = o.dem_mu, pp.dyn.wall_mu = o.dem_wall_mu;
 	pp.dyn.restitution = o.restitution;
 	pp.dyn.damping = o.damping;
 	pp.spacing = 2 * M_SQRT2 * R;
@@ -260,8 +267,8 @@ compact_plates(struct pack *p, gsl_rng *rng)
 	cli_progress_end();
 	msg_info(1, "at rest after %ld steps (stage %d): packing %.4f, %.3f interactions per grain, %.3f elements per interaction",
 	    st.step, st.stage, st.phi, st.z, st.elements);
-	msg_info(1, "eta %g, mu %g during compaction (%g recorded), e %g, kappa %.4g, inertial number at full rate %.3g",
-	    o.eta, o.dem_mu, o.mu, o.restitution, st.kappa, st.inertial);
+	msg_info(1, "eta %g, mu %g during compaction (%g at the walls, %g recorded), e %g, kappa %.4g, inertial number at full rate %.3g",
+	    o.eta, o.dem_mu, o.dem_wall_mu, o.mu, o.restitution, st.kappa, st.inertial);
 	pack_set_meta(p, "plate-radius", shape_radius_names[o.conv]);
 	pack_set_meta(p, "contact-law", "linear");
 	set_meta_number(p, "platyness", o.eta);

@@ -8,6 +8,7 @@
 #include "pack/packio.h"
 #include "base/table.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,7 +26,7 @@ static const struct cli_tool tool = {
 	opts, 1 << 20,
 };
 
-#define NKEYS 40
+#define NKEYS 64
 
 struct row {
 	struct table_col col[NKEYS];
@@ -36,6 +37,7 @@ struct row {
 static void
 add(struct row *r, const char *name, const char *unit, double v)
 {
+	assert(r->n < NKEYS);
 	r->col[r->n].name = name;
 	r->col[r->n].unit = unit;
 	r->v[r->n++] = v;
@@ -92,12 +94,9 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "fabric_anisotropy", NULL, m->fabric_anisotropy);
 }
 
-/* A pack with spheroplates: what the grains alone say (measure_plates).  The contact
- * measures of fill_row (coordination, rattlers, overlaps, forces, stresses, residual,
- * sliding, fabric) need the contacts of plates, which contact/plate.h will give and
- * measure_pack does not find yet: they are left out here rather than computed as if the
- * plates were spheres.  Once measure_pack enumerates plate contacts, a plate pack gets
- * them too, from the same pack_measures, after these keys. */
+/* A pack with spheroplates: measure_plates, the shapes and the interactions (measure.h);
+ * keys that mean the same as a sphere pack's keep their names, the others are the plates'
+ * own (packinfo.1 lists them). */
 static void
 fill_plate_row(const struct pack *p, const struct plate_measures *m, struct row *r)
 {
@@ -127,8 +126,30 @@ fill_plate_row(const struct pack *p, const struct plate_measures *m, struct row 
 	add(r, "director_x", NULL, m->director[0]);
 	add(r, "director_y", NULL, m->director[1]);
 	add(r, "director_z", NULL, m->director[2]);
+	add(r, "coordination", NULL, m->coordination);
+	add(r, "contacts_gg", NULL, (double)m->contacts_gg);
+	add(r, "contacts_gw", NULL, (double)m->contacts_gw);
+	add(r, "floating", NULL, (double)m->floating);
+	add(r, "floating_fraction", NULL, m->floating_fraction);
+	add(r, "elements", NULL, (double)m->elements);
+	add(r, "elements_per_interaction", NULL, m->elements_per_interaction);
+	add(r, "interactions_m1", NULL, (double)m->by_elements[0]);
+	add(r, "interactions_m2", NULL, (double)m->by_elements[1]);
+	add(r, "interactions_m3", NULL, (double)m->by_elements[2]);
 	add(r, "mu", NULL, p->mu);
 	add(r, "history_contacts", NULL, (double)p->nc);
+	add(r, "sig_xx", "Pa", m->sig_wall[0]);
+	add(r, "sig_yy", "Pa", m->sig_wall[1]);
+	add(r, "sig_zz", "Pa", m->sig_wall[2]);
+	add(r, "sig_lw_xx", "Pa", m->sig_lw[0]);
+	add(r, "sig_lw_yy", "Pa", m->sig_lw[1]);
+	add(r, "sig_lw_zz", "Pa", m->sig_lw[2]);
+	add(r, "sig_lw_xy", "Pa", m->sig_lw[3]);
+	add(r, "sig_lw_xz", "Pa", m->sig_lw[4]);
+	add(r, "sig_lw_yz", "Pa", m->sig_lw[5]);
+	add(r, "force_mean", "N", m->force_mean);
+	add(r, "force_max", "N", m->force_max);
+	add(r, "residual_mean", NULL, m->residual_mean);
 }
 
 /* One pack's row: spheres as ever (byte for byte), or plates; returns 1 for plates. */

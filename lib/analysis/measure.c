@@ -3,6 +3,8 @@
 #include "base/msg.h"
 #include "base/quat.h"
 #include "base/vec3.h"
+#include "contact/plate.h"
+#include "pack/shape.h"
 
 #include <gsl/gsl_eigen.h>
 #include <math.h>
@@ -354,6 +356,177 @@ out:
 	return status;
 }
 
+
+/* What measure_plate_contacts sums over the interactions, in SI. */
+struct plate_pass {
+	const struct pack *p;
+	struct plate_grains g;
+	const long *keys;	/* the pack's history keys, or NULL */
+	double kn;		/* N/m, or NaN: no forces */
+	unsigned *z;		/* interactions per grain */
+	double *F;		/* net force per grain (3n) */
+	double fsum;
+	struct plate_measures *m;
+};
+
+/* Love-Weber: arm (x) f, symmetrised, into s (xx yy zz xy xz yz). */
+static void
+add_dyad(double s[6], const double arm[3], const double f[3])
+{
+	s[0] += arm[0] * f[0];
+	s[1] += arm[1] * f[1];
+	s[2] += arm[2] * f[2];
+	s[3] += 0.5 * (arm[0] * f[1] + arm[1] * f[0]);
+	s[4] += 0.5 * (arm[0] * f[2] + arm[2] * f[0]);
+	s[5] += 0.5 * (arm[1] * f[2] + arm[2] * f[1]);
+}
+
+static int
+on_plate_record(const struct contact *c, void *v)
+{
+	struct plate_pass *pp = v;
+	struct plate_measures *m = pp->m;
+	struct plate_interaction it;
+	const double *n = it.n, *xi = pp->p->x + 3 * c->i;
+	double F[3] = {0, 0, 0}, Q[3] = {0, 0, 0}, P = 0, hsum = 0, foot[3] = {0, 0, 0}, arm[3], xj[3], fk[3];
+	size_t i = c->i;
+	long j = c->j;
+	int wall = PACK_IS_WALL(j), k, a;
+
+	if (plate_record_interaction(&pp->g, c, 0, &it, xj) == 0)
+		return 0;
+	pp->z[i]++;
+	if (wall)
+		m->contacts_gw++;
+	else
+		pp->z[j]++, m->contacts_gg++;
+	m->elements += (size_t)it.m;
+	m->by_elements[it.m < 3 ? it.m - 1 : 2]++;
+	if (isnan(pp->kn))
+		return 0;
+	for (k = 0; k < it.m; k++) {
+		double h = fmax(it.e[k].h, 0);
+
+		P += pp->kn * h;
+		if (wall) {
+			/* the element's own lever: its foot on the wall plane */
+			for (a = 0; a < 3; a++) {
+				arm[a] = xi[a] - it.e[k].pj[a];
+				foot[a] += h * it.e[k].pj[a];
+				fk[a] = pp->kn * h * n[a];
+			}
+			add_dyad(m->sig_lw, arm, fk);
+			hsum += h;
+		}
+	}
+	if (pp->keys) {
+		long line = pack_history_lookup(pp->keys, pp->p->nc, i, j);
+
+		if (line >= 0)
+			pack_contact_q0_on(&pp->p->c[line], i, Q);
+	}
+	for (a = 0; a < 3; a++)
+		F[a] = P * n[a] + Q[a];
+	if (wall) {
+		/* the tangential force at the overlap-weighted foot */
+		m->sig_wall[PACK_WALL_INDEX(j) / 2] += P;
+		for (a = 0; a < 3; a++)
+			arm[a] = xi[a] - (hsum > 0 ? foot[a] / hsum : it.e[0].pj[a]);
+		add_dyad(m->sig_lw, arm, Q);
+	} else {
+		/* the pair's whole force at the branch vector: where it acts does not matter */
+		for (a = 0; a < 3; a++)
+			arm[a] = xi[a] - xj[a];
+		add_dyad(m->sig_lw, arm, F);
+	}
+	for (a = 0; a < 3; a++) {
+		pp->F[3 * i + a] += F[a];
+		if (!wall)
+			pp->F[3 * j + a] -= F[a];
+	}
+	pp->fsum += vec3_norm(F);
+	m->force_max = fmax(m->force_max, vec3_norm(F));
+	return 0;
+}
+
+/* The interaction measures of measure_plates (measure.h): the enumerator over the bounding
+ * spheres, each record's element contacts by plate_record_interaction, as dem/platedem finds
+ * them. */
+static int
+measure_plate_contacts(const struct pack *p, struct plate_measures *m)
+{
+	struct contact_enum ce;
+	struct plate_pass pass;
+	double *R = malloc(9 * p->n * sizeof *R), *half = malloc(p->n * sizeof *half), *rb = malloc(p->n * sizeof *rb);
+	double V = pack_box_volume(p->box), s = 0, kn;
+	size_t i, ni;
+	int a, status = -1, have_ce = 0;
+
+	memset(&pass, 0, sizeof pass);
+	pass.p = p, pass.m = m, pass.kn = NAN;
+	if (pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0)
+		pass.kn = kn;
+	pass.z = calloc(p->n, sizeof *pass.z);
+	pass.F = calloc(3 * p->n, sizeof *pass.F);
+	if (!R || !half || !rb || !pass.z || !pass.F) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	for (i = 0; i < p->n; i++) {
+		double L = p->has_shapes ? p->side[i] : 0;
+		const double one[4] = {1, 0, 0, 0};
+
+		quat_to_matrix(p->q ? p->q + 4 * i : one, R + 9 * i);
+		half[i] = L / 2;
+		rb[i] = shape_bounding_radius(p->r[i], L);
+	}
+	pass.g = (struct plate_grains){p->x, R, half, p->r, p->box, p->box + 3};
+	if (p->nc && !(pass.keys = pack_history_keys(p)))
+		goto out;
+	if (contact_enum_init(&ce, p->n, rb, p->box, p->box + 3, p->periodic, 0, 0))
+		goto out;
+	have_ce = 1;
+	if (contact_enum_update(&ce, p->x, 1) || contact_foreach(&ce, p->x, CONTACT_TOUCHING, on_plate_record, &pass) < 0)
+		goto out;
+	ni = m->contacts_gg + m->contacts_gw;
+	for (i = 0; i < p->n; i++)
+		if (pass.z[i] <= 1)
+			m->floating++;
+	m->coordination = (double)(2 * m->contacts_gg + m->contacts_gw) / (double)p->n;
+	m->floating_fraction = (double)m->floating / (double)p->n;
+	m->elements_per_interaction = ni ? (double)m->elements / (double)ni : NAN;
+	m->has_forces = !isnan(pass.kn) && ni > 0;
+	if (!m->has_forces) {
+		for (a = 0; a < 6; a++)
+			m->sig_lw[a] = NAN;
+		for (a = 0; a < 3; a++)
+			m->sig_wall[a] = NAN;
+		m->force_mean = m->force_max = m->residual_mean = NAN;
+	} else {
+		for (a = 0; a < 3; a++) {
+			double area = pack_box_length(p->box, (a + 1) % 3) * pack_box_length(p->box, (a + 2) % 3);
+			m->sig_wall[a] = p->periodic[a] ? NAN : m->sig_wall[a] / (2 * area);
+		}
+		for (a = 0; a < 6; a++)
+			m->sig_lw[a] /= V;
+		m->force_mean = pass.fsum / (double)ni;
+		for (i = 0; i < p->n; i++)
+			s += vec3_norm(pass.F + 3 * i);
+		m->residual_mean = (s / (double)p->n) / m->force_mean;
+	}
+	status = 0;
+out:
+	if (have_ce)
+		contact_enum_free(&ce);
+	free((void *)pass.keys);
+	free(pass.z);
+	free(pass.F);
+	free(R);
+	free(half);
+	free(rb);
+	return status;
+}
+
 int
 measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measures *m)
 {
@@ -395,5 +568,5 @@ measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measur
 	if (m->plates)
 		status = measure_nematic(v, m->plates, &m->nematic, m->director);
 	free(v);
-	return status;
+	return status ? status : measure_plate_contacts(p, m);
 }

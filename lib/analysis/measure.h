@@ -44,14 +44,31 @@ void measure_coordination(const struct pack *p, const struct geo_contacts *gc, u
 /* Marks rattlers (1) in flag[p->n]; returns their number. */
 size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned char *flag);
 
-/* What can be said of a pack with spheroplates (pack/shape.h) from the grains alone: its
+/* What a pack with spheroplates (pack/shape.h) says about itself.  From the grains: its
  * packing fraction with the plates' volume, the spheroradius r and core side L, the
  * platyness eta = (R - r)/R and aspect ratio R/r under a convention for R (the pack's meta
  * plate-radius, pack_plate_radius), and the nematic order of the face normals.  Every
  * grain counts in the statistics (a sphere is a plate of side 0, eta 0, aspect 1); only
- * the plates (side > 0), whose face normal exists, count in the nematic order.  Contact
- * measures (coordination, forces, fabric) need the plate contacts of contact/plate.h and
- * are not here: measure_pack finds sphere contacts only. */
+ * the plates (side > 0), whose face normal exists, count in the nematic order.
+ *
+ * From the interactions (contact/plate.h: the element contacts of a pair, or of a grain and
+ * a wall, found as dem/platedem finds them): the coordination Z, interactions per grain
+ * (grain-grain counted at both ends, plus grain-wall), as the platy-particle paper's Fig. 12
+ * counts it (an interaction of several element contacts is one); the floating grains, with
+ * 0 or 1 interaction (P §IV: they carry no load); the element contacts, and the interactions
+ * by their number m of elements (1: a point; 2: mostly a line, an edge along an edge or a
+ * face; 3 or more: a face-face or edge-face overlap polygon).
+ *
+ * Forces, when the pack records its normal stiffness (meta kn, N/m: packgen writes it): each
+ * element's elastic normal force k_n h (the dashpot is zero at rest) along the interaction's
+ * normal, plus the tangential spring's force of the pair's contact line (Q0, pdem_write_back;
+ * zero without a line).  The wall stress is the normal force on the two walls of an axis,
+ * averaged, over the wall area (NaN on a periodic axis); the Love-Weber stress sums
+ * (x_i - x_j) (x) F over the pairs (j's nearest image) and (x_i - x_w) (x) F over the wall
+ * contacts, x_w the element's foot on the wall plane (the tangential force at the
+ * overlap-weighted foot), over the box volume, compression positive: it equals the wall
+ * stress for a pack in equilibrium.  residual_mean is mean|F_i| over the mean |F| of an
+ * interaction, the unbalance packgen's rest criterion bounds. */
 struct plate_measures {
 	size_t grains, plates;
 	double porosity, packing_fraction;
@@ -60,6 +77,13 @@ struct plate_measures {
 	double eta_mean, eta_min, eta_max;		/* min and max NaN when all grains share eta */
 	double aspect_mean, aspect_min, aspect_max;	/* likewise */
 	double nematic, director[3];			/* NaN without plates */
+	size_t contacts_gg, contacts_gw, elements, floating;
+	size_t by_elements[3];				/* interactions of 1, 2, >= 3 elements */
+	double coordination, floating_fraction, elements_per_interaction;
+	int has_forces;					/* meta kn present: the rest is set, else NaN */
+	double sig_wall[3], sig_lw[6];			/* Pa, compression positive; xx yy zz xy xz yz */
+	double force_mean, force_max;			/* |F| of an interaction, N */
+	double residual_mean;
 };
 
 int measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measures *m);

@@ -631,3 +631,34 @@ plate_wall_interaction(const struct plate_body *a, const double w0[3], const dou
 	}
 	return out->m;
 }
+
+static void
+grain_body(const struct plate_grains *g, size_t i, const double *x, struct plate_body *b)
+{
+	memcpy(b->x, x, sizeof b->x);
+	memcpy(b->R, g->R + 9 * i, sizeof b->R);
+	b->half = g->half[i];
+	b->r = g->r[i];
+}
+
+int
+plate_record_interaction(const struct plate_grains *g, const struct contact *c, double gap,
+    struct plate_interaction *out, double xj[3])
+{
+	struct plate_body a, b;
+	int k;
+
+	grain_body(g, c->i, g->x + 3 * c->i, &a);
+	if (PACK_IS_WALL(c->j)) {
+		int w = PACK_WALL_INDEX(c->j), ax = w / 2;
+		double w0[3] = {0, 0, 0}, wn[3] = {0, 0, 0};
+
+		w0[ax] = w % 2 ? g->hi[ax] : g->lo[ax];
+		wn[ax] = w % 2 ? -1 : 1;
+		return plate_wall_interaction(&a, w0, wn, gap, out);
+	}
+	for (k = 0; k < 3; k++)
+		xj[k] = g->x[3 * c->i + k] - c->dx[k];
+	grain_body(g, (size_t)c->j, xj, &b);
+	return plate_interaction(&a, &b, gap, out);
+}

@@ -29,6 +29,8 @@
 #ifndef QUSGM_PLATE_H
 #define QUSGM_PLATE_H
 
+#include "contact/contacts.h"
+
 /* The most element contacts one interaction can have (two coplanar squares overlapping in an
  * octagon: 8 corners; with margin). */
 #define PLATE_MAX_ELEMENTS 16
@@ -79,6 +81,21 @@ int plate_interaction(const struct plate_body *a, const struct plate_body *b, do
  * a sphere gives its centre, kind PLATE_SPHERE.  n = wn.  Returns m. */
 int plate_wall_interaction(const struct plate_body *a, const double w0[3], const double wn[3], double gap,
     struct plate_interaction *out);
+
+/* Grains as the contact enumerator (contacts.h) sees them through their bounding spheres, in
+ * one length unit: centres x (3n), rotations R (9n, body -> lab), half sides and spheroradii
+ * (n), the box lo, hi whose walls are the planes x_a = lo_a, hi_a. */
+struct plate_grains {
+	const double *x, *R, *half, *r;
+	const double *lo, *hi;
+};
+
+/* The interaction of contact record c (a pair, or a grain and a wall, from an enumerator over
+ * the bounding radii) among grains g: plate_interaction with j's centre at x_i - c->dx (its
+ * nearest image), into xj for a pair, or plate_wall_interaction with the wall's plane;
+ * gap as there.  Returns m, 0 when the bounding spheres meet but the grains do not. */
+int plate_record_interaction(const struct plate_grains *g, const struct contact *c, double gap,
+    struct plate_interaction *out, double xj[3]);
 
 /* The distance between the cores of a and b (0 when they intersect; an overlap of two coplanar
  * squares is found as a vertex in the other square, at distance 0 up to round-off) and the

@@ -139,15 +139,6 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	return 0;
 }
 
-static void
-body_of(const struct pdem *d, size_t i, const double *x, struct plate_body *b)
-{
-	memcpy(b->x, x, sizeof b->x);
-	memcpy(b->R, d->R + 9 * i, sizeof b->R);
-	b->half = d->half[i];
-	b->r = d->r[i];
-}
-
 /* Velocity of grain i's material point p (lab frame): v + R w_body x (p - x). */
 static void
 point_velocity(const struct pdem *d, size_t i, const double *xi, const double p[3], double v[3])
@@ -247,8 +238,10 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 	apply(d, i, xi, pc, ft, 1);
 	if (!wall)
 		apply(d, (size_t)j, xj, pc, ft, -1);
-	else
+	else {
 		d->wallf[PACK_WALL_INDEX(j)] += fel;
+		d->nwall++;
+	}
 	d->ninter++;
 	d->nelem += (size_t)M;
 	d->sum_f += sqrt(fsum * fsum + vec3_dot(ft, ft));
@@ -260,22 +253,9 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 static int
 interaction_of(const struct pdem *d, const struct contact *c, struct plate_interaction *it, double xj[3])
 {
-	struct plate_body a, b;
-	int k;
+	const struct plate_grains g = {d->x, d->R, d->half, d->r, d->lo, d->hi};
 
-	body_of(d, c->i, d->x + 3 * c->i, &a);
-	if (PACK_IS_WALL(c->j)) {
-		int w = PACK_WALL_INDEX(c->j), ax = w / 2;
-		double w0[3] = {0, 0, 0}, wn[3] = {0, 0, 0};
-
-		w0[ax] = w % 2 ? d->hi[ax] : d->lo[ax];
-		wn[ax] = w % 2 ? -1 : 1;
-		return plate_wall_interaction(&a, w0, wn, 0, it);
-	}
-	for (k = 0; k < 3; k++)
-		xj[k] = d->x[3 * c->i + k] - c->dx[k];
-	body_of(d, (size_t)c->j, xj, &b);
-	return plate_interaction(&a, &b, 0, it);
+	return plate_record_interaction(&g, c, 0, it, xj);
 }
 
 static int
@@ -313,9 +293,38 @@ pdem_forces(struct pdem *d)
 	memset(d->f, 0, 3 * d->n * sizeof *d->f);
 	memset(d->t, 0, 3 * d->n * sizeof *d->t);
 	memset(d->wallf, 0, sizeof d->wallf);
-	d->ninter = d->nelem = 0;
+	d->ninter = d->nwall = d->nelem = 0;
 	d->sum_f = 0;
 	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_contact, d) < 0 ? -1 : 0;
+}
+
+struct interaction_pass {
+	struct pdem *d;
+	pdem_interaction_fn fn;
+	void *ctx;
+};
+
+static int
+on_interaction(const struct contact *c, void *v)
+{
+	struct interaction_pass *ip = v;
+	struct plate_interaction it;
+	double xj[3];
+
+	if (c->h <= 0 || interaction_of(ip->d, c, &it, xj) == 0)
+		return 0;
+	return ip->fn(ip->d, c->i, c->j, PACK_IS_WALL(c->j) ? NULL : xj, &it, c->hist, ip->ctx);
+}
+
+int
+pdem_foreach_interaction(struct pdem *d, int rebuild, pdem_interaction_fn fn, void *ctx)
+{
+	struct interaction_pass ip = {d, fn, ctx};
+
+	if (contact_enum_update(&d->ce, d->x, rebuild))
+		return -1;
+	refresh_rotations(d);
+	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_interaction, &ip) < 0 ? -1 : 0;
 }
 
 static double
@@ -440,39 +449,35 @@ pdem_wrap(struct pdem *d)
  * pack read back is static: P0 the interaction's elastic normal force, Q0 its tangential
  * spring's force on i (what the spring keeps), M0 0 (no rolling or twisting resistance). */
 struct history_pass {
-	struct pdem *d;
 	struct pack *p;
 	const long *keys;	/* reading: the pack's sorted history keys; writing: NULL */
 	int err;
 };
 
 static int
-on_history(const struct contact *c, void *vh)
+on_history(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist,
+    void *vh)
 {
 	struct history_pass *hp = vh;
-	struct pdem *d = hp->d;
-	struct plate_interaction it;
-	double xj[3];
 	int k, a;
 
-	if (c->h <= 0 || interaction_of(d, c, &it, xj) == 0)
-		return 0;
+	(void)xj;
 	if (hp->keys) {
-		long line = pack_history_lookup(hp->keys, hp->p->nc, c->i, c->j);
+		long line = pack_history_lookup(hp->keys, hp->p->nc, i, j);
 		double Q[3];
 
 		if (line < 0)
 			return 0;
-		pack_contact_q0_on(&hp->p->c[line], c->i, Q);
+		pack_contact_q0_on(&hp->p->c[line], i, Q);
 		for (a = 0; a < 3; a++)
-			c->hist[a] = -Q[a] / d->u_force;
+			hist[a] = -Q[a] / d->u_force;
 	} else {
-		struct pack_contact pc = {c->i, c->j, 0, {0, 0, 0}, 0};
+		struct pack_contact pc = {i, j, 0, {0, 0, 0}, 0};
 
-		for (k = 0; k < it.m; k++)
-			pc.P0 += fmax(it.e[k].h, 0) * d->u_force;
+		for (k = 0; k < it->m; k++)
+			pc.P0 += fmax(it->e[k].h, 0) * d->u_force;
 		for (a = 0; a < 3; a++)
-			pc.Q0[a] = -c->hist[a] * d->u_force;
+			pc.Q0[a] = -hist[a] * d->u_force;
 		if (pack_add_contact(hp->p, &pc))
 			return hp->err = -1;
 	}
@@ -482,24 +487,24 @@ on_history(const struct contact *c, void *vh)
 int
 pdem_read_history(struct pdem *d, struct pack *p)
 {
-	struct history_pass hp = {d, p, NULL, 0};
+	struct history_pass hp = {p, NULL, 0};
 	long *keys;
+	int status;
 
 	if (p->nc == 0)
 		return 0;
-	if (contact_enum_update(&d->ce, d->x, 1) || !(keys = pack_history_keys(p)))
+	if (!(keys = pack_history_keys(p)))
 		return -1;
-	refresh_rotations(d);
 	hp.keys = keys;
-	contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_history, &hp);
+	status = pdem_foreach_interaction(d, 1, on_history, &hp);
 	free(keys);
-	return 0;
+	return status;
 }
 
 int
 pdem_write_back(struct pdem *d, struct pack *p)
 {
-	struct history_pass hp = {d, p, NULL, 0};
+	struct history_pass hp = {p, NULL, 0};
 	size_t i;
 	int a;
 
@@ -514,10 +519,7 @@ pdem_write_back(struct pdem *d, struct pack *p)
 		p->periodic[a] = d->periodic[a];
 	}
 	p->nc = 0;
-	if (contact_enum_update(&d->ce, d->x, 0))
-		return -1;
-	refresh_rotations(d);
-	if (contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_history, &hp) < 0 || hp.err) {
+	if (pdem_foreach_interaction(d, 0, on_history, &hp) < 0 || hp.err) {
 		msg_seterr("out of memory for the contact lines");
 		return -1;
 	}

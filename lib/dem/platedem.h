@@ -32,6 +32,7 @@
 
 #include <stddef.h>
 #include "contact/contacts.h"
+#include "contact/plate.h"
 #include "pack/pack.h"
 
 struct pdem_params {
@@ -57,9 +58,9 @@ struct pdem {
 	struct contact_enum ce;
 	double kt_ratio, mu, wall_mu, zeta, damping, dt;
 	/* the last pdem_forces: elastic normal force on each wall, interactions with at least one
-	 * element, elements, sum of interaction force magnitudes */
+	 * element (nwall of them with a wall), elements, sum of interaction force magnitudes */
 	double wallf[NWALLS];
-	size_t ninter, nelem;
+	size_t ninter, nwall, nelem;
 	double sum_f;
 	/* the scales: SI value = scaled value times these */
 	double u_len, u_mass, u_time, u_force;
@@ -72,6 +73,15 @@ int pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp
 void pdem_free(struct pdem *d);
 /* Forces and torques at the current state (the contact list brought up to date). 0 or -1. */
 int pdem_forces(struct pdem *d);
+/* Calls fn for every interaction of the current state that has element contacts (a pair, or
+ * a grain and a wall: j = PACK_WALL(w)), in the enumerator's order (contacts.h), with j's
+ * centre xj (its nearest image; NULL for a wall), the interaction in scaled units and its
+ * tangential spring hist (3 doubles: minus the spring's force on i), which fn may set.  The
+ * list is rebuilt first when rebuild is set, else brought up to date.  0, or -1 (msg_seterr,
+ * or fn returned nonzero). */
+typedef int (*pdem_interaction_fn)(const struct pdem *d, size_t i, long j, const double *xj,
+    const struct plate_interaction *it, double *hist, void *ctx);
+int pdem_foreach_interaction(struct pdem *d, int rebuild, pdem_interaction_fn fn, void *ctx);
 /* One leapfrog step from the forces of pdem_forces. */
 void pdem_integrate(struct pdem *d);
 /* Kinetic energy (translation + rotation) and total angular momentum about the origin, lab

@@ -90,7 +90,7 @@ settle(struct pdem *d, const struct platepack_params *pp, double target, int sta
 			st->unbalanced = pdem_unbalanced(d);
 			st->p_ratio = wall_ratio(d, target);
 			st->phi = vol / ((d->hi[0] - d->lo[0]) * (d->hi[1] - d->lo[1]) * (d->hi[2] - d->lo[2]));
-			st->z = 2.0 * d->ninter / d->n;	/* wall interactions counted once: close enough for progress */
+			st->z = (2.0 * d->ninter - d->nwall) / d->n;	/* packinfo's coordination: walls counted once */
 			st->elements = d->ninter ? (double)d->nelem / d->ninter : 0;
 			st->at_rest = fabs(st->p_ratio - 1) < 0.05 && st->unbalanced < pp->rest_tol;
 			if (fn && step % 1000 == 0)

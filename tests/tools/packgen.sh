@@ -109,6 +109,22 @@ for k in plate-radius contact-law kn kt restitution sigma0 kappa; do
 done
 # the frictional history: one contact line per touching interaction
 expect_num "spheroplates: contact lines written" "$(awk '$1 == "contacts" { print $2 }' p.pack)" ">" 10
+# packinfo's interactions (measure_plates) against packgen's own: one contact line per interaction
+expect_num "spheroplates: packinfo finds an interaction per contact line" \
+	"$(awk '$1 == "contacts_gg" { g = $2 } $1 == "contacts_gw" { w = $2 } END { print g + w }' pinfo.txt)" == "$(info_value pinfo.txt history_contacts)"
+expect_num "spheroplates: coordination Z = (2 gg + gw) / N" "$(awk '$1 == "contacts_gg" { g = $2 } $1 == "contacts_gw" { w = $2 } $1 == "coordination" { z = $2 } END { d = z - (2 * g + w) / 27; print d < 0 ? -d : d }' pinfo.txt)" "<" 1e-12
+# the pack's stresses from the element forces (meta kn) against the servo's target: packgen
+# stops with every wall within 5 % of sigma0 (platepack.c), and with frictionless walls
+# (--dem-wall-friction 0) the grains' Love-Weber stress is the wall stress up to the
+# unbalanced forces, mean|F_i| < 1e-3 of the mean interaction force (the rest criterion,
+# which counts the dashpots too, so packinfo's elastic forces may show up to twice it):
+# that moves a diagonal component by well under 1 %
+s0=$(awk '$1 == "meta" && $2 == "sigma0" { print $3 }' p.pack)
+for a in xx yy zz; do
+	expect_num "spheroplates: sig_$a within 5 % of sigma0" "$(rel "$(info_value pinfo.txt sig_$a)" "$s0")" "<" 0.05
+	expect_num "spheroplates: sig_lw_$a within 1 % of sig_$a" "$(rel "$(info_value pinfo.txt sig_lw_$a)" "$(info_value pinfo.txt sig_$a)")" "<" 0.01
+done
+expect_num "spheroplates: residual_mean at rest" "$(info_value pinfo.txt residual_mean)" "<" 2e-3
 expect_ok "spheroplates: corner reading" packgen --shape spheroplate --platyness 0.5 --plate-radius corner -n 8 --seed 2 -o pc.pack
 # corner: side = sqrt(2) (R - r) = sqrt(2) r
 expect_num "spheroplates: corner side sqrt(2) r" "$(rel "$(packinfo pc.pack | awk '$1 == "side_mean" { print $2 }')" 4.242640687119285e-8)" "<" 1e-12
@@ -121,5 +137,6 @@ expect_error "--platyness 1" 2 '^packgen: --platyness: must be in \[0, 1\)' pack
 expect_error "--plate-radius unknown" 2 '^packgen: --plate-radius: expected edge or corner' packgen --shape spheroplate --plate-radius mid
 expect_error "--restitution 0.1" 2 '^packgen: --restitution' packgen --shape spheroplate --restitution 0.1
 expect_error "--periodic xyz" 2 '^packgen: --periodic: one axis must keep its walls' packgen --shape spheroplate --periodic xyz
+expect_error "--dem-wall-friction for spheres" 2 '^packgen: --dem-wall-friction: only with --shape spheroplate' packgen --dem-wall-friction 0.3
 expect_error "--periodic for spheres" 2 '^packgen: --periodic: only with --shape spheroplate' packgen --periodic x
 expect_error "--periodic bad" 2 '^packgen: --periodic: expected' packgen --shape spheroplate --periodic xq

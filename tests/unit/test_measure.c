@@ -394,10 +394,80 @@ test_nematic_random(void)
 	gsl_rng_free(rng);
 }
 
+/* The interaction measures on closed-form cases: a plate face-down between two walls, two
+ * plates face to face with a tangential force on their contact line.  Each is a sum of a few
+ * products, so 1e-12 relative (ulps, through the scaled units of dem/platedem and back). */
+static void
+test_plate_contacts(void)
+{
+	const double r = 3e-8, L = 6e-8, h = 1e-9, kn = 1.5e3, A = 4e-7;
+	const double up[4] = {1, 0, 0, 0};
+	struct pack p;
+	struct plate_measures m;
+	struct pack_contact c = {0, 1, 0, {2e-7, 0, 0}, 0};
+	double ell = 2 * r - h, V;
+	int i;
+
+	/* face-down between the z walls, each pressing with four corners of overlap h */
+	pack_init(&p);
+	p.box[3] = p.box[4] = A, p.box[5] = 2 * (r - h);
+	pack_set_shapes(&p);
+	pack_add_grain(&p, 1, (const double[3]){A / 2, A / 2, r - h}, r, E_, NU, 2700);
+	pack_set_grain_shape(&p, 0, L, up);
+	pack_set_meta(&p, "kn", "1.5e3");
+	i = measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(i == 0, "plate contacts: measured");
+	CHECK(m.contacts_gw == 2 && m.contacts_gg == 0 && m.elements == 8 && m.by_elements[2] == 2,
+	    "plate contacts: squeezed plate has 2 wall interactions of 4 elements (%zu, %zu, %zu)", m.contacts_gw,
+	    m.contacts_gg, m.elements);
+	CHECK(m.coordination == 2 && m.floating == 0 && m.elements_per_interaction == 4,
+	    "plate contacts: coordination 2 (%g), not floating", m.coordination);
+	CHECK_CLOSE(m.sig_wall[2], 4 * kn * h / (A * A), 1e-12, "plate contacts: wall stress 4 k_n h / area");
+	CHECK_CLOSE(m.sig_lw[2], 4 * kn * h / (A * A), 1e-12, "plate contacts: Love-Weber = wall stress in equilibrium");
+	CHECK(m.sig_wall[0] == 0 && fabs(m.sig_lw[0]) <= 1e-12 * m.sig_lw[2] && m.residual_mean <= 1e-12,
+	    "plate contacts: no lateral stress, balanced (residual %g)", m.residual_mean);
+	/* without the stiffness: counts, no forces */
+	pack_set_meta(&p, "kn", "none");
+	measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(m.contacts_gw == 2 && !m.has_forces && isnan(m.sig_wall[2]) && isnan(m.sig_lw[2]),
+	    "plate contacts: no meta kn, counts but no stresses");
+	/* a periodic axis has no wall stress */
+	pack_set_meta(&p, "kn", "1.5e3");
+	p.periodic[0] = 1;
+	p.box[3] = 4 * A;
+	measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(isnan(m.sig_wall[0]) && m.sig_wall[2] > 0, "plate contacts: periodic x, no sig_xx (%g)", m.sig_wall[0]);
+	pack_free(&p);
+
+	/* two plates face to face along z, overlap h over the whole face, in a box too big to
+	 * touch; the contact line carries a tangential force Q on grain 0 along x */
+	pack_init(&p);
+	p.box[3] = p.box[4] = p.box[5] = A;
+	V = A * A * A;
+	pack_set_shapes(&p);
+	pack_add_grain(&p, 1, (const double[3]){A / 2, A / 2, A / 2 + ell / 2}, r, E_, NU, 2700);
+	pack_add_grain(&p, 2, (const double[3]){A / 2, A / 2, A / 2 - ell / 2}, r, E_, NU, 2700);
+	pack_set_grain_shape(&p, 0, L, up);
+	pack_set_grain_shape(&p, 1, L, up);
+	pack_set_meta(&p, "kn", "1.5e3");
+	pack_add_contact(&p, &c);
+	i = measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(i == 0 && m.contacts_gg == 1 && m.contacts_gw == 0 && m.elements == 4,
+	    "plate contacts: face-face pair, one interaction of 4 elements (%zu)", m.elements);
+	CHECK(m.coordination == 1 && m.floating == 2 && m.floating_fraction == 1,
+	    "plate contacts: one interaction each: both floating (Z = %g)", m.coordination);
+	CHECK_CLOSE(m.sig_lw[2], ell * 4 * kn * h / V, 1e-12, "plate contacts: Love-Weber zz = branch x 4 k_n h / V");
+	CHECK_CLOSE(m.sig_lw[4], 0.5 * ell * c.Q0[0] / V, 1e-12, "plate contacts: Love-Weber xz from the line's Q");
+	CHECK_CLOSE(m.force_mean, hypot(4 * kn * h, c.Q0[0]), 1e-12, "plate contacts: |F| of the interaction");
+	CHECK_CLOSE(m.residual_mean, 1, 1e-12, "plate contacts: two grains pushed apart: residual 1");
+	pack_free(&p);
+}
+
 int
 main(void)
 {
 	test_plates();
+	test_plate_contacts();
 	test_nematic_random();
 	test_lattice();
 	test_sliding();
