@@ -230,19 +230,6 @@ forces(struct dem *d)
 }
 
 /* Mean |net force| over grains with contacts, over the mean contact force. */
-static double
-unbalanced(const struct dem *d)
-{
-	double s = 0;
-	size_t i;
-
-	if (d->ncontacts == 0 || d->sum_cf == 0)
-		return INFINITY;
-	for (i = 0; i < d->n; i++)
-		s += sqrt(d->f[3 * i] * d->f[3 * i] + d->f[3 * i + 1] * d->f[3 * i + 1] + d->f[3 * i + 2] * d->f[3 * i + 2]);
-	return (s / d->n) / (d->sum_cf / d->ncontacts);
-}
-
 static void
 integrate(struct dem *d)
 {
@@ -383,7 +370,7 @@ dem_settle(struct dem *d, const struct dem_params *dp, double pfinal, double vol
 			return -1;
 		forces(d);
 		if (step % 100 == 0 || step == dp->max_steps) {
-			double coord, ub = unbalanced(d);
+			double coord, ub = dem_unbalanced(d->f, d->n, d->sum_cf, d->ncontacts);
 			st->step = step;
 			st->unbalanced = ub;
 			st->max_overlap = max_overlap(d, &coord);

@@ -1,6 +1,7 @@
 /* platedem: explicit DEM of spheroplates (see platedem.h). */
 #include "dem/platedem.h"
 #include "contact/law.h"
+#include "dem/servo.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
 #include "base/msg.h"
@@ -416,14 +417,7 @@ pdem_kinetic(const struct pdem *d, double L[3])
 double
 pdem_unbalanced(const struct pdem *d)
 {
-	double s = 0;
-	size_t i;
-
-	if (d->ninter == 0 || d->sum_f == 0)
-		return INFINITY;
-	for (i = 0; i < d->n; i++)
-		s += vec3_norm(d->f + 3 * i);
-	return (s / d->n) / (d->sum_f / d->ninter);
+	return dem_unbalanced(d->f, d->n, d->sum_f, d->ninter);
 }
 
 void

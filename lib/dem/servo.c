@@ -1,4 +1,4 @@
-/* servo: the shared wall servo of the DEM compactions (see servo.h). */
+/* servo: the wall servo and the unbalanced force the DEM compactions share (see servo.h). */
 #include "dem/servo.h"
 
 #include <math.h>
@@ -32,4 +32,17 @@ dem_servo(double lo[3], double hi[3], const double wallf[6], double ptarget, dou
 		for (a = 0; a < 3; a++)
 			x[3 * i + a] = c[a] + (x[3 * i + a] - c[a]) * (1 - de[a]);
 	return rs;
+}
+
+double
+dem_unbalanced(const double *f, size_t n, double sum_f, size_t ncontacts)
+{
+	double s = 0;
+	size_t i;
+
+	if (ncontacts == 0 || sum_f == 0)
+		return INFINITY;
+	for (i = 0; i < n; i++)
+		s += sqrt(f[3 * i] * f[3 * i] + f[3 * i + 1] * f[3 * i + 1] + f[3 * i + 2] * f[3 * i + 2]);
+	return (s / n) / (sum_f / ncontacts);
 }

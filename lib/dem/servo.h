@@ -1,6 +1,6 @@
-/* servo: the wall servo that the DEM compactions share (dem.c for spheres, platepack.c for
- * spheroplates): each axis with walls strains its box towards a target stress, and the grain
- * centres follow the box affinely. */
+/* servo: what the DEM compactions share (dem.c for spheres, platepack.c for spheroplates):
+ * the wall servo, under which each axis with walls strains its box towards a target stress
+ * and the grain centres follow the box affinely, and the rest criterion's unbalanced force. */
 #ifndef QUSGM_SERVO_H
 #define QUSGM_SERVO_H
 
@@ -13,5 +13,9 @@
  * ratio over the wall axes (0 without one). */
 double dem_servo(double lo[3], double hi[3], const double wallf[6], double ptarget, double rate, const int *periodic,
     double *x, size_t n);
+
+/* The mean |net force| over the n grains (f, 3n) over the mean contact force sum_f / ncontacts:
+ * 0 in static equilibrium; INFINITY without contacts or force. */
+double dem_unbalanced(const double *f, size_t n, double sum_f, size_t ncontacts);
 
 #endif
