@@ -95,7 +95,7 @@ $(B)/tests/replay_%: tests/fuzz/%.c tests/fuzz/replay.c tests/fuzz/*.h $(B)/libq
 	$(CC) $(ALL_CFLAGS) -DFUZZ_NAME=\"$*\" -DFUZZ_CORPUS=\"$(CURDIR)/tests/fuzz/corpus\" \
 	  -DFUZZ_CRASHES=\"$(CURDIR)/tests/fuzz/crashes\" -o $@ tests/fuzz/replay.c $< $(B)/libqusgm.a $(ALL_LIBS)
 
-$(B)/bench/%: tests/bench/%.c tests/bench/bench.h $(B)/libqusgm.a $(LIB_HDR)
+$(B)/bench/%: tests/bench/%.c tests/bench/bench.h tests/unit/plate_place.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 

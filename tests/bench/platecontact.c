@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bench.h"
+#include "../unit/plate_place.h"
 
 enum { M_PLATE, M_DIST, M_MPR, M_GJK, M_MPR_TIGHT, M_GJK_TIGHT, NMETHODS };
 
@@ -47,26 +48,6 @@ body_random(gsl_rng *rng, double eta, struct plate_body *b)
 	b->r = shape_spheroradius(1, eta);
 }
 
-/* b along dir where the cores are target apart (their distance only grows along the ray). */
-static void
-place(const struct plate_body *a, struct plate_body *b, const double dir[3], double target)
-{
-	double lo = 0, hi = target + M_SQRT2 * (a->half + b->half) + 1e-3;
-	int it, k;
-
-	for (it = 0; it < 60; it++) {
-		double mid = 0.5 * (lo + hi);
-		for (k = 0; k < 3; k++)
-			b->x[k] = a->x[k] + mid * dir[k];
-		if (plate_core_distance(a, b, NULL, NULL) < target)
-			lo = mid;
-		else
-			hi = mid;
-	}
-	for (k = 0; k < 3; k++)
-		b->x[k] = a->x[k] + hi * dir[k];
-}
-
 static void
 pairs_make(gsl_rng *rng, double eta, struct bpair *p, int n)
 {
@@ -77,7 +58,7 @@ pairs_make(gsl_rng *rng, double eta, struct bpair *p, int n)
 		double dir[3] = {s * cos(ph), s * sin(ph), z};
 		body_random(rng, eta, &p[i].a);
 		body_random(rng, eta, &p[i].b);
-		place(&p[i].a, &p[i].b, dir, p[i].a.r + p[i].b.r - 0.02 * gsl_rng_uniform(rng));
+		plate_place(&p[i].a, &p[i].b, dir, p[i].a.r + p[i].b.r - 0.02 * gsl_rng_uniform(rng));
 		p[i].h = p[i].a.r + p[i].b.r - plate_core_distance(&p[i].a, &p[i].b, NULL, NULL);
 	}
 }

@@ -18,6 +18,7 @@
 #include <gsl/gsl_rng.h>
 #include <math.h>
 #include <string.h>
+#include "plate_place.h"
 
 static const double etas[3] = {0.14, 0.5, 0.8};
 
@@ -150,27 +151,6 @@ grid_distance(const struct plate_body *a, const struct plate_body *b, int n)
 	return best;
 }
 
-/* b's centre along dir from a's at the distance where the cores are target apart: the cores'
- * distance is convex along the ray and 0 at its start, so it only grows and bisection finds it. */
-static void
-place(const struct plate_body *a, struct plate_body *b, const double dir[3], double target)
-{
-	double lo = 0, hi = target + M_SQRT2 * (a->half + b->half) + 1e-3;
-	int it, k;
-
-	for (it = 0; it < 56; it++) {	/* 2^-56 of a few R: below round-off */
-		double mid = 0.5 * (lo + hi);
-		for (k = 0; k < 3; k++)
-			b->x[k] = a->x[k] + mid * dir[k];
-		if (plate_core_distance(a, b, NULL, NULL) < target)
-			lo = mid;
-		else
-			hi = mid;
-	}
-	for (k = 0; k < 3; k++)
-		b->x[k] = a->x[k] + hi * dir[k];
-}
-
 /* A random pair at platyness eta whose cores are `target` apart. */
 static void
 pair_random(gsl_rng *rng, double eta, double target, struct plate_body *a, struct plate_body *b)
@@ -181,7 +161,7 @@ pair_random(gsl_rng *rng, double eta, double target, struct plate_body *a, struc
 	body_random(rng, eta, o, a);
 	body_random(rng, eta, o, b);
 	unit_random(rng, dir);
-	place(a, b, dir, target);
+	plate_place(a, b, dir, target);
 }
 
 /* A near-parallel stack: b is a turned about a's normal by a random angle and tilted by up to
@@ -210,7 +190,7 @@ pair_stacked(gsl_rng *rng, double eta, double target, struct plate_body *a, stru
 		for (k = 0; k < 3; k++)
 			dir[k] /= n;
 	}
-	place(a, b, dir, target);
+	plate_place(a, b, dir, target);
 }
 
 /* ---- (a) the cores' distance ---- */
