@@ -23,7 +23,7 @@ static struct opts {
 	const char *psd_spec, *material_name, *aspect_spec;
 	const char *shape_name, *plate_radius_name, *periodic_spec;
 	double wall_E, wall_nu, mu, wall_mu;
-	double dem_mu, dem_wall_mu, overlap, damping, phi0, rest_tol;
+	double dem_mu, dem_wall_mu, jitter, overlap, damping, phi0, rest_tol;
 	double eta, spheroradius, kn, kt, restitution, sigma0, density;
 	struct psd psd;
 	struct material mat;
@@ -35,7 +35,7 @@ static struct opts {
 	.psd_spec = "uniform:7e-5,1.3e-4", .material_name = "glass", .aspect_spec = "1,1,1",
 	.shape_name = "sphere", .plate_radius_name = "edge", .periodic_spec = "none",
 	.wall_E = 0, .wall_nu = 0.495, .mu = NAN, .wall_mu = -1,
-	.dem_mu = NAN, .dem_wall_mu = NAN, .overlap = 1e-4, .damping = NAN, .phi0 = 0.3, .rest_tol = NAN,
+	.dem_mu = NAN, .dem_wall_mu = NAN, .jitter = NAN, .overlap = 1e-4, .damping = NAN, .phi0 = 0.3, .rest_tol = NAN,
 	.eta = 0.5, .spheroradius = 3e-8, .kn = 1.5e3, .kt = 1.5e3, .restitution = 0.6, .sigma0 = NAN,
 	.density = NAN,
 };
@@ -57,6 +57,7 @@ static struct cli_opt opt_table[] = {
 	{"phi0", 0, CLI_DOUBLE, &o.phi0, "PHI", "spheres: packing fraction of the initial random placement", NULL},
 	{"rest-tol", 0, CLI_DOUBLE, &o.rest_tol, "RATIO", "at rest when mean |net force| / mean contact force is below this (default: 0.02 spheres, 0.001 spheroplates)", NULL},
 	{"shape", 0, CLI_STRING, &o.shape_name, "SHAPE", "grain shape: sphere | spheroplate", NULL},
+	{"jitter", 0, CLI_DOUBLE, &o.jitter, "F", "spheroplates: move each grain off its grid node by up to F of the room its cell leaves, in [0, 1] (default: 1 for spheres, --platyness 0, where turning does nothing; 0 for plates, the paper's nodes)", NULL},
 	{"platyness", 0, CLI_DOUBLE, &o.eta, "ETA", "spheroplates: platyness (R - r)/R in [0, 1); 0 makes spheres by the plate engine", NULL},
 	{"spheroradius", 0, CLI_DOUBLE, &o.spheroradius, "R", "spheroplates: spheroradius r", "m"},
 	{"plate-radius", 0, CLI_STRING, &o.plate_radius_name, "CONV", "spheroplates: the outer radius R reaches the core's edge (side 2(R-r)) or corner (sqrt2 (R-r))", NULL},
@@ -100,6 +101,8 @@ shape_defaults(void)
 		o.mu = o.plates ? 0.58 : 0.3;
 	if (isnan(o.dem_mu))
 		o.dem_mu = o.plates ? 0.58 : 0.5;
+	if (isnan(o.jitter))
+		o.jitter = o.plates && o.eta == 0 ? 1 : 0;
 	if (isnan(o.dem_wall_mu))
 		o.dem_wall_mu = o.plates ? 0 : o.dem_mu;
 	if (isnan(o.damping))
@@ -188,6 +191,10 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--friction: must be non-negative");
 	if (!isnan(o.dem_mu) && o.dem_mu < 0)
 		cli_usage_error("--dem-friction: must be non-negative");
+	if (!isnan(o.jitter) && !o.plates)
+		cli_usage_error("--jitter: only with --shape spheroplate");
+	else if (!isnan(o.jitter) && !(o.jitter >= 0 && o.jitter <= 1))
+		cli_usage_error("--jitter: must be in [0, 1]");
 	if (!isnan(o.dem_wall_mu) && !o.plates)
 		cli_usage_error("--dem-wall-friction: only with --shape spheroplate (the sphere DEM uses --dem-friction at the walls)");
 	else if (!isnan(o.dem_wall_mu) && !(o.dem_wall_mu >= 0 && isfinite(o.dem_wall_mu)))
@@ -258,6 +265,7 @@ compact_plates(struct pack *p, gsl_rng *rng)
 	pp.dyn.restitution = o.restitution;
 	pp.dyn.damping = o.damping;
 	pp.spacing = 2 * M_SQRT2 * R;
+	pp.jitter = o.jitter;
 	pp.sigma0 = o.sigma0;
 	pp.rest_tol = o.rest_tol;
 	pp.max_steps = o.max_steps;

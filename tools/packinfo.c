@@ -152,7 +152,8 @@ fill_plate_row(const struct pack *p, const struct plate_measures *m, struct row 
 	add(r, "residual_mean", NULL, m->residual_mean);
 }
 
-/* One pack's row: spheres as ever (byte for byte), or plates; returns 1 for plates. */
+/* One pack's row: spheres as ever (byte for byte), or plates (and packs of the linear law);
+ * returns 1 for the plate report. */
 static int
 measure_row(const struct pack *p, const char *name, struct geo_contacts *gc, struct row *r)
 {
@@ -160,7 +161,11 @@ measure_row(const struct pack *p, const char *name, struct geo_contacts *gc, str
 	struct plate_measures pm;
 	enum shape_radius conv;
 
-	if (pack_first_plate(p) == (size_t)-1) {
+	const char *law = pack_get_meta(p, "contact-law");
+
+	/* the sphere report computes Hertz forces: a pack of the plate engine's linear law
+	 * (spheres at --platyness 0 too) gets the plate report, whose forces are that law's */
+	if (pack_first_plate(p) == (size_t)-1 && !(law && strcmp(law, "linear") == 0)) {
 		if (measure_pack(p, gc, &m))
 			msg_die_err(EXIT_DATA);
 		fill_row(p, &m, r);

@@ -15,6 +15,7 @@ platepack_params_default(struct platepack_params *pp)
 	pdem_params_default(&pp->dyn);
 	pp->dyn.damping = 0.3;
 	pp->spacing = 0;
+	pp->jitter = 0;
 	pp->sigma0 = 0;
 	pp->rest_tol = 1e-3;
 	pp->rate = 1e-4;
@@ -23,9 +24,12 @@ platepack_params_default(struct platepack_params *pp)
 }
 
 /* The grid: n_a = ceil(cbrt N) nodes per axis, filled x fastest, the box one spacing per
- * node; each grain turned by a uniform random rotation, drawn in id order. */
+ * node; each grain turned by a uniform random rotation, drawn in id order, and, with jitter
+ * > 0, moved off its node by a uniform random vector, each component within jitter times the
+ * room its bounding sphere leaves in the node's cell (s/2 - r_b), so no two can overlap; its
+ * three uniforms follow the rotation's, and jitter 0 draws none. */
 static void
-place_on_grid(struct pack *p, double s, gsl_rng *rng)
+place_on_grid(struct pack *p, double s, double jitter, gsl_rng *rng)
 {
 	size_t i, na = (size_t)ceil(cbrt((double)p->n) - 1e-9);
 	int a;
@@ -35,10 +39,14 @@ place_on_grid(struct pack *p, double s, gsl_rng *rng)
 	for (i = 0; i < p->n; i++) {
 		size_t k[3] = {i % na, i / na % na, i / (na * na)};
 		double u1 = gsl_rng_uniform(rng), u2 = gsl_rng_uniform(rng), u3 = gsl_rng_uniform(rng);
+		double room = s / 2 - shape_bounding_radius(p->r[i], p->side[i]);
 
 		for (a = 0; a < 3; a++)
 			p->x[3 * i + a] = (k[a] + 0.5) * s;
 		quat_from_uniform(u1, u2, u3, p->q + 4 * i);
+		if (jitter > 0 && room > 0)
+			for (a = 0; a < 3; a++)
+				p->x[3 * i + a] += jitter * room * (2 * gsl_rng_uniform(rng) - 1);
 	}
 	for (a = 0; a < 3; a++)
 		p->box[a] = 0, p->box[3 + a] = na * s;
@@ -145,7 +153,7 @@ platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, 
 		msg_seterr("platepack: the pack has no shape columns");
 		return -1;
 	}
-	place_on_grid(p, pp->spacing, rng);
+	place_on_grid(p, pp->spacing, pp->jitter, rng);
 	if (pdem_init(&d, p, &pp->dyn))
 		return -1;
 	target = pp->sigma0 * d.u_len / d.u_force * d.u_len;	/* stress unit: k_n / r0 */

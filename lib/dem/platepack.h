@@ -3,7 +3,9 @@
  * The grains (radius column = spheroradius, side, any orientation) are put on the nodes of a
  * cubic grid of spacing 2 sqrt(2) R, R the outer radius, each turned at random (a uniform
  * random rotation): under either reading of R the spacing exceeds the bounding diameter, so no
- * two grains overlap however they are turned.  The six walls then close in under servo
+ * two grains overlap however they are turned.  Spheres (and any grain) may also be moved off
+ * their nodes (jitter): a grid of turned spheres is still a simple cubic crystal, which an
+ * isotropic compaction keeps (packing pi/6).  The six walls then close in under servo
  * control to the isotropic stress sigma_0 until static equilibrium (the mean unbalanced force
  * below rest_tol of the mean interaction force, the wall stress within 5 % of sigma_0).  As in
  * the sphere DEM (dem.h) the centres follow the box affinely while it closes, which only
@@ -16,8 +18,10 @@
  * so the pack the shear test starts from has carried the test's friction throughout.
  * Frictionless compaction (mu 0) gives a denser pack but no quick rest: frictionless plates
  * keep sliding into denser arrangements at the target stress (125 plates at eta 0.5: at
- * rest after 25300 steps, packing 0.514, with friction; 177000 steps, packing 0.692, still
- * creeping by 1e-4 per 1000 steps before rest, without).  sigma_0 defaults to
+ * rest after 17100 steps, packing 0.538, with friction; 177000 steps, packing 0.692, still
+ * creeping by 1e-4 per 1000 steps before rest, without).  The walls' friction (dyn.wall_mu)
+ * is the caller's: with it the walls carry shear and the grains' stress departs from the
+ * isotropic target (packgen's --dem-wall-friction, 0 by default).  sigma_0 defaults to
  * kappa = k_n / (sigma_0 r) = 1e4, ten
  * times P's lower bound of 1e3 for the rigid limit. */
 #ifndef QUSGM_PLATEPACK_H
@@ -30,6 +34,7 @@
 struct platepack_params {
 	struct pdem_params dyn;	/* the contact law and the step (mu: friction during compaction) */
 	double spacing;		/* grid spacing (m): 2 sqrt(2) R */
+	double jitter;		/* off the nodes, in [0, 1] of the room each cell leaves (0: on them) */
 	double sigma0;		/* target isotropic stress (Pa) */
 	double rest_tol;	/* static: mean |net force| / mean interaction force below this */
 	double rate;		/* largest strain of the box per step */

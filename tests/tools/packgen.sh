@@ -125,6 +125,14 @@ for a in xx yy zz; do
 	expect_num "spheroplates: sig_lw_$a within 1 % of sig_$a" "$(rel "$(info_value pinfo.txt sig_lw_$a)" "$(info_value pinfo.txt sig_$a)")" "<" 0.01
 done
 expect_num "spheroplates: residual_mean at rest" "$(info_value pinfo.txt residual_mean)" "<" 2e-3
+# spheres by the plate engine (--platyness 0): on the grid's nodes they are a simple cubic
+# crystal that the isotropic compaction keeps, every grain at 6 interactions (grains or
+# walls); off the nodes (--jitter, default 1 for spheres) they are not
+expect_ok "spheres by the plate engine on the nodes" packgen --shape spheroplate --platyness 0 --jitter 0 -n 216 --seed 2 -o s0.pack
+expect_num "spheres on the nodes: a simple cubic crystal, Z = 6" "$(packinfo s0.pack | awk '$1 == "coordination" { print $2 }')" == 6
+expect_ok "spheres by the plate engine off the nodes" packgen --shape spheroplate --platyness 0 -n 216 --seed 2 -o s1.pack
+expect_num "spheres off the nodes: Z below 5.5" "$(packinfo s1.pack | awk '$1 == "coordination" { print $2 }')" "<" 5.5
+expect_num "spheres by the plate engine: the linear law's report, residual at rest" "$(packinfo s1.pack | awk '$1 == "residual_mean" { print $2 }')" "<" 2e-3
 expect_ok "spheroplates: corner reading" packgen --shape spheroplate --platyness 0.5 --plate-radius corner -n 8 --seed 2 -o pc.pack
 # corner: side = sqrt(2) (R - r) = sqrt(2) r
 expect_num "spheroplates: corner side sqrt(2) r" "$(rel "$(packinfo pc.pack | awk '$1 == "side_mean" { print $2 }')" 4.242640687119285e-8)" "<" 1e-12
@@ -138,5 +146,7 @@ expect_error "--plate-radius unknown" 2 '^packgen: --plate-radius: expected edge
 expect_error "--restitution 0.1" 2 '^packgen: --restitution' packgen --shape spheroplate --restitution 0.1
 expect_error "--periodic xyz" 2 '^packgen: --periodic: one axis must keep its walls' packgen --shape spheroplate --periodic xyz
 expect_error "--dem-wall-friction for spheres" 2 '^packgen: --dem-wall-friction: only with --shape spheroplate' packgen --dem-wall-friction 0.3
+expect_error "--jitter for spheres" 2 '^packgen: --jitter: only with --shape spheroplate' packgen --jitter 0.5
+expect_error "--jitter 2" 2 '^packgen: --jitter: must be in \[0, 1\]' packgen --shape spheroplate --jitter 2
 expect_error "--periodic for spheres" 2 '^packgen: --periodic: only with --shape spheroplate' packgen --periodic x
 expect_error "--periodic bad" 2 '^packgen: --periodic: expected' packgen --shape spheroplate --periodic xq
