@@ -43,7 +43,7 @@ done
 	echo "- commit: $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 	echo "- machine: $(nproc) cores, $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//'); every program on one core"
 	echo
-	echo "packgen --shape spheroplate --seed 1 (P's law and defaults: friction 0.58 during compaction, kappa 1e4,"
+	echo "packgen --shape spheroplate --seed 1 (P's law and defaults: friction 0.58 between grains during compaction, frictionless walls, kappa 1e4,"
 	echo "rest at unbalanced force 1e-3); then 200 DEM steps of the static pack without local damping."
 	echo
 	echo "| plates | eta | packgen wall time (s) | peak memory (MiB) | steps to rest | packing fraction | interactions | element contacts | us per step per plate | element contacts per s |"

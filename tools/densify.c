@@ -113,6 +113,8 @@ read_pack(const char *input, struct pack *p)
 		msg_die_err(EXIT_DATA);
 	if (pack_require_spheres(p, "densify"))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
+	if (pack_claim_hertz(p))
+		msg_die_err(EXIT_DATA);
 	if (p->n < 5)
 		msg_die(EXIT_DATA, "%s: %zu grains: densify needs at least 5", name, p->n);
 	for (a = 0; a < 3; a++)

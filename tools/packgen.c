@@ -191,11 +191,13 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--friction: must be non-negative");
 	if (!isnan(o.dem_mu) && o.dem_mu < 0)
 		cli_usage_error("--dem-friction: must be non-negative");
-	if (!isnan(o.jitter) && !o.plates)
-		cli_usage_error("--jitter: only with --shape spheroplate");
+	if (!isnan(o.jitter) && !o.plates && o.jitter != 0)
+		cli_usage_error("--jitter: only with --shape spheroplate (spheres are placed at random)");
 	else if (!isnan(o.jitter) && !(o.jitter >= 0 && o.jitter <= 1))
 		cli_usage_error("--jitter: must be in [0, 1]");
-	if (!isnan(o.dem_wall_mu) && !o.plates)
+	/* for spheres only the values the sphere path has, so that a history line's resolved
+	 * options can be given back */
+	if (!isnan(o.dem_wall_mu) && !o.plates && o.dem_wall_mu != (isnan(o.dem_mu) ? 0.5 : o.dem_mu))
 		cli_usage_error("--dem-wall-friction: only with --shape spheroplate (the sphere DEM uses --dem-friction at the walls)");
 	else if (!isnan(o.dem_wall_mu) && !(o.dem_wall_mu >= 0 && isfinite(o.dem_wall_mu)))
 		cli_usage_error("--dem-wall-friction: must be non-negative");

@@ -365,7 +365,7 @@ struct plate_pass {
 	double kn;		/* N/m, or NaN: no forces */
 	unsigned *z;		/* interactions per grain */
 	double *F;		/* net force per grain (3n) */
-	double fsum;
+	double fsum, Psum;	/* sums of |F| and of the normal force P over the interactions */
 	struct plate_measures *m;
 };
 
@@ -445,7 +445,8 @@ on_plate_record(const struct contact *c, void *v)
 			pp->F[3 * j + a] -= F[a];
 	}
 	pp->fsum += vec3_norm(F);
-	m->force_max = fmax(m->force_max, vec3_norm(F));
+	pp->Psum += P;
+	m->force_max = fmax(m->force_max, P);
 	return 0;
 }
 
@@ -509,10 +510,14 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m)
 		}
 		for (a = 0; a < 6; a++)
 			m->sig_lw[a] /= V;
-		m->force_mean = pass.fsum / (double)ni;
+		size_t nres = 0;
+
+		m->force_mean = pass.Psum / (double)ni;
+		/* as the sphere report: over the grains with an interaction, over the mean |F| */
 		for (i = 0; i < p->n; i++)
-			s += vec3_norm(pass.F + 3 * i);
-		m->residual_mean = (s / (double)p->n) / m->force_mean;
+			if (pass.z[i] > 0)
+				s += vec3_norm(pass.F + 3 * i), nres++;
+		m->residual_mean = (s / (double)nres) / (pass.fsum / (double)ni);
 	}
 	status = 0;
 out:

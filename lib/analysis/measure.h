@@ -67,8 +67,11 @@ size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, uns
  * (x_i - x_j) (x) F over the pairs (j's nearest image) and (x_i - x_w) (x) F over the wall
  * contacts, x_w the element's foot on the wall plane (the tangential force at the
  * overlap-weighted foot), over the box volume, compression positive: it equals the wall
- * stress for a pack in equilibrium.  residual_mean is mean|F_i| over the mean |F| of an
- * interaction, the unbalance packgen's rest criterion bounds. */
+ * stress for a pack in equilibrium (its diagonal: the off-diagonal terms of an uneven wall
+ * pressure have no wall counterpart).  As in the sphere report, force_mean and force_max are
+ * the normal force P (the elements' k_n h summed) of an interaction, and residual_mean is
+ * mean|F_i| over the grains with an interaction over the mean |F| of an interaction (packgen's
+ * rest criterion takes the mean over all grains). */
 struct plate_measures {
 	size_t grains, plates;
 	double porosity, packing_fraction;
@@ -82,7 +85,7 @@ struct plate_measures {
 	double coordination, floating_fraction, elements_per_interaction;
 	int has_forces;					/* meta kn present: the rest is set, else NaN */
 	double sig_wall[3], sig_lw[6];			/* Pa, compression positive; xx yy zz xy xz yz */
-	double force_mean, force_max;			/* |F| of an interaction, N */
+	double force_mean, force_max;			/* normal force P of an interaction, N */
 	double residual_mean;
 };
 

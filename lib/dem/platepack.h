@@ -5,7 +5,7 @@
  * random rotation): under either reading of R the spacing exceeds the bounding diameter, so no
  * two grains overlap however they are turned.  Spheres (and any grain) may also be moved off
  * their nodes (jitter): a grid of turned spheres is still a simple cubic crystal, which an
- * isotropic compaction keeps (packing pi/6).  The six walls then close in under servo
+ * isotropic compaction keeps (packing pi/6, a little more with the overlaps).  The six walls then close in under servo
  * control to the isotropic stress sigma_0 until static equilibrium (the mean unbalanced force
  * below rest_tol of the mean interaction force, the wall stress within 5 % of sigma_0).  As in
  * the sphere DEM (dem.h) the centres follow the box affinely while it closes, which only

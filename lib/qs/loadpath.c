@@ -279,6 +279,8 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 		return -1;
 	if (pack_require_spheres(p, who))
 		return 1;
+	if (pack_claim_hertz(p))
+		return -1;
 	if (p->n < 5) {
 		msg_seterr("%zu grains: %s needs at least 5", p->n, who);
 		return 1;

@@ -42,13 +42,20 @@ expect_same() {
 }
 
 # expect_num NAME VALUE OP REF: numeric comparison with awk (OP: < <= > >= ==).
+# Both sides must be numbers (awk compares an empty or non-numeric side as a string, and
+# "" < 5 holds): a missing key fails rather than passes.
 expect_num() {
-	if awk -v a="$2" -v b="$4" "BEGIN { exit !(a $3 b) }"; then
+	if ! is_number "$2" || ! is_number "$4"; then
+		fail "$1" "not a number: '$2' $3 '$4'"
+	elif awk -v a="$2" -v b="$4" "BEGIN { exit !(a $3 b) }"; then
 		pass "$1 ($2 $3 $4)"
 	else
 		fail "$1" "$2 $3 $4 does not hold"
 	fi
 }
+
+# is_number S: S is a decimal or exponent number (inf and nan are not)
+is_number() { printf '%s\n' "$1" | grep -Eq '^[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?$'; }
 
 # info_value FILE KEY: the value of KEY in packinfo's key-value output.
 info_value() { awk -v k="$2" '$1 == k { print $2 }' "$1"; }

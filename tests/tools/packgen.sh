@@ -112,13 +112,20 @@ expect_num "spheroplates: contact lines written" "$(awk '$1 == "contacts" { prin
 # packinfo's interactions (measure_plates) against packgen's own: one contact line per interaction
 expect_num "spheroplates: packinfo finds an interaction per contact line" \
 	"$(awk '$1 == "contacts_gg" { g = $2 } $1 == "contacts_gw" { w = $2 } END { print g + w }' pinfo.txt)" == "$(info_value pinfo.txt history_contacts)"
+# packinfo's Z (measure_plates, in SI) against the DEM's own count at rest (packgen -v, scaled
+# units, 3 decimals), and against (2 gg + gw) / N
+packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 -v -o pv.pack 2>pv.log
+zdem=$(sed -n 's/.*at rest after .*, \([0-9.]*\) interactions per grain.*/\1/p' pv.log)
+expect_num "spheroplates: packinfo's Z is the DEM's" "$(rel "$(info_value pinfo.txt coordination)" "$zdem")" "<" 2e-4
 expect_num "spheroplates: coordination Z = (2 gg + gw) / N" "$(awk '$1 == "contacts_gg" { g = $2 } $1 == "contacts_gw" { w = $2 } $1 == "coordination" { z = $2 } END { d = z - (2 * g + w) / 27; print d < 0 ? -d : d }' pinfo.txt)" "<" 1e-12
+expect_num "spheroplates: some interactions" "$(info_value pinfo.txt contacts_gg)" ">" 10
 # the pack's stresses from the element forces (meta kn) against the servo's target: packgen
 # stops with every wall within 5 % of sigma0 (platepack.c), and with frictionless walls
 # (--dem-wall-friction 0) the grains' Love-Weber stress is the wall stress up to the
 # unbalanced forces, mean|F_i| < 1e-3 of the mean interaction force (the rest criterion,
-# which counts the dashpots too, so packinfo's elastic forces may show up to twice it):
-# that moves a diagonal component by well under 1 %
+# over all grains and counting the dashpots; packinfo's residual_mean is over the grains with
+# an interaction and elastic, so it may show up to twice it): that moves a diagonal
+# component by well under 1 %
 s0=$(awk '$1 == "meta" && $2 == "sigma0" { print $3 }' p.pack)
 for a in xx yy zz; do
 	expect_num "spheroplates: sig_$a within 5 % of sigma0" "$(rel "$(info_value pinfo.txt sig_$a)" "$s0")" "<" 0.05
@@ -133,6 +140,14 @@ expect_num "spheres on the nodes: a simple cubic crystal, Z = 6" "$(packinfo s0.
 expect_ok "spheres by the plate engine off the nodes" packgen --shape spheroplate --platyness 0 -n 216 --seed 2 -o s1.pack
 expect_num "spheres off the nodes: Z below 5.5" "$(packinfo s1.pack | awk '$1 == "coordination" { print $2 }')" "<" 5.5
 expect_num "spheres by the plate engine: the linear law's report, residual at rest" "$(packinfo s1.pack | awk '$1 == "residual_mean" { print $2 }')" "<" 2e-3
+# densify takes such a pack over with Hertz contacts: its output says so, and packinfo
+# reports it as a sphere pack, with Hertz forces at densify's mean stress (densify stops within
+# its --stress-tol, 1 %, of the target)
+expect_ok "densify a pack of the plate engine's spheres" densify --stress 4e6 s1.pack -o s1d.pack
+grep -q '^meta contact-law hertz$' s1d.pack && pass "densify: meta contact-law hertz" || fail "densify: meta contact-law hertz" "$(grep contact-law s1d.pack)"
+packinfo s1d.pack >s1d.info 2>/dev/null
+expect_num "densified: the sphere report (rattlers)" "$(info_value s1d.info rattlers)" ">=" 0
+expect_num "densified: sigma_c at densify's 4 MPa" "$(rel "$(info_value s1d.info sigma_c)" 4e6)" "<" 0.01
 expect_ok "spheroplates: corner reading" packgen --shape spheroplate --platyness 0.5 --plate-radius corner -n 8 --seed 2 -o pc.pack
 # corner: side = sqrt(2) (R - r) = sqrt(2) r
 expect_num "spheroplates: corner side sqrt(2) r" "$(rel "$(packinfo pc.pack | awk '$1 == "side_mean" { print $2 }')" 4.242640687119285e-8)" "<" 1e-12
@@ -145,6 +160,19 @@ expect_error "--platyness 1" 2 '^packgen: --platyness: must be in \[0, 1\)' pack
 expect_error "--plate-radius unknown" 2 '^packgen: --plate-radius: expected edge or corner' packgen --shape spheroplate --plate-radius mid
 expect_error "--restitution 0.1" 2 '^packgen: --restitution' packgen --shape spheroplate --restitution 0.1
 expect_error "--periodic xyz" 2 '^packgen: --periodic: one axis must keep its walls' packgen --shape spheroplate --periodic xyz
+# the history line's resolved options, given back, make the same pack (spheres record the
+# plate options at the values the sphere path has)
+for args in "-n 40 --seed 4" "--shape spheroplate -n 8 --seed 3"; do
+	packgen $args -o h1.pack 2>/dev/null
+	packgen $(sed -n 's/^history packgen [^:]*: .* ; //p' h1.pack) -o h2.pack 2>/dev/null
+	grep -v '^history' h1.pack >h1.body
+	grep -v '^history' h2.pack >h2.body 2>/dev/null
+	if [ -s h1.body ] && cmp -s h1.body h2.body; then
+		pass "resolved options given back: same pack ($args)"
+	else
+		fail "resolved options given back ($args)" "the packs differ"
+	fi
+done
 expect_error "--dem-wall-friction for spheres" 2 '^packgen: --dem-wall-friction: only with --shape spheroplate' packgen --dem-wall-friction 0.3
 expect_error "--jitter for spheres" 2 '^packgen: --jitter: only with --shape spheroplate' packgen --jitter 0.5
 expect_error "--jitter 2" 2 '^packgen: --jitter: must be in \[0, 1\]' packgen --shape spheroplate --jitter 2

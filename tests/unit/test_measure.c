@@ -395,8 +395,8 @@ test_nematic_random(void)
 }
 
 /* The interaction measures on closed-form cases: a plate face-down between two walls, two
- * plates face to face with a tangential force on their contact line.  Each is a sum of a few
- * products, so 1e-12 relative (ulps, through the scaled units of dem/platedem and back). */
+ * plates face to face with a tangential force on their contact line, and the same pair across
+ * a periodic boundary.  Each is a sum of a few products in SI, so 1e-12 relative (ulps). */
 static void
 test_plate_contacts(void)
 {
@@ -458,8 +458,27 @@ test_plate_contacts(void)
 	    "plate contacts: one interaction each: both floating (Z = %g)", m.coordination);
 	CHECK_CLOSE(m.sig_lw[2], ell * 4 * kn * h / V, 1e-12, "plate contacts: Love-Weber zz = branch x 4 k_n h / V");
 	CHECK_CLOSE(m.sig_lw[4], 0.5 * ell * c.Q0[0] / V, 1e-12, "plate contacts: Love-Weber xz from the line's Q");
-	CHECK_CLOSE(m.force_mean, hypot(4 * kn * h, c.Q0[0]), 1e-12, "plate contacts: |F| of the interaction");
-	CHECK_CLOSE(m.residual_mean, 1, 1e-12, "plate contacts: two grains pushed apart: residual 1");
+	CHECK_CLOSE(m.force_mean, 4 * kn * h, 1e-12, "plate contacts: normal force of the interaction, 4 k_n h");
+	CHECK_CLOSE(m.residual_mean, 1, 1e-12, "plate contacts: two grains pushed apart: residual |F| / |F| = 1");
+	pack_free(&p);
+
+	/* the pair across the periodic z boundary: one near the floor, one near the ceiling, their
+	 * nearest images ell apart (the box holds three interaction distances, as it must) */
+	pack_init(&p);
+	p.box[3] = p.box[4] = p.box[5] = 1.5 * A;
+	p.periodic[2] = 1;
+	V = 1.5 * A * 1.5 * A * 1.5 * A;
+	pack_set_shapes(&p);
+	pack_add_grain(&p, 1, (const double[3]){0.75 * A, 0.75 * A, ell / 4}, r, E_, NU, 2700);
+	pack_add_grain(&p, 2, (const double[3]){0.75 * A, 0.75 * A, 1.5 * A - 3 * ell / 4}, r, E_, NU, 2700);
+	pack_set_grain_shape(&p, 0, L, up);
+	pack_set_grain_shape(&p, 1, L, up);
+	pack_set_meta(&p, "kn", "1.5e3");
+	i = measure_plates(&p, SHAPE_R_EDGE, &m);
+	CHECK(i == 0 && m.contacts_gg == 1 && m.contacts_gw == 0 && m.elements == 4,
+	    "plate contacts: face-face pair across the periodic z boundary (%zu elements)", m.elements);
+	CHECK_CLOSE(m.sig_lw[2], ell * 4 * kn * h / V, 1e-12, "plate contacts: periodic pair, Love-Weber zz from the nearest image");
+	CHECK(isnan(m.sig_wall[2]) && fabs(m.sig_lw[4]) <= 1e-12 * m.sig_lw[2], "plate contacts: periodic z, no sig_zz, no shear");
 	pack_free(&p);
 }
 
