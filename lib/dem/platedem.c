@@ -32,7 +32,7 @@ void
 pdem_free(struct pdem *d)
 {
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
-	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb);
+	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
 	contact_enum_free(&d->ce);
 	memset(d, 0, sizeof *d);
 }
@@ -180,6 +180,9 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 	double gn = 2 * d->zeta * sqrt(meff / M), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
 	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn;
 
+	if (wall)	/* a moving wall's velocity (0 for the walls of a compaction) */
+		memcpy(vj, d->wallv[PACK_WALL_INDEX(j)], sizeof vj);
+
 	for (k = 0; k < M; k++) {
 		const struct plate_element *e = &it->e[k];
 		double fk, h = e->h > 0 ? e->h : 0;
@@ -237,10 +240,24 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 				ft[a] *= tn / fm;
 	}
 	apply(d, i, xi, pc, ft, 1);
-	if (!wall)
+	if (!wall) {
+		double F[3], br[3];
+
 		apply(d, (size_t)j, xj, pc, ft, -1);
-	else {
-		d->wallf[PACK_WALL_INDEX(j)] += fel;
+		for (a = 0; a < 3; a++) {
+			F[a] = fsum * n[a] + ft[a];
+			br[a] = xi[a] - xj[a];
+		}
+		d->sig[0] += br[0] * F[0], d->sig[1] += br[1] * F[1], d->sig[2] += br[2] * F[2];
+		d->sig[3] += 0.5 * (br[0] * F[1] + br[1] * F[0]);
+		d->sig[4] += 0.5 * (br[0] * F[2] + br[2] * F[0]);
+		d->sig[5] += 0.5 * (br[1] * F[2] + br[2] * F[1]);
+	} else {
+		int w = PACK_WALL_INDEX(j);
+
+		d->wallf[w] += fel;
+		for (a = 0; a < 3; a++)
+			d->wallF[w][a] += fsum * n[a] + ft[a];
 		d->nwall++;
 	}
 	d->ninter++;
@@ -268,6 +285,8 @@ on_contact(const struct contact *c, void *vd)
 
 	if (c->h <= 0)
 		return 0;	/* bounding spheres apart (their spring zeroed by the enumerator) */
+	if (d->glue && PACK_IS_WALL(c->j) && d->glue[c->i] == 1 + PACK_WALL_INDEX(c->j))
+		return 0;	/* glued to that wall: part of it */
 	if (interaction_of(d, c, &it, xj) == 0) {
 		c->hist[0] = c->hist[1] = c->hist[2] = 0;
 		return 0;
@@ -294,6 +313,8 @@ pdem_forces(struct pdem *d)
 	memset(d->f, 0, 3 * d->n * sizeof *d->f);
 	memset(d->t, 0, 3 * d->n * sizeof *d->t);
 	memset(d->wallf, 0, sizeof d->wallf);
+	memset(d->wallF, 0, sizeof d->wallF);
+	memset(d->sig, 0, sizeof d->sig);
 	d->ninter = d->nwall = d->nelem = 0;
 	d->sum_f = 0;
 	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_contact, d) < 0 ? -1 : 0;
@@ -312,7 +333,8 @@ on_interaction(const struct contact *c, void *v)
 	struct plate_interaction it;
 	double xj[3];
 
-	if (c->h <= 0 || interaction_of(ip->d, c, &it, xj) == 0)
+	if (c->h <= 0 || (ip->d->glue && PACK_IS_WALL(c->j) && ip->d->glue[c->i] == 1 + PACK_WALL_INDEX(c->j)) ||
+	    interaction_of(ip->d, c, &it, xj) == 0)
 		return 0;
 	return ip->fn(ip->d, c->i, c->j, PACK_IS_WALL(c->j) ? NULL : xj, &it, c->hist, ip->ctx);
 }
@@ -370,6 +392,16 @@ pdem_integrate(struct pdem *d)
 		const double *R = d->R + 9 * i;
 		double tb[3];
 
+		if (d->glue && d->glue[i]) {	/* moves with its wall, does not turn */
+			const double *vw = d->wallv[d->glue[i] - 1];
+
+			for (a = 0; a < 3; a++) {
+				d->v[3 * i + a] = vw[a];
+				d->x[3 * i + a] += vw[a] * dt;
+				d->w[3 * i + a] = 0;
+			}
+			continue;
+		}
 		for (a = 0; a < 3; a++) {
 			size_t k = 3 * i + a;
 			double f = al > 0 ? local_damping(d->f[k], d->v[k], al) : d->f[k];
@@ -437,6 +469,30 @@ pdem_wrap(struct pdem *d)
 				*y = d->lo[a];
 		}
 	}
+}
+
+int
+pdem_make_periodic(struct pdem *d, const int periodic[3])
+{
+	double skin = d->ce.skin, rbmax = 0;
+	size_t i;
+	int a;
+
+	for (i = 0; i < d->n; i++)
+		rbmax = fmax(rbmax, d->rb[i]);
+	for (a = 0; a < 3; a++)
+		if (periodic[a] && d->hi[a] - d->lo[a] < 3 * (2 * rbmax + skin)) {
+			/* the enumerator's cell grid needs three cells of an interaction distance */
+			msg_seterr("the compacted box is %.3g bounding diameters long along %c, too short for a periodic "
+			    "axis (it must hold 3 interaction distances): use more grains", (d->hi[a] - d->lo[a]) / (2 * rbmax),
+			    "xyz"[a]);
+			return -1;
+		}
+	for (a = 0; a < 3; a++)
+		d->periodic[a] = d->periodic[a] || periodic[a];
+	pdem_wrap(d);
+	contact_enum_free(&d->ce);
+	return contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, 3);
 }
 
 /* The frictional history of the pack's contact lines (pack-format.md), so that a static

@@ -62,6 +62,18 @@ struct pdem {
 	double wallf[NWALLS];
 	size_t ninter, nwall, nelem;
 	double sum_f;
+	/* ... and the whole force of each wall on the grains, and the sum over the grain pairs of
+	 * branch vector (x_i - x_j, nearest image) (x) the force on i (xx yy zz xy xz yz): the
+	 * Love-Weber stress times the volume */
+	double wallF[NWALLS][3];
+	double sig[6];
+	/* Moving walls and grains glued to them (plateshear): glue is NULL or, per grain, 0 for a
+	 * free grain or 1 + w for one glued to wall w, which moves at the wall's velocity
+	 * wallv[w] without turning and has no contact with that wall (it is part of it); a
+	 * wall's velocity also enters the relative velocity of the grains that touch it.  The
+	 * caller moves the planes (lo, hi) itself. */
+	unsigned char *glue;
+	double wallv[NWALLS][3];
 	/* the scales: SI value = scaled value times these */
 	double u_len, u_mass, u_time, u_force;
 };
@@ -91,6 +103,11 @@ double pdem_kinetic(const struct pdem *d, double L[3]);
 double pdem_unbalanced(const struct pdem *d);
 /* Wrap the centres into the box along the periodic axes. */
 void pdem_wrap(struct pdem *d);
+/* Replace the walls of the axes set in periodic by periodic boundaries, the box lengths kept
+ * as the periods: a new enumerator (the pairs across the boundary appear; the tangential
+ * springs start again from zero).  -1 (msg_seterr) when an axis is shorter than three
+ * interaction distances (the enumerator's cell grid needs them): "use more grains". */
+int pdem_make_periodic(struct pdem *d, const int periodic[3]);
 /* Positions, orientations, box and frictional history (one contact line per interaction:
  * P0 its elastic normal force, Q0 its tangential spring's force on i, M0 0) back into p
  * (SI), replacing p's contact lines.  0 or -1. */

@@ -114,32 +114,6 @@ settle(struct pdem *d, const struct platepack_params *pp, double target, int sta
 	return -1;
 }
 
-/* Replace the walls of the chosen axes by periodic boundaries: a new enumerator (the pairs
- * across the boundary appear; the tangential springs start again from zero). */
-static int
-make_periodic(struct pdem *d, const int periodic[3])
-{
-	double skin = d->ce.skin, rbmax = 0;
-	size_t i;
-	int a;
-
-	for (i = 0; i < d->n; i++)
-		rbmax = fmax(rbmax, d->rb[i]);
-	for (a = 0; a < 3; a++)
-		if (periodic[a] && d->hi[a] - d->lo[a] < 3 * (2 * rbmax + skin)) {
-			/* the enumerator's cell grid needs three cells of an interaction distance */
-			msg_seterr("the compacted box is %.3g bounding diameters long along %c, too short for a periodic "
-			    "axis (it must hold 3 interaction distances): use more grains", (d->hi[a] - d->lo[a]) / (2 * rbmax),
-			    "xyz"[a]);
-			return -1;
-		}
-	for (a = 0; a < 3; a++)
-		d->periodic[a] = d->periodic[a] || periodic[a];
-	pdem_wrap(d);
-	contact_enum_free(&d->ce);
-	return contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, 3);
-}
-
 int
 platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, platepack_progress_fn fn, void *ctx,
     struct platepack_status *st)
@@ -162,7 +136,7 @@ platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, 
 	if (settle(&d, pp, target, 1, fn, ctx, st))
 		goto out;
 	if (pp->periodic[0] || pp->periodic[1] || pp->periodic[2]) {
-		if (make_periodic(&d, pp->periodic) || settle(&d, pp, target, 2, fn, ctx, st))
+		if (pdem_make_periodic(&d, pp->periodic) || settle(&d, pp, target, 2, fn, ctx, st))
 			goto out;
 	}
 	pdem_wrap(&d);

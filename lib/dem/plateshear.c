@@ -1,0 +1,225 @@
+/* plateshear: simple shear between glued walls (see plateshear.h). */
+#include "dem/plateshear.h"
+#include "base/msg.h"
+#include "pack/shape.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { WALL_BOTTOM = 2, WALL_TOP = 3 };	/* the y walls, PACK_WALL_INDEX order */
+
+void
+shear_params_default(struct shear_params *sp)
+{
+	pdem_params_default(&sp->dyn);
+	sp->dyn.damping = 0;
+	sp->sigma_w = 0;
+	sp->inertial = 1e-3;
+	sp->strain = 2.5;
+	sp->every = 0.01;
+	sp->profile_from = 1.5;
+	sp->profile_bins = 20;
+	sp->max_steps = 100000000;
+}
+
+void
+shear_result_free(struct shear_result *res)
+{
+	free(res->profile);
+	free(res->profile_n);
+	res->profile = res->profile_n = NULL;
+}
+
+/* The grains touching a y wall at the start are glued to it. */
+static int
+on_glue(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist,
+    void *ctx)
+{
+	int w = PACK_IS_WALL(j) ? PACK_WALL_INDEX(j) : -1;
+
+	(void)xj, (void)it, (void)hist, (void)ctx;
+	if (w == WALL_BOTTOM || w == WALL_TOP)
+		d->glue[i] = (unsigned char)(1 + w);
+	return 0;
+}
+
+/* Sums over the steps of a row. */
+struct row_sums {
+	long steps;
+	double tau, sn, sig[6], phi, z, elements;
+};
+
+static void
+row_add(struct row_sums *s, const struct pdem *d, double tau, double sn, double V, double vol)
+{
+	int a;
+
+	s->steps++;
+	s->tau += tau, s->sn += sn;
+	for (a = 0; a < 6; a++)
+		s->sig[a] += d->sig[a] / V;
+	s->phi += vol / V;
+	s->z += (2.0 * d->ninter - d->nwall) / d->n;
+	s->elements += d->ninter ? (double)d->nelem / d->ninter : 0;
+}
+
+static void
+row_make(const struct row_sums *s, const struct pdem *d, double sigma_s, struct shear_row *row)
+{
+	double k = 1.0 / s->steps, su = d->u_force / (d->u_len * d->u_len), hd, a;
+	int b;
+
+	row->tau_ratio = s->tau * k / sigma_s;
+	row->sigma_ratio = s->sn * k / sigma_s;
+	for (b = 0; b < 6; b++)
+		row->sig[b] = s->sig[b] * k * su;
+	row->p = 0.5 * (row->sig[0] + row->sig[1]);
+	hd = 0.5 * (row->sig[0] - row->sig[1]);
+	a = row->sig[3];
+	row->q = sqrt(hd * hd + a * a);
+	row->qp = row->p > 0 ? row->q / row->p : NAN;
+	row->phi = s->phi * k;
+	row->z = s->z * k;
+	row->elements = s->elements * k;
+	row->height = (d->hi[1] - d->lo[1]) * d->u_len;
+}
+
+static void
+profile_add(const struct pdem *d, double vw, int nb, double *sum, double *cnt)
+{
+	double H = d->hi[1] - d->lo[1];
+	size_t i;
+
+	for (i = 0; i < d->n; i++) {
+		long b = (long)floor((d->x[3 * i + 1] - d->lo[1]) / H * nb);
+
+		b = b < 0 ? 0 : b >= nb ? nb - 1 : b;
+		sum[b] += d->v[3 * i] / vw;
+		cnt[b] += 1;
+	}
+}
+
+static int
+glue_walls(struct pdem *d, struct shear_result *res, double *mtop)
+{
+	size_t i;
+
+	if (!(d->glue = calloc(d->n, 1))) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	if (pdem_foreach_interaction(d, 1, on_glue, NULL))
+		return -1;
+	*mtop = 0;
+	for (i = 0; i < d->n; i++) {
+		if (d->glue[i] == 1 + WALL_BOTTOM)
+			res->glued_bottom++;
+		if (d->glue[i] == 1 + WALL_TOP)
+			res->glued_top++, *mtop += d->m[i];
+	}
+	if (res->glued_bottom == 0 || res->glued_top == 0) {
+		msg_seterr("no grain touches the %s wall: shear a pack compacted between walls (packgen)",
+		    res->glued_bottom == 0 ? "bottom (ylo)" : "top (yhi)");
+		return -1;
+	}
+	return 0;
+}
+
+int
+plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx, struct shear_result *res)
+{
+	const int per[3] = {1, 0, 1};
+	struct pdem d;
+	struct row_sums rs;
+	struct shear_row row;
+	double mtop, sigma_s, H0, A, vw, xw = 0, vol = 0, next_row, *psum = NULL;
+	long step;
+	size_t i;
+	int status = -1, a, nb = sp->profile_bins;
+
+	memset(res, 0, sizeof *res);
+	if (p->periodic[1]) {
+		msg_seterr("the gradient axis y is periodic: the shear needs its walls");
+		return -1;
+	}
+	if (pdem_init(&d, p, &sp->dyn))
+		return -1;
+	if ((!d.periodic[0] || !d.periodic[2]) && pdem_make_periodic(&d, per))
+		goto out;
+	if (glue_walls(&d, res, &mtop))
+		goto out;
+	for (i = 0; i < d.n; i++)
+		vol += shape_volume(d.r[i], 2 * d.half[i]);
+	sigma_s = sp->sigma_w / (d.u_force / (d.u_len * d.u_len));
+	A = (d.hi[0] - d.lo[0]) * (d.hi[2] - d.lo[2]);
+	H0 = d.hi[1] - d.lo[1];
+	/* I = gamma_dot r sqrt(rho / sigma_w) with r = 1 and rho = 1 in these units */
+	vw = sp->inertial * sqrt(sigma_s) * H0;
+	res->v_w = vw * d.u_len / d.u_time;
+	res->gamma_dot = res->v_w / (H0 * d.u_len);
+	res->kappa = 1 / sigma_s;
+	res->profile = calloc((size_t)nb, sizeof *res->profile);
+	res->profile_n = calloc((size_t)nb, sizeof *res->profile_n);
+	psum = calloc((size_t)nb, sizeof *psum);
+	if (!res->profile || !res->profile_n || !psum) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	d.wallv[WALL_TOP][0] = vw;
+	memset(&rs, 0, sizeof rs);
+	next_row = sp->every;
+	for (step = 1;; step++) {
+		double F[3], gamma;
+
+		if (step > sp->max_steps) {
+			msg_seterr("the shear did not reach gamma %g in %ld steps", sp->strain, sp->max_steps);
+			goto out;
+		}
+		if (pdem_forces(&d))
+			goto out;
+		/* the top body: its glued grains, and its plane's push on the free grains reversed */
+		for (a = 0; a < 3; a++)
+			F[a] = -d.wallF[WALL_TOP][a];
+		for (i = 0; i < d.n; i++)
+			if (d.glue[i] == 1 + WALL_TOP)
+				for (a = 0; a < 3; a++)
+					F[a] += d.f[3 * i + a];
+		row_add(&rs, &d, -F[0] / A, F[1] / A, (d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]), vol);
+		d.wallv[WALL_TOP][1] += (F[1] - sigma_s * A) / mtop * d.dt;
+		pdem_integrate(&d);
+		d.hi[1] += d.wallv[WALL_TOP][1] * d.dt;
+		xw += vw * d.dt;
+		gamma = xw / (d.hi[1] - d.lo[1]);
+		if (gamma >= sp->profile_from && step % 10 == 0)
+			profile_add(&d, vw, nb, psum, res->profile_n);
+		if (gamma >= next_row || gamma >= sp->strain) {
+			row_make(&rs, &d, sigma_s, &row);
+			row.step = step;
+			row.time = step * d.dt * d.u_time;
+			row.gamma = gamma;
+			memset(&rs, 0, sizeof rs);
+			while (next_row <= gamma)
+				next_row += sp->every;
+			if (fn && fn(&row, &d, ctx)) {
+				if (!*msg_geterr())
+					msg_seterr("stopped");
+				goto out;
+			}
+		}
+		if (gamma >= sp->strain)
+			break;
+	}
+	for (a = 0; a < nb; a++)
+		res->profile[a] = res->profile_n[a] > 0 ? psum[a] / res->profile_n[a] : NAN;
+	pdem_wrap(&d);
+	if (pdem_write_back(&d, p))
+		goto out;
+	status = 0;
+out:
+	free(psum);
+	if (status)
+		shear_result_free(res);
+	pdem_free(&d);
+	return status;
+}

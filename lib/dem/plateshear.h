@@ -1,0 +1,81 @@
+/* plateshear: the platy-particle paper's simple shear test (P §II C, Fig. 4b), for packs of
+ * spheroplates and of spheres made by the plate engine (dem/platedem.h).
+ *
+ * Shear direction x, gradient direction y, neutral direction z.  x and z are periodic (a pack
+ * compacted between six walls has those walls replaced, its lengths kept as the periods; a
+ * pack already periodic there is taken as it is); y keeps its walls.  The grains touching the
+ * bottom or the top wall at the start are glued to it, as in P, "to avoid strain localization
+ * at the boundaries": they move with their wall without turning and are no longer in contact
+ * with it.  The bottom wall is fixed.  The top wall and its glued grains are one rigid body
+ * of their mass: it moves along x at the constant velocity v_w and along y under the
+ * difference of the pack's push and the constant normal stress sigma_w times the wall area,
+ * so the volume follows the shear (P: "allowing for the volume of the sample to vary").
+ *
+ * v_w is set by the inertial number I = gamma_dot r sqrt(rho / sigma_w) (P eq. 6: about 1e-3
+ * in P), with r the mean spheroradius, rho the mean density and gamma_dot = v_w / H0, H0 the
+ * initial height.  The shear strain is P's gamma = x_w / y_w: the top wall's displacement
+ * over its current height above the bottom wall.
+ *
+ * Reported, each averaged over the steps since the last row: tau_w / sigma_w (tau_w the
+ * shear stress on the top body, minus its x force over the area; sigma_w the applied
+ * stress), the normal stress on it over sigma_w, the stress tensor of P eq. 7 (the sum over
+ * grain pairs of branch vector (x) interaction force, over the volume) with its partial mean
+ * and deviatoric stresses in the shear plane, p = (s1 + s3)/2, q = (s1 - s3)/2 (s1, s3 the
+ * principal stresses of its xy block) and q/p, the packing fraction, the coordination Z
+ * (interactions per grain, grain-grain at both ends plus grain-wall) and the element
+ * contacts per interaction.  From a chosen strain on, the velocity profile: <v_x>(y) / v_w
+ * in bins of y / y_w over every grain (P Fig. 6). */
+#ifndef QUSGM_PLATESHEAR_H
+#define QUSGM_PLATESHEAR_H
+
+#include "dem/platedem.h"
+#include "pack/pack.h"
+
+struct shear_params {
+	struct pdem_params dyn;	/* the contact law and step (damping: Cundall's, 0 in P) */
+	double sigma_w;		/* normal stress on the top wall (Pa) */
+	double inertial;	/* I, sets v_w */
+	double strain;		/* final gamma */
+	double every;		/* a row every this much strain */
+	double profile_from;	/* average the velocity profile from this strain on (> strain: none) */
+	int profile_bins;
+	long max_steps;
+};
+
+/* One row of the time series (SI where there is a unit). */
+struct shear_row {
+	long step;
+	double time;		/* s */
+	double gamma;		/* x_w / y_w at the row */
+	double tau_ratio;	/* tau_w / sigma_w */
+	double sigma_ratio;	/* the pack's normal push on the top wall over sigma_w */
+	double sig[6];		/* P eq. 7, Pa, compression positive: xx yy zz xy xz yz */
+	double p, q, qp;	/* in the xy plane */
+	double phi, z, elements;
+	double height;		/* y_w, m */
+};
+
+/* Called at every row; nonzero stops the run (and the run returns -1).  d is the engine
+ * (pdem_write_back(d, p) turns it into a pack: a snapshot). */
+typedef int (*shear_row_fn)(const struct shear_row *row, struct pdem *d, void *ctx);
+
+/* The result beside the rows. */
+struct shear_result {
+	double v_w;		/* m/s */
+	double gamma_dot;	/* 1/s */
+	double kappa;		/* k_n / (sigma_w r) */
+	size_t glued_bottom, glued_top;
+	double *profile;	/* profile_bins means of v_x / v_w (NaN where a bin saw no grain), or NULL */
+	double *profile_n;	/* samples per bin */
+};
+
+/* Defaults: P's law (platedem.h) without Cundall damping, I = 1e-3, gamma 2.5, a row every
+ * 0.01, the profile from gamma 1.5 in 20 bins, at most 1e8 steps. */
+void shear_params_default(struct shear_params *sp);
+/* Shear pack p (walls on y; see above) to sp->strain; p receives the final state.  0, or -1
+ * with msg_seterr.  res->profile and res->profile_n are allocated (free them with
+ * shear_result_free). */
+int plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx, struct shear_result *res);
+void shear_result_free(struct shear_result *res);
+
+#endif

@@ -1,0 +1,278 @@
+/* shear: simple shear of a pack of spheroplates (or of the plate engine's spheres) between
+ * glued walls at constant normal stress, the platy-particle paper's test (dem/plateshear.h). */
+#include "base/cli.h"
+#include "base/msg.h"
+#include "base/numfmt.h"
+#include "base/table.h"
+#include "base/fileio.h"
+#include "dem/plateshear.h"
+#include "pack/pack.h"
+#include "pack/packio.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define MAX_SNAPSHOTS 64
+
+static struct opts {
+	struct shear_params sp;
+	double kn, kt, restitution, mu, wall_mu;
+	const char *profile, *snapshots, *prefix;
+	double snap[MAX_SNAPSHOTS];
+	int nsnap;
+	long bins;
+} o = {
+	.bins = 20,
+	.kn = NAN, .kt = NAN, .restitution = NAN, .mu = NAN, .wall_mu = NAN,
+	.prefix = "shear",
+};
+
+static struct cli_opt opt_table[] = {
+	{"strain", 'g', CLI_DOUBLE, &o.sp.strain, "GAMMA", "shear strain x_w / y_w to reach", NULL},
+	{"stress", 's', CLI_DOUBLE, &o.sp.sigma_w, "PA", "normal stress on the top wall (default: the pack's meta sigma0)", "Pa"},
+	{"inertial", 'I', CLI_DOUBLE, &o.sp.inertial, "I", "inertial number gamma_dot r sqrt(rho / sigma_w): sets the wall's velocity", NULL},
+	{"every", 0, CLI_DOUBLE, &o.sp.every, "DGAMMA", "a row every DGAMMA of strain, each the mean over its steps", NULL},
+	{"profile", 0, CLI_STRING, &o.profile, "FILE", "write the velocity profile <v_x>(y)/v_w to FILE (TSV)", NULL},
+	{"profile-from", 0, CLI_DOUBLE, &o.sp.profile_from, "GAMMA", "average the profile from this strain on", NULL},
+	{"profile-bins", 0, CLI_LONG, &o.bins, "N", "bins of y / y_w in the profile", NULL},
+	{"snapshots", 0, CLI_STRING, &o.snapshots, "G1,G2,...", "write the pack at these strains, to PREFIX-G.pack", NULL},
+	{"snapshot-prefix", 0, CLI_STRING, &o.prefix, "PREFIX", "file name prefix of the snapshots", NULL},
+	{"kn", 0, CLI_DOUBLE, &o.kn, "N/M", "normal stiffness of an element contact (default: the pack's meta kn)", "N/m"},
+	{"kt", 0, CLI_DOUBLE, &o.kt, "N/M", "tangential stiffness (default: the pack's meta kt, else --kn)", "N/m"},
+	{"restitution", 0, CLI_DOUBLE, &o.restitution, "E", "restitution coefficient, [0.21, 1] (default: the pack's meta, else 0.6)", NULL},
+	{"friction", 0, CLI_DOUBLE, &o.mu, "MU", "grain-grain friction coefficient (default: the pack's)", NULL},
+	{"wall-friction", 0, CLI_DOUBLE, &o.wall_mu, "MU", "friction of free grains on the walls (default: the pack's)", NULL},
+	{"max-steps", 0, CLI_LONG, &o.sp.max_steps, "N", "give up after N steps", NULL},
+	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
+};
+
+static const struct cli_tool tool = {
+	"shear", "[options] [FILE]",
+	"Simple shear of a spheroplate pack between glued walls at constant normal stress: a TSV time series of stress ratio, q/p, packing fraction, coordination.",
+	opt_table, 1,
+};
+
+static void
+parse_snapshots(void)
+{
+	const char *s = o.snapshots;
+	char *end;
+
+	if (!s || !*s)
+		return;
+	for (;;) {
+		double g = strtod(s, &end);
+
+		if (end == s || !(g > 0 && isfinite(g))) {
+			cli_usage_error("--snapshots: expected positive strains separated by commas, got '%s'", o.snapshots);
+			return;
+		}
+		if (o.nsnap == MAX_SNAPSHOTS) {
+			cli_usage_error("--snapshots: at most %d", MAX_SNAPSHOTS);
+			return;
+		}
+		o.snap[o.nsnap++] = g;
+		if (*end == 0)
+			break;
+		if (*end != ',') {
+			cli_usage_error("--snapshots: expected positive strains separated by commas, got '%s'", o.snapshots);
+			return;
+		}
+		s = end + 1;
+	}
+}
+
+static void
+parse_args(int argc, char **argv, struct cli_state *st)
+{
+	shear_params_default(&o.sp);
+	o.sp.profile_from = NAN;
+	cli_parse(&tool, argc, argv, st);
+	if (!(o.sp.strain > 0 && o.sp.strain <= 100))
+		cli_usage_error("--strain: must be in (0, 100]");
+	if (!(o.sp.sigma_w == 0 || (o.sp.sigma_w > 0 && isfinite(o.sp.sigma_w))))
+		cli_usage_error("--stress: must be positive");
+	if (!(o.sp.inertial > 0 && o.sp.inertial <= 0.1))
+		cli_usage_error("--inertial: must be in (0, 0.1] (the quasi-static regime is I << 1)");
+	if (!(o.sp.every > 0 && o.sp.every <= o.sp.strain))
+		cli_usage_error("--every: must be in (0, --strain]");
+	if (!isnan(o.sp.profile_from) && !(o.sp.profile_from >= 0))
+		cli_usage_error("--profile-from: must be non-negative");
+	if (o.bins < 2 || o.bins > 10000)
+		cli_usage_error("--profile-bins: must be in [2, 10000]");
+	if (!isnan(o.kn) && !(o.kn > 0 && isfinite(o.kn)))
+		cli_usage_error("--kn: must be positive");
+	if (!isnan(o.kt) && !(o.kt >= 0 && isfinite(o.kt)))
+		cli_usage_error("--kt: must be non-negative");
+	if (!isnan(o.restitution) && !(o.restitution >= 0.21 && o.restitution <= 1))
+		cli_usage_error("--restitution: must be in [0.21, 1]");
+	if ((!isnan(o.mu) && !(o.mu >= 0 && o.mu <= 10)) || (!isnan(o.wall_mu) && !(o.wall_mu >= 0 && o.wall_mu <= 10)))
+		cli_usage_error("--friction and --wall-friction: must be in [0, 10]");
+	if (o.sp.max_steps < 1)
+		cli_usage_error("--max-steps: must be positive");
+	parse_snapshots();
+	cli_usage_done();
+	o.sp.profile_bins = (int)o.bins;
+	/* the steady state of P: the last 40 % of the strain */
+	if (isnan(o.sp.profile_from))
+		o.sp.profile_from = 0.6 * o.sp.strain;
+}
+
+/* The contact law: options, else the pack's meta lines (packgen writes them), else P's. */
+static void
+set_law(struct pack *p, const char *in)
+{
+	double v;
+
+	if (isnan(o.kn) && pack_get_meta_double(p, "kn", &o.kn))
+		msg_die(EXIT_DATA, "%s: no meta kn (the normal stiffness packgen --shape spheroplate records): give --kn", in);
+	if (isnan(o.kt))
+		o.kt = pack_get_meta_double(p, "kt", &v) == 0 ? v : o.kn;
+	if (isnan(o.restitution))
+		o.restitution = pack_get_meta_double(p, "restitution", &v) == 0 ? v : 0.6;
+	if (isnan(o.mu))
+		o.mu = p->mu;
+	if (isnan(o.wall_mu))
+		o.wall_mu = p->wall_mu;
+	if (o.sp.sigma_w == 0 && pack_get_meta_double(p, "sigma0", &o.sp.sigma_w))
+		msg_die(EXIT_DATA, "%s: no meta sigma0 (the compaction stress packgen records): give --stress", in);
+	if (!(o.restitution >= 0.21 && o.restitution <= 1))
+		msg_die(EXIT_DATA, "%s: meta restitution %g: must be in [0.21, 1]; give --restitution", in, o.restitution);
+	o.sp.dyn.kn = o.kn, o.sp.dyn.kt = o.kt;
+	o.sp.dyn.restitution = o.restitution;
+	o.sp.dyn.mu = o.mu, o.sp.dyn.wall_mu = o.wall_mu;
+	p->mu = o.mu, p->wall_mu = o.wall_mu;
+}
+
+struct run_ctx {
+	struct pack *p;
+	const struct cli_state *st;
+	int next_snap;
+	time_t start;
+	long rows;
+};
+
+static const struct table_col cols[] = {
+	{"step", NULL}, {"time", "s"}, {"gamma", NULL}, {"tau_sigma", NULL}, {"sigma_ratio", NULL}, {"qp", NULL},
+	{"p", "Pa"}, {"q", "Pa"}, {"sig_xx", "Pa"}, {"sig_yy", "Pa"}, {"sig_zz", "Pa"}, {"sig_xy", "Pa"},
+	{"sig_xz", "Pa"}, {"sig_yz", "Pa"}, {"phi", NULL}, {"Z", NULL}, {"elements", NULL}, {"height", "m"},
+};
+#define NCOLS ((int)(sizeof cols / sizeof cols[0]))
+
+static void
+print_header(void)
+{
+	printf("## qusgm shear %s: simple shear along x, walls on y (the bottom fixed, the top at sigma_w), x and z periodic\n",
+	    QUSGM_VERSION);
+	printf("## sigma_w %g Pa, I %g, mu %g, wall mu %g, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
+	       "sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
+	    o.sp.sigma_w, o.sp.inertial, o.mu, o.wall_mu, o.kn, o.kt, o.restitution);
+	table_header(stdout, cols, NCOLS);
+}
+
+/* A snapshot: the state as a pack, with its strain in meta shear_gamma and this run's
+ * history line, to PREFIX-G.pack (atomically). */
+static int
+write_snapshot(struct run_ctx *c, struct pdem *d, double gamma, const char *path)
+{
+	char buf[40];
+	struct cli_state st = *c->st;
+	int r;
+
+	pdem_wrap(d);
+	if (pdem_write_back(d, c->p))
+		return -1;
+	num_format(buf, gamma);
+	if (pack_set_meta(c->p, "shear_gamma", buf))
+		return -1;
+	st.output = path;
+	r = pack_write_tool(c->p, &tool, &st);
+	/* the history line belongs to this file only */
+	free(c->p->history[--c->p->nhist]);
+	return r;
+}
+
+static int
+on_row(const struct shear_row *row, struct pdem *d, void *vc)
+{
+	struct run_ctx *c = vc;
+	double v[NCOLS] = {(double)row->step, row->time, row->gamma, row->tau_ratio, row->sigma_ratio, row->qp, row->p,
+	    row->q, row->sig[0], row->sig[1], row->sig[2], row->sig[3], row->sig[4], row->sig[5], row->phi, row->z,
+	    row->elements, row->height};
+	double el = difftime(time(NULL), c->start);
+
+	if (c->rows == 0)	/* only now: a run that fails to start writes nothing */
+		print_header();
+	table_row(stdout, v, NCOLS);
+	fflush(stdout);	/* a series can be followed while it grows */
+	c->rows++;
+	while (c->next_snap < o.nsnap && row->gamma >= o.snap[c->next_snap]) {
+		char path[4096], g[40];
+
+		num_format(g, o.snap[c->next_snap]);
+		snprintf(path, sizeof path, "%s-%s.pack", o.prefix, g);
+		if (write_snapshot(c, d, row->gamma, path))
+			return -1;
+		c->next_snap++;
+	}
+	cli_progress("gamma %.3f of %g  tau/sigma %.3f  q/p %.3f  phi %.4f  Z %.2f  ETA %.0f s", row->gamma, o.sp.strain,
+	    row->tau_ratio, row->qp, row->phi, row->z, row->gamma > 0 ? el * (o.sp.strain / row->gamma - 1) : 0);
+	return 0;
+}
+
+static void
+write_profile(const struct shear_result *res)
+{
+	static const struct table_col pc[] = {{"y_over_yw", NULL}, {"vx_over_vw", NULL}, {"samples", NULL}};
+	struct file_out out = {0};
+	int b;
+
+	if (file_out_open(&out, o.profile))
+		msg_die_err(EXIT_DATA);
+	fprintf(out.fp, "## shear: <v_x>(y) / v_w over every grain, from gamma %g to %g, every 10 steps\n", o.sp.profile_from,
+	    o.sp.strain);
+	table_header(out.fp, pc, 3);
+	for (b = 0; b < o.sp.profile_bins; b++) {
+		double v[3] = {(b + 0.5) / o.sp.profile_bins, res->profile[b], res->profile_n[b]};
+		table_row(out.fp, v, 3);
+	}
+	if (file_out_commit(&out))
+		msg_die_err(EXIT_DATA);
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cli_state st;
+	struct pack p;
+	struct shear_result res;
+	struct run_ctx c = {&p, &st, 0, 0, 0};
+	const char *in;
+	char buf[40];
+
+	msg_init(argv[0]);
+	parse_args(argc, argv, &st);
+	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
+	if (pack_read_path(st.input, &p))
+		msg_die_err(EXIT_DATA);
+	set_law(&p, in);
+	c.start = time(NULL);
+	if (plateshear_run(&p, &o.sp, on_row, &c, &res))
+		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
+	cli_progress_end();
+	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, kappa %.4g; %ld rows",
+	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.kappa, c.rows);
+	if (o.profile)
+		write_profile(&res);
+	if (st.output) {
+		num_format(buf, o.sp.strain);
+		if (pack_set_meta(&p, "shear_gamma", buf) || pack_write_tool(&p, &tool, &st))
+			msg_die_err(EXIT_DATA);
+	}
+	shear_result_free(&res);
+	pack_free(&p);
+	return 0;
+}
