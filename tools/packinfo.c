@@ -26,7 +26,7 @@ static const struct cli_tool tool = {
 	opts, 1 << 20,
 };
 
-#define NKEYS 64
+#define NKEYS 96
 
 struct row {
 	struct table_col col[NKEYS];
@@ -150,6 +150,22 @@ fill_plate_row(const struct pack *p, const struct plate_measures *m, struct row 
 	add(r, "force_mean", "N", m->force_mean);
 	add(r, "force_max", "N", m->force_max);
 	add(r, "residual_mean", NULL, m->residual_mean);
+	add(r, "qp", NULL, m->fabric.qp);
+	add(r, "theta_sigma", "deg", m->fabric.theta_sigma);
+	add(r, "a_m", NULL, m->fabric.a_m);
+	add(r, "theta_m", "deg", m->fabric.theta_m);
+	add(r, "a_n", NULL, m->fabric.a_n);
+	add(r, "theta_n", "deg", m->fabric.theta_n);
+	add(r, "a_ln", NULL, m->fabric.a_ln);
+	add(r, "theta_ln", "deg", m->fabric.theta_ln);
+	add(r, "a_lt", NULL, m->fabric.a_lt);
+	add(r, "theta_lt", "deg", m->fabric.theta_lt);
+	add(r, "a_fn", NULL, m->fabric.a_fn);
+	add(r, "theta_fn", "deg", m->fabric.theta_fn);
+	add(r, "a_ft", NULL, m->fabric.a_ft);
+	add(r, "theta_ft", "deg", m->fabric.theta_ft);
+	add(r, "K_s", NULL, m->fabric.K_s);
+	add(r, "qp_harmonic", NULL, m->fabric.qp_harmonic);
 }
 
 /* One pack's row: spheres as ever (byte for byte), or plates (and packs of the linear law);

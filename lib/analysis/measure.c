@@ -3,6 +3,7 @@
 #include "base/msg.h"
 #include "base/quat.h"
 #include "base/vec3.h"
+#include "analysis/fabric.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
 
@@ -366,8 +367,43 @@ struct plate_pass {
 	unsigned *z;		/* interactions per grain */
 	double *F;		/* net force per grain (3n) */
 	double fsum, Psum;	/* sums of |F| and of the normal force P over the interactions */
+	struct fabric_interaction *fab;	/* the grain pairs, for fabric_describe */
+	size_t nfab, capfab;
+	double sig_pairs[6];	/* P eq. 7: the pairs' branch (x) force, summed */
 	struct plate_measures *m;
 };
+
+static void add_dyad(double s[6], const double arm[3], const double f[3]);
+
+/* A pair for the descriptors: at the Coulomb limit when its tangential force is within 1 %
+ * of mu times its normal force (the spring is capped at mu times the normal force with the
+ * dashpot's part, which a static pack has not, so exactly mu P is not to be expected). */
+static int
+fabric_add(struct plate_pass *pp, const double n[3], const double l[3], const double F[3], double P)
+{
+	struct fabric_interaction *e;
+	double Ft[3], fn = F[0] * n[0] + F[1] * n[1] + F[2] * n[2];
+	int a;
+
+	if (pp->nfab == pp->capfab) {
+		size_t cap = pp->capfab ? 2 * pp->capfab : 1024;
+		void *q = realloc(pp->fab, cap * sizeof *pp->fab);
+
+		if (!q) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		pp->fab = q, pp->capfab = cap;
+	}
+	e = &pp->fab[pp->nfab++];
+	for (a = 0; a < 3; a++) {
+		e->n[a] = n[a], e->l[a] = l[a], e->F[a] = F[a];
+		Ft[a] = F[a] - fn * n[a];
+	}
+	e->sliding = P > 0 && vec3_norm(Ft) >= 0.99 * pp->p->mu * P;
+	add_dyad(pp->sig_pairs, l, F);
+	return 0;
+}
 
 /* Love-Weber: arm (x) f, symmetrised, into s (xx yy zz xy xz yz). */
 static void
@@ -402,8 +438,14 @@ on_plate_record(const struct contact *c, void *v)
 		pp->z[j]++, m->contacts_gg++;
 	m->elements += (size_t)it.m;
 	m->by_elements[it.m < 3 ? it.m - 1 : 2]++;
-	if (isnan(pp->kn))
-		return 0;
+	if (isnan(pp->kn)) {
+		/* no forces: the geometry of the pair for the descriptors */
+		const double zero[3] = {0, 0, 0};
+
+		for (a = 0; a < 3 && !wall; a++)
+			arm[a] = xi[a] - xj[a];
+		return wall ? 0 : fabric_add(pp, n, arm, zero, 0);
+	}
 	for (k = 0; k < it.m; k++) {
 		double h = fmax(it.e[k].h, 0);
 
@@ -438,6 +480,8 @@ on_plate_record(const struct contact *c, void *v)
 		for (a = 0; a < 3; a++)
 			arm[a] = xi[a] - xj[a];
 		add_dyad(m->sig_lw, arm, F);
+		if (fabric_add(pp, n, arm, F, P))
+			return -1;
 	}
 	for (a = 0; a < 3; a++) {
 		pp->F[3 * i + a] += F[a];
@@ -447,6 +491,36 @@ on_plate_record(const struct contact *c, void *v)
 	pp->fsum += vec3_norm(F);
 	pp->Psum += P;
 	m->force_max = fmax(m->force_max, P);
+	return 0;
+}
+
+/* The descriptors of analysis/fabric.h over the pairs and the plates' face normals; with no
+ * stiffness the forces are unknown and only the geometric ones are kept. */
+static int
+plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate_measures *m)
+{
+	double *nm = malloc(3 * (p->n ? p->n : 1) * sizeof *nm), R[9], sig[6];
+	size_t i, np = 0;
+	int a;
+
+	if (!nm) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	for (i = 0; i < p->n; i++)
+		if (p->has_shapes && p->side[i] > 0) {
+			quat_to_matrix(p->q + 4 * i, R);
+			nm[3 * np] = R[2], nm[3 * np + 1] = R[5], nm[3 * np + 2] = R[8];
+			np++;
+		}
+	for (a = 0; a < 6; a++)
+		sig[a] = pp->sig_pairs[a] / V;
+	fabric_describe(pp->fab, pp->nfab, nm, np, m->has_forces ? sig : NULL, &m->fabric);
+	if (!m->has_forces) {
+		struct fabric_desc *f = &m->fabric;
+		f->a_fn = f->theta_fn = f->a_ft = f->theta_ft = f->K_s = NAN;
+	}
+	free(nm);
 	return 0;
 }
 
@@ -519,6 +593,8 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m)
 				s += vec3_norm(pass.F + 3 * i), nres++;
 		m->residual_mean = (s / (double)nres) / (pass.fsum / (double)ni);
 	}
+	if (plate_fabric(p, &pass, V, m))
+		goto out;
 	status = 0;
 out:
 	if (have_ce)
@@ -526,6 +602,7 @@ out:
 	free((void *)pass.keys);
 	free(pass.z);
 	free(pass.F);
+	free(pass.fab);
 	free(R);
 	free(half);
 	free(rb);

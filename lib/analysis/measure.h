@@ -15,6 +15,7 @@
 #ifndef QUSGM_MEASURE_H
 #define QUSGM_MEASURE_H
 
+#include "analysis/fabric.h"
 #include "contact/contacts.h"
 #include "pack/pack.h"
 
@@ -87,6 +88,11 @@ struct plate_measures {
 	double sig_wall[3], sig_lw[6];			/* Pa, compression positive; xx yy zz xy xz yz */
 	double force_mean, force_max;			/* normal force P of an interaction, N */
 	double residual_mean;
+	/* the platy-particle paper's descriptors (analysis/fabric.h) over the grain pairs, under
+	 * their own stress (P eq. 7, the pairs' branch (x) force over the box volume); a pair is
+	 * at the Coulomb limit when |F_t| >= 0.99 mu F_n (mu the pack's).  Without forces the
+	 * force descriptors, K_s, p, q and eq. 28 are NaN. */
+	struct fabric_desc fabric;
 };
 
 int measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measures *m);
