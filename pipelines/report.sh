@@ -88,7 +88,11 @@ study_time() {
 
 echo "# $study"
 echo
-echo "Pack sizes: G2740-style $n2740 grains, G5036-style $n5036, Q2654-style $n2654 (seed ${SEED:-1})."
+if [ "$study" = platy ]; then
+	echo "Packs: ${N_PLATY:-?} spheroplates per platyness (seed ${SEED:-1}), sheared at I = ${PLATY_I:-?} to gamma ${PLATY_STRAIN:-?}, steady state from gamma ${PLATY_FROM:-?}."
+else
+	echo "Pack sizes: G2740-style $n2740 grains, G5036-style $n5036, Q2654-style $n2654 (seed ${SEED:-1})."
+fi
 echo "Figure: \`$study.png\`; exact commands: \`commands.txt\`; remake: \`make -C pipelines $study$( [ "$out" = out-small ] && echo ' SMALL=1')\`."
 echo "Cost: $(study_time) (the sum of its stages; run alone with -j1 it takes about that long)."
 echo
@@ -241,6 +245,43 @@ EOF
 		    "$(info "$pk" porosity | awk '{ print 100 * $1 }')" "$(info "$pk" coordination)" \
 		    "$(first "$m" sigma_c | mpa)" "$(first "$m" K | gpa)" "$(first "$m" G | gpa)" \
 		    "$(first "$m" K_emt | gpa)" "$(first "$m" G_emt_rough | gpa)" "$(first "$m" G_emt_smooth | gpa)"
+	done
+	;;
+platy)
+	sm=$out/platy/summary.tsv
+	cat <<'EOF'
+**Paper** (platy-particle, Boton et al. 2013, 8000 plates, I about 1e-3, kappa >= 1e3, averages over
+gamma 1.5-2.5; its text gives the trends from eta = 0 to 0.8, which the second table quotes):
+q/p rises from about 0.3 to 0.7 (Fig. 7), the packing fraction peaks near eta 0.3 (Fig. 8), a_m
+rises from 0 to 0.6 (Fig. 11), Z from 3.6 to 4.3 while chi falls from 0.20 to 0.05 (Fig. 12),
+a_n from 0.3 to 1.2 (Fig. 14), a_ln falls from 0 to -0.2 and a_lt from 0 to -0.4 (Fig. 17), a_fn
+rises only from 0.2 to 0.3 while a_ft rises from 0 to 0.7 (Fig. 20), K_s from 0.1 to 0.4 (Fig.
+21), and eq. 28 approximates q/p well below eta 0.3 and overestimates it above (Fig. 22).
+
+**This run** (mean +- standard deviation over the steady-state window: the shear's rows for
+tau/sigma, q/p, phi and Z; the snapshots' descriptors for the rest; angles in degrees)
+
+EOF
+	echo '| eta | tau_w/sigma_w | q/p | eq. 28 | phi | Z | chi | a_m | theta_m | a_n | theta_n | a_ln | a_lt | a_fn | a_ft | K_s |'
+	echo '| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |'
+	$cols "$sm" eta tau_sigma tau_sigma_sd qp qp_sd qp_harmonic qp_harmonic_sd phi phi_sd Z Z_sd floating_fraction \
+	    floating_fraction_sd a_m a_m_sd theta_m a_n a_n_sd theta_n a_ln a_lt a_fn a_ft K_s K_s_sd |
+	    awk -F '\t' '{ printf "| %s | %.3f +- %.3f | %.3f +- %.3f | %.3f +- %.3f | %.3f +- %.3f | %.2f +- %.2f | %.3f +- %.3f | %.2f +- %.2f | %.0f | %.2f +- %.2f | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f +- %.3f |\n",
+	      $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17, $18, $19, $20, $21, $22, $23, $24, $25 }'
+	echo
+	echo "The trends, first platyness against the last, beside the paper's (eta 0 -> 0.8):"
+	echo
+	echo '| quantity | paper | this run | same direction |'
+	echo '| --- | --- | --- | --- |'
+	for q in "qp 0.3 0.7" "Z 3.6 4.3" "floating_fraction 0.20 0.05" "a_m 0 0.6" "a_n 0.3 1.2" "a_ln 0 -0.2" "a_lt 0 -0.4" \
+	    "a_fn 0.2 0.3" "a_ft 0 0.7" "K_s 0.1 0.4"; do
+		set -- $q
+		a=$($cols "$sm" "$1" | head -n 1)
+		b=$($cols "$sm" "$1" | tail -n 1)
+		# a_m of spheres does not exist (nan): no direction to compare
+		awk -v n="$1" -v p="$2" -v q="$3" -v a="$a" -v b="$b" 'BEGIN {
+			if (a == "nan" || b == "nan") { printf "| %s | %s -> %s | %s -> %s | - |\n", n, p, q, a, b; exit }
+			printf "| %s | %s -> %s | %.3f -> %.3f | %s |\n", n, p, q, a, b, ((q - p) * (b - a) > 0) ? "yes" : "no" }'
 	done
 	;;
 *)
