@@ -19,21 +19,23 @@
 
 static struct opts {
 	struct shear_params sp;
-	double kn, kt, restitution, mu, wall_mu;
+	double kn, kt, restitution, mu, wall_mu, kappa;
 	const char *profile, *snapshots, *prefix;
 	double snap[MAX_SNAPSHOTS];
 	int nsnap;
 	long bins;
 } o = {
 	.bins = 20,
-	.kn = NAN, .kt = NAN, .restitution = NAN, .mu = NAN, .wall_mu = NAN,
+	.kappa = NAN, .kn = NAN, .kt = NAN, .restitution = NAN, .mu = NAN, .wall_mu = NAN,
 	.prefix = "shear",
 };
 
 static struct cli_opt opt_table[] = {
 	{"strain", 'g', CLI_DOUBLE, &o.sp.strain, "GAMMA", "shear strain x_w / y_w to reach", NULL},
 	{"stress", 's', CLI_DOUBLE, &o.sp.sigma_w, "PA", "normal stress on the top wall (default: the pack's meta sigma0)", "Pa"},
-	{"inertial", 'I', CLI_DOUBLE, &o.sp.inertial, "I", "inertial number gamma_dot r sqrt(rho / sigma_w): sets the wall's velocity", NULL},
+	{"kappa", 0, CLI_DOUBLE, &o.kappa, "K", "... or the stiffness number k_n / (sigma_w r), r the mean spheroradius", NULL},
+	{"inertial", 'I', CLI_DOUBLE, &o.sp.inertial, "I", "inertial number gamma_dot r sqrt(rho / sigma_w): sets the wall's velocity (default 1e-3)", NULL},
+	{"velocity", 0, CLI_DOUBLE, &o.sp.velocity, "M/S", "... or the wall's velocity v_w outright", "m/s"},
 	{"every", 0, CLI_DOUBLE, &o.sp.every, "DGAMMA", "a row every DGAMMA of strain, each the mean over its steps", NULL},
 	{"profile", 0, CLI_STRING, &o.profile, "FILE", "write the velocity profile <v_x>(y)/v_w to FILE (TSV)", NULL},
 	{"profile-from", 0, CLI_DOUBLE, &o.sp.profile_from, "GAMMA", "average the profile from this strain on", NULL},
@@ -90,13 +92,22 @@ parse_args(int argc, char **argv, struct cli_state *st)
 {
 	shear_params_default(&o.sp);
 	o.sp.profile_from = NAN;
+	o.sp.inertial = NAN;
 	cli_parse(&tool, argc, argv, st);
 	if (!(o.sp.strain > 0 && o.sp.strain <= 100))
 		cli_usage_error("--strain: must be in (0, 100]");
 	if (!(o.sp.sigma_w == 0 || (o.sp.sigma_w > 0 && isfinite(o.sp.sigma_w))))
 		cli_usage_error("--stress: must be positive");
-	if (!(o.sp.inertial > 0 && o.sp.inertial <= 0.1))
+	if (!isnan(o.sp.inertial) && !(o.sp.inertial > 0 && o.sp.inertial <= 0.1))
 		cli_usage_error("--inertial: must be in (0, 0.1] (the quasi-static regime is I << 1)");
+	if (!(o.sp.velocity >= 0 && isfinite(o.sp.velocity)))
+		cli_usage_error("--velocity: must be positive");
+	if (!isnan(o.sp.inertial) && o.sp.velocity > 0)
+		cli_usage_error("--inertial and --velocity: give one");
+	if (!isnan(o.kappa) && !(o.kappa > 0 && isfinite(o.kappa)))
+		cli_usage_error("--kappa: must be positive");
+	if (!isnan(o.kappa) && o.sp.sigma_w > 0)
+		cli_usage_error("--stress and --kappa: give one");
 	if (!(o.sp.every > 0 && o.sp.every <= o.sp.strain))
 		cli_usage_error("--every: must be in (0, --strain]");
 	if (!isnan(o.sp.profile_from) && !(o.sp.profile_from >= 0))
@@ -116,6 +127,8 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	parse_snapshots();
 	cli_usage_done();
 	o.sp.profile_bins = (int)o.bins;
+	if (isnan(o.sp.inertial))
+		o.sp.inertial = 1e-3;
 	/* the steady state of P: the last 40 % of the strain */
 	if (isnan(o.sp.profile_from))
 		o.sp.profile_from = 0.6 * o.sp.strain;
@@ -137,6 +150,14 @@ set_law(struct pack *p, const char *in)
 		o.mu = p->mu;
 	if (isnan(o.wall_mu))
 		o.wall_mu = p->wall_mu;
+	if (!isnan(o.kappa)) {
+		double r = 0;
+		size_t i;
+
+		for (i = 0; i < p->n; i++)
+			r += p->r[i] / p->n;
+		o.sp.sigma_w = o.kn / (o.kappa * r);
+	}
 	if (o.sp.sigma_w == 0 && pack_get_meta_double(p, "sigma0", &o.sp.sigma_w))
 		msg_die(EXIT_DATA, "%s: no meta sigma0 (the compaction stress packgen records): give --stress", in);
 	if (!(o.restitution >= 0.21 && o.restitution <= 1))
@@ -263,8 +284,8 @@ main(int argc, char **argv)
 	if (plateshear_run(&p, &o.sp, on_row, &c, &res))
 		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
 	cli_progress_end();
-	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, kappa %.4g; %ld rows",
-	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.kappa, c.rows);
+	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, I %.4g, kappa %.4g; %ld rows",
+	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.inertial, res.kappa, c.rows);
 	if (o.profile)
 		write_profile(&res);
 	if (st.output) {

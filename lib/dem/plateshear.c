@@ -16,6 +16,7 @@ shear_params_default(struct shear_params *sp)
 	sp->dyn.damping = 0;
 	sp->sigma_w = 0;
 	sp->inertial = 1e-3;
+	sp->velocity = 0;
 	sp->strain = 2.5;
 	sp->every = 0.01;
 	sp->profile_from = 1.5;
@@ -155,7 +156,8 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 	A = (d.hi[0] - d.lo[0]) * (d.hi[2] - d.lo[2]);
 	H0 = d.hi[1] - d.lo[1];
 	/* I = gamma_dot r sqrt(rho / sigma_w) with r = 1 and rho = 1 in these units */
-	vw = sp->inertial * sqrt(sigma_s) * H0;
+	vw = sp->velocity > 0 ? sp->velocity * d.u_time / d.u_len : sp->inertial * sqrt(sigma_s) * H0;
+	res->inertial = vw / H0 / sqrt(sigma_s);
 	res->v_w = vw * d.u_len / d.u_time;
 	res->gamma_dot = res->v_w / (H0 * d.u_len);
 	res->kappa = 1 / sigma_s;

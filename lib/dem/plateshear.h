@@ -34,7 +34,8 @@
 struct shear_params {
 	struct pdem_params dyn;	/* the contact law and step (damping: Cundall's, 0 in P) */
 	double sigma_w;		/* normal stress on the top wall (Pa) */
-	double inertial;	/* I, sets v_w */
+	double inertial;	/* I, sets v_w ... */
+	double velocity;	/* ... unless this is positive: v_w (m/s) outright */
 	double strain;		/* final gamma */
 	double every;		/* a row every this much strain */
 	double profile_from;	/* average the velocity profile from this strain on (> strain: none) */
@@ -62,6 +63,7 @@ typedef int (*shear_row_fn)(const struct shear_row *row, struct pdem *d, void *c
 /* The result beside the rows. */
 struct shear_result {
 	double v_w;		/* m/s */
+	double inertial;	/* I of v_w at the start */
 	double gamma_dot;	/* 1/s */
 	double kappa;		/* k_n / (sigma_w r) */
 	size_t glued_bottom, glued_top;

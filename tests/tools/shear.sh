@@ -28,6 +28,16 @@ expect_num "shear: profile, top bin near v_w" "$(col s.prof 5 2)" ">" 0.8
 expect_ok "shear: again" shear --strain 0.1 --inertial 1e-2 --every 0.02 s.pack
 expect_same "shear: same pack, same table" s.tsv ok.out
 
+# the dimensionless groups instead of SI values: kappa 1e4 is packgen's compaction stress
+# (its meta sigma0 = k_n / (1e4 r)), and a velocity gives back the inertial number it implies
+expect_ok "shear --kappa 1e4" shear --strain 0.01 --every 0.005 --kappa 1e4 s.pack
+grep -q '^## sigma_w 5e+06 Pa, I 0.001,' ok.out && pass "shear: kappa 1e4 is sigma_w 5 MPa" || fail "shear: kappa 1e4 is sigma_w 5 MPa" "$(sed -n 2p ok.out)"
+shear --strain 0.01 --every 0.005 -v s.pack 2>v1.err >/dev/null
+v=$(sed -n 's/.*v_w \([0-9.e+-]*\) m\/s.*/\1/p' v1.err)
+shear --strain 0.01 --every 0.005 --velocity "$v" -v s.pack 2>v2.err >/dev/null
+expect_num "shear: --velocity of I 1e-3's v_w gives I 1e-3" "$(rel "$(sed -n 's/.*, I \([0-9.e+-]*\), kappa.*/\1/p' v2.err)" 1e-3)" "<" 1e-3
+expect_error "shear: --stress and --kappa" 2 '^shear: --stress and --kappa: give one' shear --stress 1e6 --kappa 1e4 s.pack
+
 # spheres made by the plate engine, a few steps
 packgen --shape spheroplate --platyness 0 -n 216 --seed 2 -o sp.pack 2>/dev/null
 expect_ok "shear 216 spheres to gamma 0.01" shear --strain 0.01 --inertial 1e-2 --every 0.005 sp.pack
