@@ -28,7 +28,7 @@ for n in $sizes; do
 			fi
 			steps=$(awk '/at rest after/ { for (i = 1; i <= NF; i++) if ($i == "after") print $(i + 1) }' "$out/plates-$n-$eta.log")
 			read -r secs kib <"$out/plates-$n-$eta.time"
-			# eta 0 is spheres, whose report has the porosity only
+			# packing_fraction for plates and the plate engine's spheres (porosity for any other pack)
 			phi=$("$bin/packinfo" "$pk" | awk '$1 == "packing_fraction" { f = $2 } $1 == "porosity" { p = $2 }
 			    END { printf "%.4f", f != "" ? f : 1 - p }')
 			echo "$secs $kib $steps $phi $(date -u '+%Y-%m-%d') $(cd "$top" && git rev-parse --short HEAD 2>/dev/null)" >"$out/plates-$n-$eta.gen"
