@@ -43,6 +43,12 @@ packgen --shape spheroplate --platyness 0 -n 216 --seed 2 -o sp.pack 2>/dev/null
 expect_ok "shear 216 spheres to gamma 0.01" shear --strain 0.01 --inertial 1e-2 --every 0.005 sp.pack
 expect_num "shear: spheres, 2 rows" "$(rows ok.out | wc -l)" == 2
 
+# a pack made periodic on x and z by packgen is taken as it is; one periodic on y is refused
+packgen --shape spheroplate --platyness 0.5 -n 125 --seed 2 --periodic xz -o pxz.pack 2>/dev/null
+expect_ok "shear: a pack already periodic on x and z" shear --strain 0.01 --inertial 1e-2 --every 0.005 pxz.pack
+packgen --shape spheroplate --platyness 0.5 -n 125 --seed 2 --periodic y -o py.pack 2>/dev/null
+expect_error "shear: a pack periodic on y" 1 '^shear: py.pack: the gradient axis y is periodic' shear py.pack
+
 # refusals
 packgen -n 50 --seed 1 -o hertz.pack 2>/dev/null
 expect_error "shear: a pack without meta kn" 1 '^shear: hertz.pack: no meta kn .*give --kn$' shear hertz.pack
