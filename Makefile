@@ -185,12 +185,14 @@ bench-plates: all
 	@$(MAKE) --no-print-directory B=build build/bench/platestep
 	@sh tests/bench-plates.sh build/bin
 
-# Validation against the papers: densify's frictionless compaction (validate/results.md), then
+# Validation against the papers: densify's frictionless compaction (validate/results.md), the
+# simple shear of frictional spheres (validate/shear.md), then
 # the frictional and polyaxial studies at the papers' sizes, their reports gathered in
 # validate/studies.md (pipelines/README.md).
 VALIDATE_STUDIES = fig4 fig5-6 fig7 fig8 fig9 s-fig3 s-fig4
 validate: all plotdeps
 	@sh tests/validate.sh build/bin
+	@sh tests/validate-shear.sh build/bin
 	@$(MAKE) --no-print-directory -C pipelines BIN=$(CURDIR)/build/bin $(VALIDATE_STUDIES)
 	@{ echo "# qusgm validation: the papers' studies"; echo; \
 	  echo "Gathered by make validate from pipelines/out/STUDY/report.md ($$(date -u '+%Y-%m-%d %H:%M UTC'), commit $$(git rev-parse --short HEAD 2>/dev/null))."; \
