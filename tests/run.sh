@@ -3,6 +3,10 @@
 # closing line "N passed, N failed".  Unit tests (B/tests/*) and tool tests (tests/tools/*.sh)
 # print one PASS/FAIL line per check; a test program that exits nonzero without printing a
 # FAIL line (a crash, a sanitizer report) counts as one failure.
+#
+# The build directories run at the same time, one process each (the machines this runs on
+# have two cores and the tests are sequential within a build); each build's lines are shown
+# when it is done, in the order given.  TEST_SERIAL=1 runs them one after the other instead.
 set -u
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/tests/out"
@@ -32,9 +36,10 @@ run_one() {	# name, log, command...
 	failed=$((failed + f))
 }
 
-for b in "$@"; do
+run_build() {	# build directory name: its lines on stdout, "passed failed" last
+	b=$1
 	bdir="$top/$b"
-	[ -d "$bdir" ] || { echo "FAIL tests/run.sh: no build directory $b"; failed=$((failed + 1)); continue; }
+	[ -d "$bdir" ] || { echo "FAIL tests/run.sh: no build directory $b"; echo "0 1"; return; }
 	for t in "$bdir"/tests/*; do
 		[ -x "$t" ] || continue
 		n=$(basename "$t")
@@ -53,6 +58,27 @@ for b in "$@"; do
 		run_one "$b/tools/$n" "$out/$b/tools/$n.log" env BIN="$bdir/bin" TOP="$top" sh "$t"
 		cd "$top" || exit 1
 	done
+	echo "$passed $failed"
+}
+
+for b in "$@"; do
+	if [ "${TEST_SERIAL:-0}" = 1 ]; then
+		run_build "$b" >"$out/$b.lines"
+		sed '$d' "$out/$b.lines"
+	else
+		run_build "$b" >"$out/$b.lines" &
+	fi
+done
+wait
+passed=0
+failed=0
+for b in "$@"; do
+	[ "${TEST_SERIAL:-0}" = 1 ] || sed '$d' "$out/$b.lines"
+	read -r p f <<EOF
+$(tail -n 1 "$out/$b.lines")
+EOF
+	passed=$((passed + p))
+	failed=$((failed + f))
 done
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

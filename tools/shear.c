@@ -170,6 +170,7 @@ set_law(struct pack *p, const char *in)
 
 struct run_ctx {
 	struct pack *p;
+	const struct shear_result *res;
 	const struct cli_state *st;
 	int next_snap;
 	time_t start;
@@ -184,13 +185,13 @@ static const struct table_col cols[] = {
 #define NCOLS ((int)(sizeof cols / sizeof cols[0]))
 
 static void
-print_header(void)
+print_header(double inertial)
 {
 	printf("## qusgm shear %s: simple shear along x, walls on y (the bottom fixed, the top at sigma_w), x and z periodic\n",
 	    QUSGM_VERSION);
 	printf("## sigma_w %g Pa, I %g, mu %g, wall mu %g, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
 	       "sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
-	    o.sp.sigma_w, o.sp.inertial, o.mu, o.wall_mu, o.kn, o.kt, o.restitution);
+	    o.sp.sigma_w, inertial, o.mu, o.wall_mu, o.kn, o.kt, o.restitution);
 	table_header(stdout, cols, NCOLS);
 }
 
@@ -203,8 +204,7 @@ write_snapshot(struct run_ctx *c, struct pdem *d, double gamma, const char *path
 	struct cli_state st = *c->st;
 	int r;
 
-	pdem_wrap(d);
-	if (pdem_write_back(d, c->p))
+	if (plateshear_snapshot(d, c->p))
 		return -1;
 	num_format(buf, gamma);
 	if (pack_set_meta(c->p, "shear_gamma", buf))
@@ -226,7 +226,7 @@ on_row(const struct shear_row *row, struct pdem *d, void *vc)
 	double el = difftime(time(NULL), c->start);
 
 	if (c->rows == 0)	/* only now: a run that fails to start writes nothing */
-		print_header();
+		print_header(c->res->inertial);	/* the run's, also under --velocity */
 	table_row(stdout, v, NCOLS);
 	fflush(stdout);	/* a series can be followed while it grows */
 	c->rows++;
@@ -270,7 +270,7 @@ main(int argc, char **argv)
 	struct cli_state st;
 	struct pack p;
 	struct shear_result res;
-	struct run_ctx c = {&p, &st, 0, 0, 0};
+	struct run_ctx c = {&p, &res, &st, 0, 0, 0};
 	const char *in;
 	char buf[40];
 

@@ -175,7 +175,7 @@ static void
 interaction_force(struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist)
 {
 	const double *n = it->n, *xi = d->x + 3 * i;
-	int wall = PACK_IS_WALL(j), M = it->m, k, a;
+	int wall = PACK_IS_WALL(j), M = it->m, k, a, gi, gj;
 	double meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
 	double gn = 2 * d->zeta * sqrt(meff / M), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
 	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn;
@@ -240,6 +240,13 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 				ft[a] *= tn / fm;
 	}
 	apply(d, i, xi, pc, ft, 1);
+	gi = d->glue ? d->glue[i] : 0;
+	gj = d->glue && !wall ? d->glue[j] : 0;
+	if (!wall && gi && gj) {	/* inside a wall body: applied, not counted */
+		apply(d, (size_t)j, xj, pc, ft, -1);
+		return;
+	}
+	d->zends += (gi ? 0 : 1) + (wall || gj ? 0 : 1);
 	if (!wall) {
 		double F[3], br[3];
 
@@ -315,7 +322,7 @@ pdem_forces(struct pdem *d)
 	memset(d->wallf, 0, sizeof d->wallf);
 	memset(d->wallF, 0, sizeof d->wallF);
 	memset(d->sig, 0, sizeof d->sig);
-	d->ninter = d->nwall = d->nelem = 0;
+	d->ninter = d->nwall = d->nelem = d->zends = 0;
 	d->sum_f = 0;
 	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_contact, d) < 0 ? -1 : 0;
 }

@@ -67,6 +67,9 @@ struct pdem {
 	 * Love-Weber stress times the volume */
 	double wallF[NWALLS][3];
 	double sig[6];
+	/* ... and the interactions' ends on free grains (Z of the free grains = zends / their
+	 * number); a pair of two glued grains is part of a wall: it is in none of the sums above */
+	size_t zends;
 	/* Moving walls and grains glued to them (plateshear): glue is NULL or, per grain, 0 for a
 	 * free grain or 1 + w for one glued to wall w, which moves at the wall's velocity
 	 * wallv[w] without turning and has no contact with that wall (it is part of it); a

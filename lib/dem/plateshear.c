@@ -24,6 +24,31 @@ shear_params_default(struct shear_params *sp)
 	sp->max_steps = 100000000;
 }
 
+int
+plateshear_snapshot(struct pdem *d, struct pack *p)
+{
+	size_t i;
+	int a;
+
+	if (pdem_write_back(d, p))
+		return -1;
+	/* wrapped in the pack, not in the engine: the run goes on bit for bit as without it */
+	for (a = 0; a < 3; a++) {
+		double L = p->box[3 + a] - p->box[a];
+
+		if (!p->periodic[a])
+			continue;
+		for (i = 0; i < p->n; i++) {
+			double *y = p->x + 3 * i + a;
+
+			*y -= L * floor((*y - p->box[a]) / L);
+			if (*y >= p->box[3 + a])
+				*y = p->box[a];
+		}
+	}
+	return 0;
+}
+
 void
 shear_result_free(struct shear_result *res)
 {
@@ -52,7 +77,7 @@ struct row_sums {
 };
 
 static void
-row_add(struct row_sums *s, const struct pdem *d, double tau, double sn, double V, double vol)
+row_add(struct row_sums *s, const struct pdem *d, double tau, double sn, double V, double vol, size_t nglued)
 {
 	int a;
 
@@ -61,7 +86,7 @@ row_add(struct row_sums *s, const struct pdem *d, double tau, double sn, double 
 	for (a = 0; a < 6; a++)
 		s->sig[a] += d->sig[a] / V;
 	s->phi += vol / V;
-	s->z += (2.0 * d->ninter - d->nwall) / d->n;
+	s->z += (double)d->zends / (double)(d->n - nglued);
 	s->elements += d->ninter ? (double)d->nelem / d->ninter : 0;
 }
 
@@ -148,6 +173,10 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 		return -1;
 	if ((!d.periodic[0] || !d.periodic[2]) && pdem_make_periodic(&d, per))
 		goto out;
+	/* the pack's frictional history, for the pairs that were in it (those across a new
+	 * periodic boundary start from zero) */
+	if (pdem_read_history(&d, p))
+		goto out;
 	if (glue_walls(&d, res, &mtop))
 		goto out;
 	for (i = 0; i < d.n; i++)
@@ -187,7 +216,8 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 			if (d.glue[i] == 1 + WALL_TOP)
 				for (a = 0; a < 3; a++)
 					F[a] += d.f[3 * i + a];
-		row_add(&rs, &d, -F[0] / A, F[1] / A, (d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]), vol);
+		row_add(&rs, &d, -F[0] / A, F[1] / A, (d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]), vol,
+		    res->glued_bottom + res->glued_top);
 		d.wallv[WALL_TOP][1] += (F[1] - sigma_s * A) / mtop * d.dt;
 		pdem_integrate(&d);
 		d.hi[1] += d.wallv[WALL_TOP][1] * d.dt;

@@ -6,7 +6,8 @@
  * pack already periodic there is taken as it is); y keeps its walls.  The grains touching the
  * bottom or the top wall at the start are glued to it, as in P, "to avoid strain localization
  * at the boundaries": they move with their wall without turning and are no longer in contact
- * with it.  The bottom wall is fixed.  The top wall and its glued grains are one rigid body
+ * with it.  The pack's frictional history (its contact lines) is read back for the pairs it
+ * names.  The bottom wall is fixed.  The top wall and its glued grains are one rigid body
  * of their mass: it moves along x at the constant velocity v_w and along y under the
  * difference of the pack's push and the constant normal stress sigma_w times the wall area,
  * so the volume follows the shear (P: "allowing for the volume of the sample to vary").
@@ -23,7 +24,8 @@
  * and deviatoric stresses in the shear plane, p = (s1 + s3)/2, q = (s1 - s3)/2 (s1, s3 the
  * principal stresses of its xy block) and q/p, the packing fraction, the coordination Z
  * (interactions per grain, grain-grain at both ends plus grain-wall) and the element
- * contacts per interaction.  From a chosen strain on, the velocity profile: <v_x>(y) / v_w
+ * contacts per interaction; the pairs of two glued grains, parts of a wall, are in none of
+ * these, and Z is over the free grains.  From a chosen strain on, the velocity profile: <v_x>(y) / v_w
  * in bins of y / y_w over every grain (P Fig. 6). */
 #ifndef QUSGM_PLATESHEAR_H
 #define QUSGM_PLATESHEAR_H
@@ -79,5 +81,8 @@ void shear_params_default(struct shear_params *sp);
  * shear_result_free). */
 int plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx, struct shear_result *res);
 void shear_result_free(struct shear_result *res);
+/* The engine's state into p, the centres wrapped into the box along the periodic axes there
+ * (not in the engine, so that a run with snapshots is the run without them).  0 or -1. */
+int plateshear_snapshot(struct pdem *d, struct pack *p);
 
 #endif

@@ -8,7 +8,7 @@
 . "$TOP/tests/tools/lib.sh"
 
 if [ "${BIN#*build-san}" != "$BIN" ]; then
-	pass "platy study (left to the optimised build)"
+	echo "SKIP platy study (left to the optimised build)"
 	exit 0
 fi
 o=$PWD/out
@@ -31,5 +31,6 @@ done
 if command -v gnuplot >/dev/null 2>&1; then
 	if head -c 8 "$o/platy/platy.png" 2>/dev/null | od -c | grep -q 'P   N   G'; then pass "platy.png is a PNG"; else fail "platy.png is a PNG" "not written"; fi
 fi
-make --no-print-directory -C "$TOP/pipelines" SMALL=1 BIN="$BIN" OUT="$o" -q platy && pass "a rerun is up to date" ||
+# (the data, not the figure, which needs gnuplot)
+make --no-print-directory -C "$TOP/pipelines" SMALL=1 BIN="$BIN" OUT="$o" -q platy-data && pass "a rerun is up to date" ||
     fail "a rerun is up to date" "make -q says the study is out of date"
