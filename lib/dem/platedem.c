@@ -462,20 +462,7 @@ pdem_unbalanced(const struct pdem *d)
 void
 pdem_wrap(struct pdem *d)
 {
-	size_t i;
-	int a;
-
-	for (a = 0; a < 3; a++) {
-		double L = d->hi[a] - d->lo[a];
-		if (!d->periodic[a])
-			continue;
-		for (i = 0; i < d->n; i++) {
-			double *y = d->x + 3 * i + a;
-			*y -= L * floor((*y - d->lo[a]) / L);
-			if (*y >= d->hi[a])	/* rounding of floor at the upper face */
-				*y = d->lo[a];
-		}
-	}
+	pack_wrap_centres(d->x, d->n, d->lo, d->hi, d->periodic);
 }
 
 int

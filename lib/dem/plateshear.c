@@ -27,25 +27,10 @@ shear_params_default(struct shear_params *sp)
 int
 plateshear_snapshot(struct pdem *d, struct pack *p)
 {
-	size_t i;
-	int a;
-
 	if (pdem_write_back(d, p))
 		return -1;
 	/* wrapped in the pack, not in the engine: the run goes on bit for bit as without it */
-	for (a = 0; a < 3; a++) {
-		double L = p->box[3 + a] - p->box[a];
-
-		if (!p->periodic[a])
-			continue;
-		for (i = 0; i < p->n; i++) {
-			double *y = p->x + 3 * i + a;
-
-			*y -= L * floor((*y - p->box[a]) / L);
-			if (*y >= p->box[3 + a])
-				*y = p->box[a];
-		}
-	}
+	pack_wrap_centres(p->x, p->n, p->box, p->box + 3, p->periodic);
 	return 0;
 }
 

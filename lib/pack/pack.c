@@ -342,3 +342,22 @@ pack_history_lookup(const long *keys, size_t n, size_t i, long j)
 	}
 	return lo < n && keys[3 * lo] == key[0] && keys[3 * lo + 1] == key[1] ? keys[3 * lo + 2] : -1;
 }
+
+void
+pack_wrap_centres(double *x, size_t n, const double lo[3], const double hi[3], const int periodic[3])
+{
+	size_t i;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		double L = hi[a] - lo[a];
+		if (!periodic[a])
+			continue;
+		for (i = 0; i < n; i++) {
+			double *y = x + 3 * i + a;
+			*y -= L * floor((*y - lo[a]) / L);
+			if (*y >= hi[a])	/* rounding of floor at the upper face */
+				*y = lo[a];
+		}
+	}
+}

@@ -152,6 +152,8 @@ int pack_plate_radius(const struct pack *p, enum shape_radius *conv);
 
 /* Box geometry: wall w's inward normal and position along its axis. */
 double pack_box_length(const double box[6], int axis);
+/* Wrap n centres x (3n) into [lo, hi) along the axes where periodic is set. */
+void pack_wrap_centres(double *x, size_t n, const double lo[3], const double hi[3], const int periodic[3]);
 double pack_box_volume(const double box[6]);
 /* The sum of the grains' volumes, spheres and spheroplates (shape_volume), overlaps not
  * subtracted (m^3). */
