@@ -13,11 +13,20 @@
 #include <string.h>
 
 static long window = 1;
-static const char *stress_arg = "wall", *emt_arg;
+static int pool;
+/* The volume-averaged stress by default, whatever the walls' friction: it is the stress the
+ * grains carry, and with frictionless walls it equals the wall stresses at equilibrium; with
+ * frictional walls the wall normal forces miss what the walls' friction carries (isotropic
+ * probe of a frictional 1000-grain pack: K 1.30 GPa from the walls, 0.82 GPa inside, the
+ * same 0.83 for both once the walls are frictionless; share/doc/friction.md).  A table
+ * without the sig_lw columns (written by hand, or by another code) is fitted on its sig
+ * columns. */
+static const char *stress_arg, *emt_arg;
 
 static struct cli_opt opts[] = {
 	{"window", 'k', CLI_LONG, &window, "K", "increments per interval (fitted together by least squares)", NULL},
-	{"stress", 0, CLI_STRING, &stress_arg, "KIND", "wall (normal forces on the walls) or lw (volume-averaged)", NULL},
+	{"stress", 0, CLI_STRING, &stress_arg, "KIND", "lw (volume-averaged; the default where the table has it) or wall (normal forces on the walls)", NULL},
+	{"pool-segments", 0, CLI_FLAG, &pool, NULL, "intervals run across path segments (a probe's x, y and z fitted together)", NULL},
 	{"emt", 0, CLI_STRING, &emt_arg, "MATERIAL", "add effective-medium K and G from each interval's porosity, coordination and sigma_c (grains of MATERIAL)", NULL},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
@@ -53,7 +62,7 @@ main(int argc, char **argv)
 	cli_parse(&tool, argc, argv, &st);
 	if (window < 1)
 		cli_usage_error("--window: must be positive");
-	if (strcmp(stress_arg, "wall") && strcmp(stress_arg, "lw"))
+	if (stress_arg && strcmp(stress_arg, "wall") && strcmp(stress_arg, "lw"))
 		cli_usage_error("--stress: must be wall or lw");
 	if (emt_arg && material_lookup(emt_arg, &mat))
 		cli_usage_error("--emt: %s", msg_geterr());
@@ -71,9 +80,20 @@ main(int argc, char **argv)
 	if (t.nrow >= 2 && (size_t)window > t.nrow - 1)
 		msg_die(EXIT_DATA, "%s: --window %ld is longer than the table's %zu increments (%zu rows)",
 		    display, window, t.nrow - 1, t.nrow);
-	if (curve_columns(&t, display, strcmp(stress_arg, "lw") ? "sig" : "sig_lw", &cols) ||
-	    curve_moduli(&t, &cols, display, window, &iv, &n))
+	if (!stress_arg)
+		stress_arg = table_find(&t, "sig_lw_xx") >= 0 ? "lw" : "wall";
+	if (curve_columns(&t, display, strcmp(stress_arg, "lw") ? "sig" : "sig_lw", &cols))
 		msg_die_err(EXIT_DATA);
+	cols.pool = pool;
+	if (curve_moduli(&t, &cols, display, window, &iv, &n))
+		msg_die_err(EXIT_DATA);
+	for (k = 0; k < n; k++) {
+		const struct curve_interval *I = &iv[k];
+		if (!isnan(I->K_negative) || !isnan(I->G_negative))
+			msg_warn("%s:%ld: increments %ld-%ld: %s = %.4g Pa is negative: no modulus, written as nan",
+			    display, t.line[I->row_to], I->inc_from, I->inc_to, isnan(I->G_negative) ? "K" : "G",
+			    isnan(I->G_negative) ? I->K_negative : I->G_negative);
+	}
 	if (emt_arg && ((cphi = table_find(&t, "porosity")) < 0 || (cz = table_find(&t, "coordination")) < 0))
 		msg_die(EXIT_DATA, "%s: --emt needs the porosity and coordination columns", display);
 	if (file_out_open(&out, st.output))

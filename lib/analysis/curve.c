@@ -22,8 +22,10 @@ curve_columns(const struct table *t, const char *display, const char *stress_pre
 		if ((c->sig[a] = table_find(t, name)) < 0)
 			goto missing;
 	}
+	c->from_sig = strcmp(stress_prefix, "sig") != 0;
+	c->pool = 0;
 	snprintf(name, sizeof name, "sigma_c");
-	if ((c->sigma_c = table_find(t, name)) < 0)
+	if ((c->sigma_c = table_find(t, name)) < 0 && !c->from_sig)
 		goto missing;
 	c->sig_lat = table_find(t, "sig_lat");
 	c->seg = table_find(t, "seg");
@@ -92,7 +94,7 @@ gather_increments(struct work *w, size_t q, int seg, long k, size_t *m)
 	int a;
 
 	*m = 0;
-	while (q < w->nk && (long)*m < k && (c->seg < 0 || (int)val(t, w->keep[q], c->seg) == seg)) {
+	while (q < w->nk && (long)*m < k && (c->seg < 0 || c->pool || (int)val(t, w->keep[q], c->seg) == seg)) {
 		for (a = 0; a < 3; a++) {
 			w->de[*m][a] = val(t, w->keep[q], c->eps[a]) - val(t, w->keep[q - 1], c->eps[a]);
 			w->ds[*m][a] = val(t, w->keep[q], c->sig[a]) - val(t, w->keep[q - 1], c->sig[a]);
@@ -116,14 +118,42 @@ fit_interval(const struct work *w, size_t first, size_t end, int seg, size_t m, 
 	I->inc_from = c->inc >= 0 ? (long)val(t, from, c->inc) : (long)(first - 1);
 	I->inc_to = c->inc >= 0 ? (long)val(t, to, c->inc) : (long)(end - 1);
 	I->row_to = to;
-	I->sigma_c = 0.5 * (val(t, from, c->sigma_c) + val(t, to, c->sigma_c));
-	I->sig_lat = 0.5 * (val(t, from, c->sig_lat) + val(t, to, c->sig_lat));
+	if (c->from_sig) {
+		int a, ax = 0;
+		double big = -1;
+		for (a = 0; a < 3; a++) {
+			double d = fabs(val(t, to, c->eps[a]) - val(t, from, c->eps[a]));
+			if (d > big)
+				big = d, ax = a;
+		}
+		I->sigma_c = I->sig_lat = 0;
+		for (a = 0; a < 3; a++) {
+			double s = 0.5 * (val(t, from, c->sig[a]) + val(t, to, c->sig[a]));
+			I->sigma_c += s / 3;
+			if (a != ax)
+				I->sig_lat += s / 2;
+		}
+	} else {
+		I->sigma_c = 0.5 * (val(t, from, c->sigma_c) + val(t, to, c->sigma_c));
+		I->sig_lat = 0.5 * (val(t, from, c->sig_lat) + val(t, to, c->sig_lat));
+	}
 	if (hooke_fit((const double(*)[3])w->de, (const double(*)[3])w->ds, m, &I->hk)) {
 		char why[256];
 		snprintf(why, sizeof why, "%s", msg_geterr());
 		msg_seterr("%s:%ld: %s", w->display, t->line[to], why);
 		return -1;
 	}
+	I->K_negative = I->G_negative = NAN;
+	if (I->hk.has_K && I->hk.K < 0) {
+		I->K_negative = I->hk.K;
+		I->hk.K = NAN;
+	}
+	if (I->hk.has_G && I->hk.G < 0) {
+		I->G_negative = I->hk.G;
+		I->hk.G = NAN;
+	}
+	if (!isnan(I->K_negative) || !isnan(I->G_negative))
+		I->hk.lambda = I->hk.E = I->hk.nu = NAN;
 	return 0;
 }
 

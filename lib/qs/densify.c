@@ -471,7 +471,8 @@ finish(struct densify_state *d)
 	memcpy(p->x, d->x, 3 * p->n * sizeof *d->x);
 	if (contacts_store(p, 0))
 		return -1;
-	if (pack_get_meta(p, "sliding_ratio") && pack_set_meta(p, "sliding_ratio", "0")) {
+	if ((pack_get_meta(p, "sliding_ratio") && pack_set_meta(p, "sliding_ratio", "0")) ||
+	    (pack_get_meta(p, "trial_slip_ratio") && pack_set_meta(p, "trial_slip_ratio", "0"))) {
 		msg_seterr("out of memory");
 		return -1;
 	}

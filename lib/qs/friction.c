@@ -353,14 +353,22 @@ fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 	if (contacts_store(p, 1))
 		return -1;
 	memset(x + n3, 0, n3 * sizeof *x);
-	/* the sliding count: the trial force of each reference contact against the limit of
-	 * its normal force now (opened contacts have none) */
-	f->nslide = 0;
+	/* the slip count: the trial force of each reference contact against the limit of its
+	 * normal force now (opened contacts have none) */
+	f->ntrial_slip = 0;
 	for (k = 0; k < f->n; k++) {
 		const struct fr_contact *c = &f->c[k];
 		double qlim = (PACK_IS_WALL(c->j) ? p->wall_mu : p->mu) * normal_force_now(p, c);
 		if (qlim > 0 && c->qtrial >= qlim * (1 - 1e-9))
-			f->nslide++;
+			f->ntrial_slip++;
+	}
+	/* the paper's count: the committed lines at their limit mu P0 */
+	f->nlimit = 0;
+	for (k = 0; k < p->nc; k++) {
+		const struct pack_contact *h = &p->c[k];
+		double qlim = (PACK_IS_WALL(h->j) ? p->wall_mu : p->mu) * h->P0;
+		if (qlim > 0 && vec3_norm(h->Q0) >= qlim * (1 - 1e-9))
+			f->nlimit++;
 	}
 	return 0;
 }

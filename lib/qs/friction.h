@@ -60,8 +60,10 @@ struct qs_friction {
 	 * largest excess |Q0| / Q_max - 1 */
 	size_t stale, clamped;
 	double clamp_excess;
-	/* from fr_commit: the contacts that slide by the end-of-increment test (see fr_commit) */
-	size_t nslide;
+	/* from fr_commit: the contacts whose elastic trial force reached the limit of their
+	 * final normal force (ntrial_slip), and the history lines committed at that limit,
+	 * |Q0| >= mu P0 (nlimit); see fr_commit */
+	size_t ntrial_slip, nlimit;
 };
 
 void fr_init(struct qs_friction *f, enum fr_rule rule);
@@ -84,13 +86,17 @@ int fr_check_history(const struct pack *p);
  * The caller's x must hold p->x followed by 3N zeros.  0 or -1. */
 int fr_begin(struct qs_friction *f, struct qs_system *s);
 /* End the increment at x (6N): evaluate, write the history into p->c, move p->x to x, zero the
- * rotations in x.  Counts the sliding contacts of the increment into f->nslide: those whose
- * elastic trial force reaches the limit of their normal force at the end, |Q^p - k* u_s| >=
- * mu P_end.  That is the Mindlin-Deresiewicz test with the limit the contact has when the
- * increment ends; |Q| = Q_max with the limit frozen at the start (fr_sliding) also counts a
+ * rotations in x.  Counts two kinds of sliding contact (share/doc/friction.md):
+ *  - f->ntrial_slip, the slip count of DEM codes: contacts whose elastic trial force reaches
+ *    the limit of their normal force at the end, |Q^p - k* u_s| >= mu P_end, i.e. that slipped
+ *    somewhere in the increment.  Under uniaxial compression it levels off near 0.43 of the
+ *    contacts: most of them slip a little in every increment while their normal force rises.
+ *  - f->nlimit, the paper's count (F Fig. 4): history lines committed at their Coulomb limit,
+ *    |Q0| >= mu P0 with P0 the new normal force, i.e. contacts that end the increment fully
+ *    mobilised.  It rises fast and levels off near 0.07-0.08 on glass packs at mu 0.3.
+ * |Q| = Q_max with the limit frozen at the start (fr_sliding) is neither: it also counts a
  * contact whose normal force rose faster than its tangential load (it sticks under the
- * updated limit): under uniaxial compression that reported half the contacts of a pack as
- * sliding.  0 or -1. */
+ * updated limit), half the contacts of a pack under uniaxial compression.  0 or -1. */
 int fr_commit(struct qs_friction *f, struct qs_system *s, double *x);
 /* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
  * |Q| >= Q_max (1 - 1e-9)). */

@@ -86,7 +86,7 @@ frictionalize_run(struct pack *p, const struct fric_params *fp, fric_row_fn fn, 
 		}
 		for (a = 0; a < 3; a++) {
 			dE[0][a] = row.eps[a] - prev.eps[a];
-			dS[0][a] = row.sig[a] - prev.sig[a];
+			dS[0][a] = row.sig_lw[a] - prev.sig_lw[a];
 		}
 		if (hooke_fit((const double(*)[3])dE, (const double(*)[3])dS, 1, &hk))
 			hk.K = hk.G = NAN;

@@ -129,9 +129,10 @@ begin(struct loader *L)
 }
 
 /* The row's measures of the pack as committed; the residual comes from the caller.  The
- * sliding ratio here is the pack's record of it (meta sliding_ratio, written by the increment
- * that made the pack), else the count from the history lines; loader_step replaces it with
- * the increment's own count. */
+ * sliding ratios here are the pack's record of them (meta sliding_ratio and trial_slip_ratio,
+ * written by the increment that made the pack), else the count from the history lines (the
+ * trial ratio then 0: a pack does not keep trial forces); loader_step replaces them with the
+ * increment's own counts. */
 static int
 fill_row(struct loader *L, struct load_row *row, size_t *ncontacts)
 {
@@ -157,6 +158,9 @@ fill_row(struct loader *L, struct load_row *row, size_t *ncontacts)
 	row->sliding_ratio = L->lp.friction ? (isnan(m.sliding_ratio) ? 0 : m.sliding_ratio) : 0;
 	if (L->lp.friction && pack_get_meta_double(L->p, "sliding_ratio", &rec) == 0 && rec >= 0 && rec <= 1)
 		row->sliding_ratio = rec;
+	row->trial_slip_ratio = 0;
+	if (L->lp.friction && pack_get_meta_double(L->p, "trial_slip_ratio", &rec) == 0 && rec >= 0 && rec <= 1)
+		row->trial_slip_ratio = rec;
 	*ncontacts = m.contacts_gg + m.contacts_gw;
 	return 0;
 }
@@ -248,12 +252,12 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 {
 	struct qs_min_report rep;
 	int st;
-	size_t nsl, nc;
+	size_t nsl, ntr, nc;
 	double dbox[3];
 	int a;
 
 	memset(row, 0, sizeof *row);
-	nsl = 0;
+	nsl = ntr = 0;
 	if (begin(L))
 		return -1;
 	/* de is the change of the strain eps = (L_ref - L) / L_ref, so the box shrinks by
@@ -267,8 +271,11 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 	if (L->lp.friction) {
 		if (fr_commit(&L->f, &L->s, L->x))
 			return -1;
-		/* the increment's sliding contacts (fr_commit), before any settling */
-		nsl = L->f.nslide;
+		/* the increment's sliding contacts (fr_commit), before any settling: settling
+		 * slips contacts to the limits of their new normal forces, which would count
+		 * the relaxation of the commit, not the increment */
+		nsl = L->f.nlimit;
+		ntr = L->f.ntrial_slip;
 		if (st == 0 && (st = settle(L, &rep)) < 0)
 			return -1;
 	} else {
@@ -280,10 +287,12 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 	if (fill_row(L, row, &nc))
 		return -1;
 	row->sliding_ratio = nc ? (double)nsl / nc : 0;
+	row->trial_slip_ratio = nc ? (double)ntr / nc : 0;
 	{
-		char buf[32];
+		char buf[32], buf2[32];
 		snprintf(buf, sizeof buf, "%.17g", row->sliding_ratio);
-		if (pack_set_meta(L->p, "sliding_ratio", buf)) {
+		snprintf(buf2, sizeof buf2, "%.17g", row->trial_slip_ratio);
+		if (pack_set_meta(L->p, "sliding_ratio", buf) || pack_set_meta(L->p, "trial_slip_ratio", buf2)) {
 			msg_seterr("out of memory");
 			return -1;
 		}
@@ -301,7 +310,7 @@ static const struct table_col load_cols[] = {
 	{"sig_xx", "Pa"}, {"sig_yy", "Pa"}, {"sig_zz", "Pa"},
 	{"sig_lw_xx", "Pa"}, {"sig_lw_yy", "Pa"}, {"sig_lw_zz", "Pa"},
 	{"sigma_c", "Pa"}, {"sig_lat", "Pa"}, {"porosity", NULL}, {"coordination", NULL},
-	{"sliding_ratio", NULL}, {"iterations", NULL}, {"residual", NULL}, {"res_mean", NULL},
+	{"sliding_ratio", NULL}, {"trial_slip_ratio", NULL}, {"iterations", NULL}, {"residual", NULL}, {"res_mean", NULL},
 	{"K", "Pa"}, {"G", "Pa"},
 };
 #define LOAD_NCOLS ((int)(sizeof load_cols / sizeof load_cols[0]))
@@ -331,6 +340,7 @@ load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, 
 	v[n++] = row->porosity;
 	v[n++] = row->coordination;
 	v[n++] = row->sliding_ratio;
+	v[n++] = row->trial_slip_ratio;
 	v[n++] = (double)row->iterations;
 	v[n++] = row->res_max;
 	v[n++] = row->res_mean;

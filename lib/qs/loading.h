@@ -48,7 +48,11 @@ struct load_row {
 	double sig[3];		/* wall stresses (Pa) */
 	double sig_lw[6];	/* volume-averaged (Love-Weber) stress xx yy zz xy xz yz (Pa) */
 	double sigma_c;		/* tr(sig)/3 */
-	double porosity, coordination, sliding_ratio;
+	double porosity, coordination;
+	/* contacts committed at their Coulomb limit |Q0| >= mu P0 (the paper's sliding ratio),
+	 * and contacts whose elastic trial force reached mu P (DEM codes' slip fraction); of all
+	 * contacts, before the increment's settling (fr_commit, share/doc/friction.md) */
+	double sliding_ratio, trial_slip_ratio;
 	long iterations, evals;
 	double res_max, res_mean;
 	int status;		/* the minimiser's: 0 converged, 1 iteration limit */
@@ -78,7 +82,7 @@ void loader_close(struct loader *L);
 
 /* The rows as TSV (share/doc/tables.md): inc, seg, strains, wall stresses, Love-Weber normal
  * stresses, sigma_c, the mean lateral stress sig_lat (of the two axes other than axis), porosity,
- * coordination, sliding_ratio, iterations, residual, res_mean; with_moduli adds K and G of
+ * coordination, sliding_ratio, trial_slip_ratio, iterations, residual, res_mean; with_moduli adds K and G of
  * the increment (NaN where the increment does not determine them, and on the first row). */
 #include <stdio.h>
 void load_table_header(FILE *fp, int with_moduli);

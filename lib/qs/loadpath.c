@@ -37,16 +37,21 @@ path_parse_axis(const char *s, int *axis)
 }
 
 static int
-parse_kind(const char *word, int k, enum path_kind *kind)
+parse_kind(const char *word, int k, enum path_kind *kind, int *probe)
 {
 	enum path_kind kk;
 
+	*probe = strcmp(word, "probe") == 0;
+	if (*probe) {
+		*kind = PATH_UNIAXIAL;
+		return 0;
+	}
 	for (kk = PATH_UNIAXIAL; kk <= PATH_POLYAXIAL; kk++)
 		if (strcmp(word, path_kind_name(kk)) == 0) {
 			*kind = kk;
 			return 0;
 		}
-	msg_seterr("segment %d: unknown path '%s' (uniaxial, isotropic, triaxial, polyaxial)", k, word);
+	msg_seterr("segment %d: unknown path '%s' (uniaxial, isotropic, triaxial, polyaxial, probe)", k, word);
 	return -1;
 }
 
@@ -197,9 +202,10 @@ set_default_stop(int k, const struct path_defaults *def, struct path_seg *sg)
 	return 0;
 }
 
-/* One segment from its words (modified in place). */
+/* One segment from its words (modified in place); *probe is set for a probe, which the
+ * caller expands into its three uniaxial segments. */
 static int
-parse_seg(char *text, int k, const struct path_defaults *def, struct path_seg *sg)
+parse_seg(char *text, int k, const struct path_defaults *def, struct path_seg *sg, int *probe)
 {
 	struct seg_extra x = {0, 0};
 	char *w, *save = NULL;
@@ -213,17 +219,35 @@ parse_seg(char *text, int k, const struct path_defaults *def, struct path_seg *s
 		msg_seterr("segment %d is empty", k);
 		return -1;
 	}
-	if (parse_kind(w, k, &sg->kind))
+	if (parse_kind(w, k, &sg->kind, probe))
 		return -1;
-	while ((w = strtok_r(NULL, " \t\n", &save)))
+	while ((w = strtok_r(NULL, " \t\n", &save))) {
+		if (*probe && strncmp(w, "axis=", 5) == 0) {
+			msg_seterr("segment %d: a probe loads x, y and z in turn: no axis=", k);
+			return -1;
+		}
+		if (*probe && (strncmp(w, "to-stress=", 10) == 0 || strncmp(w, "to-strain=", 10) == 0)) {
+			msg_seterr("segment %d: a probe stops by steps=N (per axis), not '%s'", k, w);
+			return -1;
+		}
 		if (parse_setting(w, k, sg, &x))
 			return -1;
+	}
 	if (isnan(sg->step) || sg->step == 0) {
 		msg_seterr("segment %d: no strain step (step=D or --strain-step)", k);
 		return -1;
 	}
 	if (set_ratio(k, sg, &x))
 		return -1;
+	if (*probe) {
+		if (sg->steps == 0)
+			sg->steps = def->steps;
+		if (sg->steps <= 0) {
+			msg_seterr("segment %d: a probe needs steps=N (increments per axis) or --steps", k);
+			return -1;
+		}
+		return 0;
+	}
 	return set_default_stop(k, def, sg);
 }
 
@@ -231,7 +255,7 @@ int
 path_parse(const char *spec, const struct path_defaults *def, struct load_path *path)
 {
 	char *copy = strdup(spec), *seg, *save = NULL;
-	int k = 0;
+	int k = 0, probe;
 
 	if (!copy) {
 		msg_seterr("out of memory");
@@ -239,17 +263,28 @@ path_parse(const char *spec, const struct path_defaults *def, struct load_path *
 	}
 	path->n = 0;
 	for (seg = strtok_r(copy, ";", &save); seg; seg = strtok_r(NULL, ";", &save)) {
+		struct path_seg sg;
+		int a, nseg;
 		k++;
-		if (path->n == sizeof path->seg / sizeof path->seg[0]) {
-			msg_seterr("more than %zu segments", path->n);
+		if (parse_seg(seg, k, def, &sg, &probe)) {
 			free(copy);
 			return -1;
 		}
-		if (parse_seg(seg, k, def, &path->seg[path->n])) {
+		nseg = probe ? 3 : 1;
+		if (path->n + nseg > sizeof path->seg / sizeof path->seg[0]) {
+			msg_seterr("more than %zu segments", sizeof path->seg / sizeof path->seg[0]);
 			free(copy);
 			return -1;
 		}
-		path->n++;
+		for (a = 0; a < nseg; a++) {
+			struct path_seg *d = &path->seg[path->n++];
+			*d = sg;
+			if (probe) {
+				d->axis = a;
+				d->ratio[0] = d->ratio[1] = d->ratio[2] = 0;
+				d->ratio[a] = 1;
+			}
+		}
 	}
 	free(copy);
 	if (path->n == 0) {

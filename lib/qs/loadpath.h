@@ -10,6 +10,9 @@
  *     triaxial  [axis=z] hold=PA|hold    axial strain; the lateral walls keep the mean lateral
  *                                        stress at PA (hold: at its value when the segment starts)
  *     polyaxial ratio=A:B:C              strain increments in the proportions A:B:C (x:y:z)
+ *     probe     steps=N                  uniaxial along x, then y, then z, N increments each:
+ *                                        three uniaxial segments (moduli --pool-segments fits
+ *                                        them together, averaging the axes; share/doc/tables.md)
  *
  * and, for any kind: step=D (strain per increment along the axis, or per axis for isotropic,
  * or of the largest ratio; negative unloads), then the stop: steps=N, to-stress=PA (sigma_c

@@ -35,17 +35,17 @@ expect_num "uniaxial loading raised sigma_c" "$(info_value f.txt sigma_c)" ">" "
 if grep -q '^history frictionalize ' f.pack; then pass "history line"; else fail "history line" "none"; fi
 
 # --- the log -----------------------------------------------------------------------------
-hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\titerations\tresidual\tres_mean\tK[Pa]\tG[Pa]')
+hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\ttrial_slip_ratio\titerations\tresidual\tres_mean\tK[Pa]\tG[Pa]')
 if [ "$(head -n 1 f.tsv)" = "$hdr" ]; then pass "log header"; else fail "log header" "$(head -n 1 f.tsv)"; fi
 # the starting row (inc 0, seg 0, K and G nan), then increments 1..n of segment 1, 21 columns,
 # compression along z only (the default --axis), K and G positive
 awk -F '\t' 'NR == 1 { next }
-     { k = NR - 2; if (NF != 21) bad = "row " NR " has " NF " columns" }
+     { k = NR - 2; if (NF != 22) bad = "row " NR " has " NF " columns" }
      $1 != k { bad = "row " NR ": inc " $1 ", wanted " k }
-     k == 0 && !($2 == 0 && $20 == "nan" && $21 == "nan" && $17 == 0) { bad = "start row: seg " $2 ", K " $20 ", G " $21 }
+     k == 0 && !($2 == 0 && $21 == "nan" && $22 == "nan" && $18 == 0) { bad = "start row: seg " $2 ", K " $21 ", G " $22 }
      k > 0 && $2 != 1 { bad = "row " NR ": seg " $2 }
-     k > 0 && !($20 > 0 && $21 > 0 && $17 > 0) { bad = "row " NR ": K " $20 ", G " $21 ", iterations " $17 }
-     k > 0 && !($18 <= 1e-4) { bad = "row " NR ": residual " $18 }
+     k > 0 && !($21 > 0 && $22 > 0 && $18 > 0) { bad = "row " NR ": K " $21 ", G " $22 ", iterations " $18 }
+     k > 0 && !($19 <= 1e-4) { bad = "row " NR ": residual " $19 }
      k > 0 && !($5 > z && $3 == x && $4 == y) { bad = "row " NR ": not uniaxial along z" }
      { x = $3; y = $4; z = $5 }
      END { if (bad) { print bad; exit 1 } }' f.tsv >why && pass "log: start row, then one row per increment" || fail "log: start row, then one row per increment" "$(cat why)"
@@ -63,7 +63,7 @@ awk -F '\t' 'NR > 2 { r[NR - 2] = $16 } END {
 # last W increments differs from that of the W before by less than --sat-tol (0.05) times itself
 W=$(frictionalize -v --max-inc 1000 -o /dev/null dense.pack 2>&1 | sed -n 's/.*saturation window \([0-9]*\) increments.*/\1/p')
 expect_num "saturation window at least --window" "${W:-0}" ">=" 10
-# the first increment K at which the window means agree (column C: 16 sliding ratio, 21 G)
+# the first increment K at which the window means agree (column C: 16 sliding ratio, 22 G)
 cat >sat.awk <<'AWK'
 NR > 2 { v[++n] = $C }
 END {
@@ -80,11 +80,16 @@ awk -F '\t' -v W="$W" -v C=16 -f sat.awk f.tsv >why && pass "stops at the first 
     fail "stops at the first increment where the window means agree" "$(cat why)"
 # --until shear: the first increment at which the mean G of the last window exceeds the one before
 expect_ok "--until shear runs" frictionalize --until shear --log sh.tsv -o sh.pack dense.pack
-awk -F '\t' -v W="$W" -v C=21 -f sat.awk sh.tsv >why && pass "--until shear stops once G has passed its minimum" ||
+awk -F '\t' -v W="$W" -v C=22 -f sat.awk sh.tsv >why && pass "--until shear stops once G has passed its minimum" ||
     fail "--until shear stops once G has passed its minimum" "$(cat why)"
 expect_error "--until bad" 2 '^frictionalize: --until: must be sliding or shear' frictionalize --until never dense.pack
 last=$(tail -n 1 f.tsv)
 expect_num "log's last sliding_ratio is packinfo's" "$(echo "$last" | cut -f 16)" "==" "$(info_value f.txt sliding_ratio)"
+expect_num "log's last trial_slip_ratio is packinfo's" "$(echo "$last" | cut -f 17)" "==" "$(info_value f.txt trial_slip_ratio)"
+# the log's K and G are those of the volume-averaged stress (moduli's default): moduli on
+# the log, one increment per interval, gives the same numbers
+expect_num "log's last G is moduli's of its last increment (volume-averaged stress)" \
+    "$(rel "$(echo "$last" | cut -f 22)" "$(moduli f.tsv 2>/dev/null | tail -n 1 | cut -f 8)")" "<" 1e-9
 expect_num "log's last sigma_c is packinfo's" "$(rel "$(echo "$last" | cut -f 12)" "$(info_value f.txt sigma_c)")" "<" 1e-9
 
 # --- determinism --------------------------------------------------------------------------
@@ -111,7 +116,7 @@ grep -q '^frictionalize: .*nothing can slide' ok.err && pass "--mu 0 --wall-mu 0
 expect_num "--mu 0 --wall-mu 0: saturates after two windows" "$(($(wc -l <m00.tsv) - 2))" "==" $((2 * W))
 expect_ok "--mu 0 alone runs" frictionalize --mu 0 -o m0b.pack dense.pack
 if grep -q '^walls .* 0$' m0b.pack; then pass "--mu 0: --wall-mu follows it"; else fail "--mu 0: --wall-mu follows it" "$(grep '^walls' m0b.pack)"; fi
-expect_num "--mu 0 --wall-mu 0: sliding ratio stays 0" "$(awk -F '\t' 'NR > 1 && $16 != 0 { n++ } END { print n + 0 }' m00.tsv)" "==" 0
+expect_num "--mu 0 --wall-mu 0: sliding ratio stays 0" "$(awk -F '\t' 'NR > 1 && ($16 != 0 || $17 != 0) { n++ } END { print n + 0 }' m00.tsv)" "==" 0
 awk '/^end$/ { on = 1; next } on && NF == 7 && ($4 != 0 || $5 != 0 || $6 != 0) { q++ } END { exit q > 0 }' m00.pack &&
     pass "--mu 0 --wall-mu 0: no tangential force at all" || fail "--mu 0 --wall-mu 0: no tangential force at all" "found some"
 

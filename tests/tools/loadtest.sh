@@ -6,7 +6,7 @@
 . "$TOP/tests/tools/lib.sh"
 
 # columns: 1 inc, 2 seg, 3-5 eps, 6-8 sig, 9-11 sig_lw, 12 sigma_c, 13 sig_lat, 14 porosity,
-# 15 coordination, 16 sliding_ratio, 17 iterations, 18 residual, 19 res_mean
+# 15 coordination, 16 sliding_ratio, 17 trial_slip_ratio, 18 iterations, 19 residual, 20 res_mean
 
 small_pack frictional "frictionalize makes the frictional pack"
 packinfo fr.pack >fr.txt 2>/dev/null
@@ -19,7 +19,7 @@ if [ "$rc" -eq 0 ] && [ ! -s six.err ]; then pass "loadtest --steps 6: exit 0, q
 grep -q '^## path: uniaxial .*step=0.0001 steps=6$' six.tsv && pass "## path line" || fail "## path line" "$(grep '^## path' six.tsv)"
 grep -q '^## equilibrium: residual <= 0.0001 .*method lbfgs' six.tsv && pass "## equilibrium line" || fail "## equilibrium line" "$(grep '^## equil' six.tsv)"
 grep -q '^## friction: mu 0.3, wall_mu 0.3, rule return-map$' six.tsv && pass "## friction line" || fail "## friction line" "$(grep '^## fric' six.tsv)"
-hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\titerations\tresidual\tres_mean')
+hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\ttrial_slip_ratio\titerations\tresidual\tres_mean')
 if [ "$(grep -v '^##' six.tsv | head -n 1)" = "$hdr" ]; then pass "column header"; else fail "column header" "$(grep -v '^##' six.tsv | head -n 1)"; fi
 if [ "$(grep -c '^##' six.tsv)" -ge 3 ] && [ "$(head -n 1 six.tsv | cut -c 1-2)" = "##" ] && [ "$(grep -c '^# ' six.tsv)" -eq 1 ]; then
 	pass "## lines first, one column header"
@@ -29,10 +29,10 @@ fi
 # the starting row (inc 0, seg 0, 0 iterations: the pack as read), then 6 increments of
 # segment 1, 19 columns, 1e-4 more eps_zz each, lateral strains fixed
 expect_num "--steps 6: start row + 6 rows" "$(rows six.tsv | wc -l)" "==" 7
-rows six.tsv | awk -F '\t' '{ k = NR - 1; if (NF != 19) bad = "row " NR ": " NF " columns" }
+rows six.tsv | awk -F '\t' '{ k = NR - 1; if (NF != 20) bad = "row " NR ": " NF " columns" }
      $1 != k { bad = "row " NR ": inc " $1 }
-     k == 0 && !($2 == 0 && $17 == 0) { bad = "start row: seg " $2 ", iterations " $17 }
-     k > 0 && !($2 == 1 && $17 > 0 && $18 <= 1e-4) { bad = "row " NR ": seg " $2 ", iterations " $17 ", residual " $18 }
+     k == 0 && !($2 == 0 && $18 == 0) { bad = "start row: seg " $2 ", iterations " $18 }
+     k > 0 && !($2 == 1 && $18 > 0 && $19 <= 1e-4) { bad = "row " NR ": seg " $2 ", iterations " $18 ", residual " $19 }
      k > 0 { d = $5 - z; if (d < 0.99e-4 || d > 1.01e-4 || $3 != x || $4 != y) bad = "row " NR ": not a 1e-4 uniaxial z step" }
      k > 0 && !($8 > sz && $12 > sc) { bad = "row " NR ": stress did not grow" }
      { x = $3; y = $4; z = $5; sz = $8; sc = $12 }
@@ -40,6 +40,9 @@ rows six.tsv | awk -F '\t' '{ k = NR - 1; if (NF != 19) bad = "row " NR ": " NF 
 expect_num "start row is the pack as read: sigma_c" "$(rel "$(col six.tsv 1 12)" "$s0")" "<" 1e-9
 expect_num "start row is the pack as read: sliding_ratio" "$(col six.tsv 1 16)" "==" "$(info_value fr.txt sliding_ratio)"
 expect_num "friction slides in the rows" "$(col six.tsv 7 16)" ">" 0
+expect_num "start row is the pack as read: trial_slip_ratio" "$(col six.tsv 1 17)" "==" "$(info_value fr.txt trial_slip_ratio)"
+# most contacts slip a little while their normal force rises; few end at their limit
+expect_num "the trial slips outnumber the contacts at their limit" "$(col six.tsv 7 17)" ">" "$(col six.tsv 7 16)"
 packinfo six.pack >six.txt 2>/dev/null
 expect_num "-o pack: packinfo residual" "$(info_value six.txt residual)" "<=" 1e-4
 expect_num "-o pack: its sigma_c is the last row's" "$(rel "$(info_value six.txt sigma_c)" "$(col six.tsv 7 12)")" "<" 1e-9
@@ -69,7 +72,7 @@ expect_num "split run: a.pack carries sliding history" "$(info_value a.txt slidi
 # the second run starts with a row repeating the state reached (seg 0, inc 3), then inc 4..6
 expect_num "split run: second half has start row + 3 rows" "$(rows b.tsv | wc -l)" "==" 4
 if [ "$(col b.tsv 1 1)" = 3 ] && [ "$(col b.tsv 1 2)" = 0 ]; then pass "split run: second half starts at inc 3, seg 0"; else fail "split run: second half starts at inc 3, seg 0" "inc $(col b.tsv 1 1) seg $(col b.tsv 1 2)"; fi
-if [ "$(col b.tsv 1 1)-$(rows b.tsv | cut -f 3-16 | head -n 1)" = "$(col a.tsv 4 1)-$(rows a.tsv | cut -f 3-16 | sed -n 4p)" ]; then
+if [ "$(col b.tsv 1 1)-$(rows b.tsv | cut -f 3-17 | head -n 1)" = "$(col a.tsv 4 1)-$(rows a.tsv | cut -f 3-17 | sed -n 4p)" ]; then
 	pass "split run: the start row repeats the state the first half ended in"
 else
 	fail "split run: the start row repeats the state the first half ended in" "rows differ"
@@ -163,7 +166,7 @@ expect_num "triaxial hold=PA: mean |sig_lat - PA| after the first increment / |s
 expect_ok "--mu 0 runs" loadtest --mu 0 --steps 3 -o mu0.pack fr.pack
 mv ok.out mu0.tsv
 grep -q '^## friction: none (mu 0)$' mu0.tsv && pass "--mu 0: ## friction none" || fail "--mu 0: ## friction none" "$(grep '^## fric' mu0.tsv)"
-expect_num "--mu 0: nothing slides" "$(rows mu0.tsv | awk -F '\t' 'NR > 1 && $16 != 0 { n++ } END { print n + 0 }')" "==" 0
+expect_num "--mu 0: nothing slides" "$(rows mu0.tsv | awk -F '\t' 'NR > 1 && ($16 != 0 || $17 != 0) { n++ } END { print n + 0 }')" "==" 0
 grep -q '^friction 0$' mu0.pack && pass "--mu 0: the -o pack has friction 0" || fail "--mu 0: the -o pack has friction 0" "$(grep '^friction' mu0.pack)"
 awk '/^end$/ { on = 1; next } on && NF == 7 && ($4 != 0 || $5 != 0 || $6 != 0) { q++ } END { exit q > 0 }' mu0.pack &&
     pass "--mu 0: no tangential history written" || fail "--mu 0: no tangential history written" "Q0 != 0"

@@ -641,14 +641,16 @@ test_shear(enum fr_rule rule)
  * along the tangent by 1.2 Q_max/k* from Q0 = 0 (trial 1.2 Q_max, beyond the frozen limit:
  * fr_sliding counts it) and towards grain 1 by the overlap that raises P to ratio x P: with
  * ratio 1.3 the end limit 1.3 Q_max is above the trial (it sticks under the limit it has
- * then, nslide 0), with 1.1 below (nslide 1).  The expected count comes from the closed
+ * then, no trial slip), with 1.1 below (a trial slip), with 0.9 (the normal force fell) too.
+ * The committed force, clamped to the frozen Q_max, is at the new limit mu P_end only at 0.9
+ * (the paper's count, nlimit).  The expected count comes from the closed
  * forms (trial k* u, Hertz P of the final centre distance); 1.1, 1.2 and 1.3 are far apart
  * against the second-order change of the distance by the tangential push (u^2 / 2d: about
  * 1e-4 of P). */
 static void
 test_slide_count(void)
 {
-	static const double ratio[] = {1.3, 1.1};
+	static const double ratio[] = {1.3, 1.1, 0.9};
 	size_t m;
 
 	for (m = 0; m < sizeof ratio / sizeof ratio[0]; m++) {
@@ -677,9 +679,15 @@ test_slide_count(void)
 		/* the tangential push lengthens the centre distance by u^2 / 2d, 1e-4 of P here */
 		check_rel(Pend / rp.P, ratio[m], 1e-3, "slide count %.1f: P_end / P of the pushed overlap", ratio[m]);
 		rc = commit(&f, &s, x, "slide count");
-		CHECK(rc == 0 && f.nslide == (size_t)(trial >= p.mu * Pend),
-		    "slide count %.1f: trial %.6g mu P, end limit %.6g mu P: fr_commit counts %zu sliding (expected %d)", ratio[m],
-		    trial / (p.mu * rp.P), Pend / rp.P, f.nslide, trial >= p.mu * Pend);
+		CHECK(rc == 0 && f.ntrial_slip == (size_t)(trial >= p.mu * Pend),
+		    "slide count %.1f: trial %.6g mu P, end limit %.6g mu P: fr_commit counts %zu trial slips (expected %d)", ratio[m],
+		    trial / (p.mu * rp.P), Pend / rp.P, f.ntrial_slip, trial >= p.mu * Pend);
+		/* the committed force is the return map's, clamped to the frozen limit mu P (the
+		 * trial is 1.2 of it): at the limit of the new normal force only when P fell */
+		CHECK(rc == 0 && f.nlimit == (size_t)(fmin(trial, rp.qmax) >= p.mu * Pend * (1 - 1e-9)),
+		    "slide count %.1f: |Q0| %.6g mu P against the new limit %.6g mu P: fr_commit counts %zu at the limit (expected %d)",
+		    ratio[m], fmin(trial, rp.qmax) / (p.mu * rp.P), Pend / rp.P, f.nlimit,
+		    fmin(trial, rp.qmax) >= p.mu * Pend * (1 - 1e-9));
 		fr_free(&f);
 		qs_free(&s);
 		pack_free(&p);
