@@ -213,6 +213,15 @@ fi
 # --- help, version ---------------------------------------------------------------------------
 expect_help_version loadtest --path --to-stress
 
+# probe: uniaxial along x, y, z in turn, N increments each, as three segments
+expect_ok "probe steps=2 (frictionless)" loadtest --mu 0 --path 'probe steps=2' dense.pack
+rows ok.out | awk -F '\t' 'NR > 1 { k = NR - 1; a = int((k - 1) / 2) + 1
+	if ($2 != a) bad = "row " NR ": seg " $2 " (want " a ")"
+	for (i = 1; i <= 3; i++) { d = $(2 + i) - p[i]; if ((i == a) != (d > 0.99e-4 && d < 1.01e-4) || (i != a && d != 0)) bad = "row " NR ": eps " i " moved by " d } }
+	{ for (i = 1; i <= 3; i++) p[i] = $(2 + i) }
+	END { if (NR != 7) bad = NR " rows"; if (bad) { print bad; exit 1 } }' >why &&
+    pass "probe: 2 increments of 1e-4 along x (seg 1), y (seg 2), z (seg 3)" || fail "probe: 2 increments of 1e-4 along x (seg 1), y (seg 2), z (seg 3)" "$(cat why)"
+
 # --- errors: exit status, nothing on stdout, one stderr line, no -o file --------------------
 # expect_fail NAME STATUS REGEX ARGS...: loadtest ARGS -o nothing.pack
 expect_fail() {
@@ -227,6 +236,9 @@ expect_fail "second segment bad" 2 "^loadtest: --path: segment 2: " --path 'unia
 expect_fail "polyaxial without ratio" 2 '^loadtest: --path: segment 1: .*ratio' --path polyaxial --steps 3 fr.pack
 expect_fail "hold and lateral together" 2 '^loadtest: --path: segment 1: .*exclusive' --path 'triaxial hold lateral=0.5' --steps 3 fr.pack
 expect_fail "empty path" 2 '^loadtest: --path: ' --path '' --steps 3 fr.pack
+expect_fail "probe with axis=" 2 '^loadtest: --path: segment 1: a probe loads x, y and z in turn: no axis= ' --path 'probe axis=z steps=2' fr.pack
+expect_fail "probe with to-stress=" 2 "^loadtest: --path: segment 1: a probe stops by steps=N \\(per axis\\), not 'to-stress=9e6' " --path 'probe to-stress=9e6' fr.pack
+expect_fail "probe without steps" 2 '^loadtest: --path: segment 1: a probe needs steps=N' --path probe --to-stress 9e6 fr.pack
 # a bare loadtest (the pipe of the README) runs 100 increments; a path without a stop in a
 # segment and with a stop option for another kind still fails to parse
 loadtest fr.pack >bare.tsv 2>/dev/null
