@@ -36,18 +36,22 @@ common() {
 	    awk 'NR == 1 { lo = $1; hi = $2 } { if ($1 > lo) lo = $1; if ($2 < hi) hi = $2 } END { if (lo < hi) printf "%.6g", (lo + hi) / 2; else printf "-" }'
 }
 info() { "$bin/packinfo" "$1" | awk -v k="$2" '$1 == k { print $2 }'; }
+# the volume-averaged confining stress tr(sig_lw) / 3 of each row of table T
+lw_mean() { $cols "$1" sig_lw_xx sig_lw_yy sig_lw_zz | awk '{ printf "%.17g\n", ($1 + $2 + $3) / 3 }'; }
 fric_summary() {	# run: phase (b) in one line
 	f=$R/$1/fric.tsv
 	ninc=$(($($cols "$f" inc | wc -l) - 1))
-	printf '| %s | %s | %s -> %s | %s | %s -> %s (max %s) |\n' "$1" "$ninc" \
+	printf '| %s | %s | %s -> %s | %s -> %s | %s | %s | %s -> %s (max %s) |\n' "$1" "$ninc" \
 	    "$(first "$f" sigma_c | mpa)" "$(last "$f" sigma_c | mpa)" \
+	    "$(lw_mean "$f" | head -n 1 | mpa)" "$(lw_mean "$f" | tail -n 1 | mpa)" \
 	    "$($cols "$f" sliding_ratio | tail -n 10 | awk '{ s += $1 } END { printf "%.3f", s / NR }')" \
+	    "$($cols "$f" trial_slip_ratio | tail -n 10 | awk '{ s += $1 } END { printf "%.3f", s / NR }')" \
 	    "$($cols "$f" G | sed -n 2p | gpa)" "$(last "$f" G | gpa)" \
 	    "$($cols "$f" G | awk '$1 !~ /nan/ && $1 > m { m = $1 } END { print m }' | gpa)"
 }
 fric_header() {
-	echo '| run | phase (b) increments | sigma_c (MPa) | sliding ratio (mean of last 10) | G (GPa) first -> last |'
-	echo '| --- | --- | --- | --- | --- |'
+	echo '| run | phase (b) increments | sigma_c at the walls (MPa) | volume-averaged sigma_c (MPa) | sliding ratio (mean of last 10) | trial slip ratio (mean of last 10) | G (GPa) first -> last |'
+	echo '| --- | --- | --- | --- | --- | --- | --- |'
 }
 test_summary() {	# run: the uniaxial test's moduli in one line
 	m=$R/$1/moduli.tsv
@@ -104,7 +108,10 @@ saturates at about 0.09-0.11 while G, first high ("stiffer than typical experime
 falls; once friction is developed (sigma_c from 4 to about 9 MPa) the moduli increase with sigma_c
 in the uniaxial test.
 
-**This run**
+**This run** (the sliding ratio comparable with the paper's counts the contacts committed at
+their Coulomb limit mu P; the trial slip ratio, DEM codes' slip fraction, those whose trial force
+reached it during the increment: share/doc/friction.md.  Moduli and G from the volume-averaged
+stress; sigma_c of phase (b) at the walls, where frictionalize controls it, and volume-averaged)
 
 EOF
 	fric_header; fric_summary g2740-s4-mu0.3
@@ -232,8 +239,10 @@ s-fig4)
 uniaxial probes; porosity 37.4 -> 35.1 %, coordination 6.24 -> 7.15; K agrees with acoustic
 experiments on glass beads with no adjustment of parameters, G is underestimated (no friction).
 
-**This run** (each stress: densify of the 1 MPa pack, then 3 uniaxial increments of 1e-4 fitted
-together; coordination counts a wall contact once)
+**This run** (each stress: densify of the 1 MPa pack, then a probe of 3 uniaxial increments of
+1e-4 along each of x, y and z, fitted together: G is the mean of the three axes', since one
+axis's G of a frictionless pack varies by 40-60 %; volume-averaged stress; porosity and
+coordination of the whole box, a wall contact counted once)
 
 EOF
 	echo '| sigma_c^(mu=0) (MPa) | porosity (%) | coordination | sigma_c of the probe (MPa) | K (GPa) | G (GPa) | K_emt (GPa) | G_emt rough / smooth (GPa) |'
