@@ -66,6 +66,7 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "contacts_gw", NULL, (double)m->contacts_gw);
 	add(r, "under4", NULL, (double)m->under4);
 	add(r, "rattlers", NULL, (double)m->rattlers);
+	add(r, "rattler_min_contacts", NULL, (double)m->rattler_min_contacts);
 	add(r, "r_mean", "m", m->r_mean);
 	add(r, "r_std", "m", m->r_std);
 	add(r, "r_min", "m", m->r_min);

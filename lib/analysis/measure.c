@@ -26,8 +26,22 @@ measure_coordination(const struct pack *p, const struct geo_contacts *gc, unsign
 	}
 }
 
+unsigned
+measure_rattler_rule(const struct pack *p)
+{
+	size_t k;
+
+	for (k = 0; k < p->nc; k++) {
+		const struct pack_contact *c = &p->c[k];
+
+		if (c->Q0[0] != 0 || c->Q0[1] != 0 || c->Q0[2] != 0 || c->M0 != 0)
+			return 2;
+	}
+	return 4;
+}
+
 size_t
-measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned char *flag)
+measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned min_contacts, unsigned char *flag)
 {
 	unsigned *cnt = malloc((p->n ? p->n : 1) * sizeof *cnt);
 	size_t k, nr = 0;
@@ -41,7 +55,7 @@ measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned c
 	while (changed) {
 		changed = 0;
 		for (k = 0; k < p->n; k++)
-			if (!flag[k] && cnt[k] < 4) {
+			if (!flag[k] && cnt[k] < min_contacts) {
 				flag[k] = 1;
 				nr++;
 				changed = 1;
@@ -500,7 +514,8 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	m->porosity = 1 - pack_grain_volume(p) / m->volume;
 	measure_radii(p, m);
 	measure_coordination(p, gc, cnt);
-	m->rattlers = measure_rattlers(p, gc, rat);
+	m->rattler_min_contacts = measure_rattler_rule(p);
+	m->rattlers = measure_rattlers(p, gc, m->rattler_min_contacts, rat);
 	for (k = 0; k < p->n; k++) {
 		m->under4 += cnt[k] < 4;
 		m->coordination += cnt[k];

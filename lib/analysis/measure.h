@@ -1,8 +1,8 @@
 /* measure: what a pack says about itself (physics.md §7-8).
  *
  * Porosity, coordination (grain plus wall contacts per grain), grains under 4 contacts,
- * rattlers (grains left after iteratively removing every grain with fewer than 4 contacts
- * among the remaining ones and the walls: they carry no load in a frictionless pack), radius
+ * rattlers (the grains removed by iteratively removing every grain with fewer than 4 contacts
+ * among the remaining ones and the walls, 2 in a frictional pack: measure_rattler_rule), radius
  * statistics, the largest overlap over the smaller radius; and, when contacts carry forces,
  * wall stresses (normal contact forces on the two walls of an axis, averaged, over the wall
  * area), the volume-averaged (Love-Weber) stress, normal-force statistics, the force-balance
@@ -40,6 +40,7 @@ struct pack_measures {
 	double residual_strict;	/* residual_max without the floor */
 	double sliding_ratio;	/* NaN when no contact carries friction history */
 	double fabric[6], fabric_anisotropy;
+	unsigned rattler_min_contacts;	/* the rule of rattlers and coordination_nr: 4 or 2 */
 	/* measure_bulk's, NaN (bulk_grains 0) until it runs or when the margin leaves no inner box */
 	int has_bulk;
 	double bulk_margin;	/* m, on each side with a wall */
@@ -54,8 +55,21 @@ struct pack_measures {
 int measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m);
 /* Per-grain contact counts (grain + wall) over gc; counts has p->n entries. */
 void measure_coordination(const struct pack *p, const struct geo_contacts *gc, unsigned *counts);
-/* Marks rattlers (1) in flag[p->n]; returns their number. */
-size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned char *flag);
+/* The fewest contacts a grain needs not to be a rattler in pack p.  Frictionless, 4: a sphere
+ * held by normal forces alone, which all pass through its centre, needs d + 1 = 4 of them
+ * (three balance only when they lie in one plane, and then nothing holds the grain across
+ * it).  Frictional, 2: with tangential forces two contacts can hold a grain (two equal and
+ * opposite forces along the line through the contact points, each within its friction cone)
+ * and so can three, so the rule of 4 would call load-bearing grains rattlers; a grain with 0
+ * or 1 contact carries no load in either kind.  A pack is frictional when one of its contact
+ * lines carries a tangential force Q0 or a torsional couple M0: its equilibrium holds grains
+ * by friction (frictionalize, loadtest).  A pack with mu > 0 whose lines carry only P0
+ * (densify's) is held by normal forces alone: frictionless. */
+unsigned measure_rattler_rule(const struct pack *p);
+/* Marks rattlers (1) in flag[p->n]: the grains removed by iteratively removing every grain
+ * with fewer than min_contacts contacts among the remaining ones and the walls.  Returns their
+ * number. */
+size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned min_contacts, unsigned char *flag);
 /* The bulk measures of m (measure.h's fields bulk_*) over the inner box: p's box shrunk by
  * margin (m, >= 0) on each side with a wall (none on a periodic axis), or by one mean grain
  * diameter 2 m->r_mean when margin is NaN.  gc and m are measure_pack's of p.  A margin of 0

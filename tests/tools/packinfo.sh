@@ -1,8 +1,9 @@
 # packinfo's bulk keys on a real pack (the small pack of the loading tests: 200 grains,
 # densify --stress 4e6): the walls order the grains next to them, so the box away from them
 # is denser and better connected than the whole box; --bulk-margin 0 is the box itself; a
-# margin too large for the box leaves the bulk keys out; bad margins are usage errors.  The
-# closed-form cases are the unit test's (test_measure.c).  About half a second.
+# margin too large for the box leaves the bulk keys out; bad margins are usage errors.  Then
+# the rattlers of that pack frictionalized: the rule of 2 contacts, not 4.  The closed-form
+# cases are the unit test's (test_measure.c).  About a second.
 . "$TOP/tests/tools/lib.sh"
 
 small_pack dense "densify makes the dense pack"
@@ -62,6 +63,28 @@ if [ "$(sed -n 2p big.tsv | cut -f 6,8-10)" = "$(printf 'nan\tnan\tnan\tnan')" ]
 else
 	fail "--tsv, no inner box: the bulk columns nan" "$(sed -n 2p big.tsv | cut -f 5-10)"
 fi
+
+# --- rattlers: 4 contacts without friction, 2 with ----------------------------------------------
+# the dense pack's contact lines carry P0 alone: frictionless, whatever its mu
+expect_num "dense pack: the frictionless rattler rule, 4 contacts" "$(info_value d.info rattler_min_contacts)" "==" 4
+frictionalize -o fr.pack dense.pack 2>/dev/null
+packinfo fr.pack >fr.info 2>/dev/null
+expect_num "frictional pack: the rattler rule of 2 contacts" "$(info_value fr.info rattler_min_contacts)" "==" 2
+# the same positions with the tangential forces taken out of the lines: the rule of 4
+awk '/^end$/ { on = 1; print; next } on && NF == 7 { $4 = $5 = $6 = $7 = 0 } { print }' fr.pack >fr0.pack
+packinfo fr0.pack >fr0.info 2>/dev/null
+expect_num "... its Q0 and M0 set to 0: the rule of 4" "$(info_value fr0.info rattler_min_contacts)" "==" 4
+u4=$(info_value fr.info under4)
+if [ "${u4:-0}" -gt 0 ]; then
+	# grains with 2 or 3 contacts, held by friction: the pack is in balance (residual <= 1e-4,
+	# frictionalize.sh) with them carrying load, so they are no rattlers here
+	expect_num "frictional pack: fewer rattlers than grains under 4 contacts" "$(info_value fr.info rattlers)" "<" "$u4"
+	expect_num "... which the rule of 4 would all call rattlers" "$(info_value fr0.info rattlers)" ">=" "$u4"
+	expect_num "... and the frictional pack is in balance with them" "$(info_value fr.info residual)" "<=" 1e-4
+else
+	echo "SKIP frictional rattlers: this build's frictional pack has no grain under 4 contacts"
+fi
+expect_num "frictional pack: the bulk denser than the box too" "$(info_value fr.info bulk_porosity)" "<" "$(info_value fr.info porosity)"
 
 # --- usage -----------------------------------------------------------------------------------
 expect_error "--bulk-margin negative" 2 '^packinfo: --bulk-margin: must be >= 0' packinfo --bulk-margin -1e-4 dense.pack

@@ -94,6 +94,7 @@ test_lattice(void)
 	    "lattice: mean coordination %.17g = (2 Ngg + Ngw) / N = 6", m.coordination);
 	CHECK(m.coordination_nr == 6, "lattice: coordination without rattlers %.17g = 6", m.coordination_nr);
 	CHECK(m.rattlers == 0 && m.under4 == 0, "lattice: no rattlers (%zu), none under 4 (%zu)", m.rattlers, m.under4);
+	CHECK(m.rattler_min_contacts == 4, "lattice: no contact lines, the frictionless rule of 4 contacts");
 	CHECK(m.grains == n3, "lattice: %zu grains", m.grains);
 
 	/* porosity: the same expression evaluated once here; both sides round a handful of
@@ -217,6 +218,53 @@ test_small(void)
 	CHECK(measure_pack(&p, &gc, &m) == 0, "four walls: measure_pack");
 	CHECK(m.contacts_gw == 4 && m.under4 == 0 && m.rattlers == 0 && m.coordination == 4,
 	    "four walls: 4 contacts, not under 4, not a rattler");
+	contacts_free(&gc);
+	pack_free(&p);
+}
+
+/* The rattler rule: 4 contacts without friction, 2 when a contact line carries a tangential
+ * force or couple.  A grain in a corner (3 wall contacts) is a rattler by the first, not by
+ * the second; a grain with one contact is one by both; lines with P0 alone (densify's) leave
+ * the pack frictionless. */
+static void
+test_rattler_rule(void)
+{
+	struct pack p;
+	struct geo_contacts gc;
+	struct pack_measures m;
+	struct pack_contact c;
+	double x[3] = {1e-4 - 1e-6, 1e-4 - 1e-6, 1e-4 - 1e-6};
+	int w, st;
+
+	pack_init(&p);
+	p.box[3] = p.box[4] = p.box[5] = 1e-3;
+	p.wall_E = 7e12;
+	p.mu = p.wall_mu = 0.3;
+	pack_add_grain(&p, 0, x, 1e-4, E_, NU, 2420);
+	memset(&c, 0, sizeof c);
+	c.P0 = 1;
+	for (w = 0; w < 3; w++) {
+		c.j = PACK_WALL(2 * w);	/* the low walls */
+		pack_add_contact(&p, &c);
+	}
+	contacts_init(&gc);
+	st = measure_pack(&p, &gc, &m);
+	CHECK(st == 0 && m.rattler_min_contacts == 4 && m.rattlers == 1 && m.under4 == 1,
+	    "rattler rule: lines with P0 alone, mu 0.3: frictionless, the corner grain (3 contacts) a rattler (rule %u)",
+	    m.rattler_min_contacts);
+	CHECK(measure_rattler_rule(&p) == 4, "rattler rule: measure_rattler_rule 4 without tangential forces");
+	p.c[1].Q0[0] = 0.1;	/* on the y wall, along x */
+	st = measure_pack(&p, &gc, &m);
+	CHECK(st == 0 && m.rattler_min_contacts == 2 && m.rattlers == 0 && m.under4 == 1 && m.coordination_nr == 3,
+	    "rattler rule: a line with Q0: frictional, the corner grain holds (rule %u, %zu rattlers, Z_nr %g)",
+	    m.rattler_min_contacts, m.rattlers, m.coordination_nr);
+	p.c[1].Q0[0] = 0, p.c[2].M0 = 1e-9;
+	CHECK(measure_rattler_rule(&p) == 2, "rattler rule: a torsional couple M0 alone is friction too");
+	/* one contact only: a rattler by either rule */
+	p.x[1] = p.x[2] = 5e-4;
+	st = measure_pack(&p, &gc, &m);
+	CHECK(st == 0 && m.rattler_min_contacts == 2 && m.rattlers == 1 && m.coordination == 1,
+	    "rattler rule: frictional, a grain on one wall is a rattler");
 	contacts_free(&gc);
 	pack_free(&p);
 }
@@ -669,6 +717,7 @@ main(void)
 	test_lattice();
 	test_sliding();
 	test_small();
+	test_rattler_rule();
 	test_sphere_box_volume();
 	test_bulk();
 	test_hertz();
