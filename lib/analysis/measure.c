@@ -167,7 +167,8 @@ sphere_box_volume(const gsl_integration_glfixed_table *t, double r, const double
 			double d2 = e[k] * e[k] + e[i] * e[i];
 
 			if (d2 < r * r && e[k] != 0 && e[i] != 0) {
-				th[n] = acos(sqrt(d2) / r), th[n + 1] = -th[n];
+				/* d2 < r^2 does not keep the rounded sqrt(d2) / r from 1 + 1 ulp */
+				th[n] = acos(fmin(sqrt(d2) / r, 1)), th[n + 1] = -th[n];
 				n += 2;
 			}
 		}
