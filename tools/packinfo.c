@@ -14,9 +14,12 @@
 #include <string.h>
 
 static int tsv;
+static double bulk_margin = NAN;	/* NaN: one mean grain diameter (measure_bulk) */
 
 static struct cli_opt opts[] = {
 	{"tsv", 't', CLI_FLAG, &tsv, NULL, "one header line and one row per pack, for scripts", NULL},
+	{"bulk-margin", 0, CLI_DOUBLE, &bulk_margin, "M",
+	    "the bulk keys: the box less M from each wall (default: one mean grain diameter)", "m"},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
@@ -52,12 +55,18 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "ly", "m", pack_box_length(p->box, 1));
 	add(r, "lz", "m", pack_box_length(p->box, 2));
 	add(r, "porosity", NULL, m->porosity);
+	add(r, "bulk_porosity", NULL, m->bulk_porosity);
 	add(r, "coordination", NULL, m->coordination);
+	/* the bulk's keys are absent (NaN) together when the margin leaves no inner box */
+	add(r, "bulk_coordination", NULL, m->bulk_coordination);
+	add(r, "bulk_grains", NULL, m->has_bulk ? (double)m->bulk_grains : NAN);
+	add(r, "bulk_margin", "m", m->has_bulk ? m->bulk_margin : NAN);
 	add(r, "coordination_nr", NULL, m->coordination_nr);
 	add(r, "contacts_gg", NULL, (double)m->contacts_gg);
 	add(r, "contacts_gw", NULL, (double)m->contacts_gw);
 	add(r, "under4", NULL, (double)m->under4);
 	add(r, "rattlers", NULL, (double)m->rattlers);
+	add(r, "rattler_min_contacts", NULL, (double)m->rattler_min_contacts);
 	add(r, "r_mean", "m", m->r_mean);
 	add(r, "r_std", "m", m->r_std);
 	add(r, "r_min", "m", m->r_min);
@@ -184,7 +193,7 @@ measure_row(const struct pack *p, const char *name, struct geo_contacts *gc, str
 	/* the sphere report computes Hertz forces: a pack of the plate engine's linear law
 	 * (spheres at --platyness 0 too) gets the plate report, whose forces are that law's */
 	if (pack_first_plate(p) == (size_t)-1 && !(law && strcmp(law, "linear") == 0)) {
-		if (measure_pack(p, gc, &m))
+		if (measure_pack(p, gc, &m) || measure_bulk(p, gc, bulk_margin, &m))
 			msg_die_err(EXIT_DATA);
 		fill_row(p, &m, r);
 		return 0;
@@ -226,6 +235,8 @@ main(int argc, char **argv)
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
+	if (bulk_margin < 0)
+		cli_usage_error("--bulk-margin: must be >= 0 (a length in m; 0: the box itself)");
 	cli_usage_done();
 	/* Everything is formatted in memory first: a bad pack later in the stream (or in a later
 	 * FILE) must not leave the rows of the earlier ones behind. */

@@ -8,6 +8,7 @@
 #include "pack/shape.h"
 
 #include <gsl/gsl_eigen.h>
+#include <gsl/gsl_integration.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,8 +26,22 @@ measure_coordination(const struct pack *p, const struct geo_contacts *gc, unsign
 	}
 }
 
+unsigned
+measure_rattler_rule(const struct pack *p)
+{
+	size_t k;
+
+	for (k = 0; k < p->nc; k++) {
+		const struct pack_contact *c = &p->c[k];
+
+		if (c->Q0[0] != 0 || c->Q0[1] != 0 || c->Q0[2] != 0 || c->M0 != 0)
+			return 2;
+	}
+	return 4;
+}
+
 size_t
-measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned char *flag)
+measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned min_contacts, unsigned char *flag)
 {
 	unsigned *cnt = malloc((p->n ? p->n : 1) * sizeof *cnt);
 	size_t k, nr = 0;
@@ -40,7 +55,7 @@ measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned c
 	while (changed) {
 		changed = 0;
 		for (k = 0; k < p->n; k++)
-			if (!flag[k] && cnt[k] < 4) {
+			if (!flag[k] && cnt[k] < min_contacts) {
 				flag[k] = 1;
 				nr++;
 				changed = 1;
@@ -62,6 +77,219 @@ measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned c
 	}
 	free(cnt);
 	return nr;
+}
+
+/* The volume of a sphere inside a box (measure_sphere_box_volume): the integral over the
+ * polar angle theta, z = r sin theta, of the area of the disc of radius rho = r cos theta cut
+ * by the box's rectangle in x and y, that area in closed form.  In theta, rho is analytic up to
+ * the poles (in z it has a square root there).  The area is smooth but for the angles where
+ * the disc starts to cross an edge line (rho = |e|: a circular segment grows as
+ * (rho - |e|)^(3/2)) or a corner (rho^2 = ex^2 + ey^2), so the range is split there, and each
+ * piece is mapped by theta = a + L (3u^2 - 2u^3), whose vanishing slope at both ends turns
+ * those powers into analytic functions of u: 32-point Gauss-Legendre then integrates each
+ * piece to rounding (1e-13 relative or better over random boxes against 256 points; 20
+ * points gave 4e-10). */
+#define SPHERE_BOX_POINTS 32
+
+/* The integral of sqrt(rho^2 - t^2) over 0 <= t <= X <= rho. */
+static double
+disc_column(double X, double rho)
+{
+	return 0.5 * (X * sqrt((rho - X) * (rho + X)) + rho * rho * asin(X / rho));
+}
+
+/* The area of the disc of radius rho about the origin within [0, x] x [0, y], x, y >= 0. */
+static double
+disc_quadrant_area(double x, double y, double rho)
+{
+	double xc;
+
+	x = fmin(x, rho), y = fmin(y, rho);
+	if (x * x + y * y <= rho * rho)
+		return x * y;
+	/* the columns below height y up to xc, the circle above it */
+	xc = sqrt((rho - y) * (rho + y));
+	return y * xc + disc_column(x, rho) - disc_column(xc, rho);
+}
+
+/* disc_quadrant_area of the rectangle between the origin and (x, y), signed: + in the first and
+ * third quadrants, - in the others, so that four corners add up to any rectangle. */
+static double
+disc_corner_area(double x, double y, double rho)
+{
+	double a = disc_quadrant_area(fabs(x), fabs(y), rho);
+
+	return signbit(x) != signbit(y) ? -a : a;
+}
+
+/* The area of the disc of radius rho about the origin within [lo[0], hi[0]] x [lo[1], hi[1]]. */
+static double
+disc_rect_area(const double lo[2], const double hi[2], double rho)
+{
+	if (!(rho > 0))
+		return 0;
+	return disc_corner_area(hi[0], hi[1], rho) - disc_corner_area(lo[0], hi[1], rho) -
+	    disc_corner_area(hi[0], lo[1], rho) + disc_corner_area(lo[0], lo[1], rho);
+}
+
+static int
+cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+
+	return x < y ? -1 : x > y;
+}
+
+static double
+sphere_box_volume(const gsl_integration_glfixed_table *t, double r, const double lo[3], const double hi[3])
+{
+	const double e[4] = {lo[0], hi[0], lo[1], hi[1]};
+	double ta, tb, th[2 + 2 * 8], v = 0;
+	int a, k, i, n = 0;
+
+	for (a = 0; a < 3; a++)
+		if (!(lo[a] < r && hi[a] > -r && lo[a] < hi[a]))
+			return 0;
+	if (lo[0] <= -r && lo[1] <= -r && lo[2] <= -r && hi[0] >= r && hi[1] >= r && hi[2] >= r)
+		return 4.0 / 3.0 * M_PI * r * r * r;
+	ta = asin(fmax(lo[2], -r) / r);
+	tb = asin(fmin(hi[2], r) / r);
+	th[n++] = ta, th[n++] = tb;
+	/* where the disc reaches an edge line or a corner, both hemispheres (an edge through the
+	 * axis, e = 0, cuts every disc in the same proportion: no break) */
+	for (k = 0; k < 4; k++)
+		if (e[k] != 0 && fabs(e[k]) < r) {
+			th[n] = acos(fabs(e[k]) / r), th[n + 1] = -th[n];
+			n += 2;
+		}
+	for (k = 0; k < 2; k++)
+		for (i = 2; i < 4; i++) {
+			double d2 = e[k] * e[k] + e[i] * e[i];
+
+			if (d2 < r * r && e[k] != 0 && e[i] != 0) {
+				/* d2 < r^2 does not keep the rounded sqrt(d2) / r from 1 + 1 ulp */
+				th[n] = acos(fmin(sqrt(d2) / r, 1)), th[n + 1] = -th[n];
+				n += 2;
+			}
+		}
+	qsort(th, (size_t)n, sizeof *th, cmp_double);
+	for (k = 0; k + 1 < n; k++) {
+		double p0 = fmax(th[k], ta), L = fmin(th[k + 1], tb) - p0;
+
+		if (!(L > 0))
+			continue;
+		for (i = 0; i < SPHERE_BOX_POINTS; i++) {
+			double u, w, s;
+
+			gsl_integration_glfixed_point(0, 1, (size_t)i, &u, &w, t);
+			s = p0 + L * u * u * (3 - 2 * u);
+			/* dz = r cos(s) ds, ds = 6 L u (1 - u) du */
+			v += w * 6 * L * u * (1 - u) * r * cos(s) * disc_rect_area(lo, hi, r * cos(s));
+		}
+	}
+	return v;
+}
+
+double
+measure_sphere_box_volume(double r, const double lo[3], const double hi[3])
+{
+	gsl_integration_glfixed_table *t = gsl_integration_glfixed_table_alloc(SPHERE_BOX_POINTS);
+	double v;
+
+	if (!t) {
+		msg_seterr("out of memory");
+		return NAN;
+	}
+	v = sphere_box_volume(t, r, lo, hi);
+	gsl_integration_glfixed_table_free(t);
+	return v;
+}
+
+/* The bulk's state before measure_bulk, or when it finds no inner box: absent. */
+static void
+bulk_absent(struct pack_measures *m)
+{
+	int a;
+
+	m->has_bulk = 0;
+	m->bulk_porosity = m->bulk_coordination = NAN;
+	m->bulk_grains = 0;
+	for (a = 0; a < 6; a++)
+		m->bulk_box[a] = NAN;
+}
+
+int
+measure_bulk(const struct pack *p, const struct geo_contacts *gc, double margin, struct pack_measures *m)
+{
+	gsl_integration_glfixed_table *t;
+	unsigned *cnt;
+	double cut[6], whole = 0, part = 0, V = 1, zsum = 0;
+	size_t i;
+	int a;
+
+	bulk_absent(m);
+	if (isnan(margin))
+		margin = 2 * m->r_mean;
+	m->bulk_margin = margin;
+	if (!(margin >= 0) || !isfinite(margin)) {
+		msg_seterr("bulk margin %g: must be a finite length >= 0", margin);
+		return -1;
+	}
+	/* A side is cut where it has a wall and the margin is > 0: with 0, nothing is cut, and the
+	 * grains' overlaps with the walls count in, as the box porosity counts them. */
+	for (a = 0; a < 3; a++) {
+		int cuts = !p->periodic[a] && margin > 0;
+
+		m->bulk_box[a] = p->box[a] + (cuts ? margin : 0);
+		m->bulk_box[3 + a] = p->box[3 + a] - (cuts ? margin : 0);
+		cut[2 * a] = cuts ? m->bulk_box[a] : -INFINITY;
+		cut[2 * a + 1] = cuts ? m->bulk_box[3 + a] : INFINITY;
+	}
+	for (a = 0; a < 3; a++) {
+		if (!(m->bulk_box[3 + a] > m->bulk_box[a])) {
+			bulk_absent(m);
+			return 0;	/* the margins meet: no inner box */
+		}
+		V *= m->bulk_box[3 + a] - m->bulk_box[a];
+	}
+	t = gsl_integration_glfixed_table_alloc(SPHERE_BOX_POINTS);
+	cnt = malloc((p->n ? p->n : 1) * sizeof *cnt);
+	if (!t || !cnt) {
+		gsl_integration_glfixed_table_free(t);
+		free(cnt);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	measure_coordination(p, gc, cnt);
+	for (i = 0; i < p->n; i++) {
+		const double *x = p->x + 3 * i;
+		double r = p->r[i], lo[3], hi[3];
+		int inside = 1, whole_in = 1;
+
+		for (a = 0; a < 3; a++) {
+			lo[a] = cut[2 * a] - x[a];
+			hi[a] = cut[2 * a + 1] - x[a];
+			inside &= lo[a] <= 0 && hi[a] >= 0;
+			whole_in &= lo[a] <= -r && hi[a] >= r;
+		}
+		/* the whole spheres summed as pack_grain_volume sums them: margin 0 gives its value
+		 * to the last bit */
+		if (whole_in)
+			whole += r * r * r;
+		else
+			part += sphere_box_volume(t, r, lo, hi);
+		if (inside) {
+			m->bulk_grains++;
+			zsum += cnt[i];
+		}
+	}
+	gsl_integration_glfixed_table_free(t);
+	free(cnt);
+	m->has_bulk = 1;
+	m->bulk_porosity = 1 - (whole * 4.0 / 3.0 * 3.14159265358979323846 + part) / V;
+	if (m->bulk_grains)
+		m->bulk_coordination = zsum / (double)m->bulk_grains;
+	return 0;
 }
 
 /* The per-grain balance and the sums that measure_pack accumulates over the contacts. */
@@ -268,6 +496,8 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	memset(m, 0, sizeof *m);
 	memset(&b, 0, sizeof b);
 	m->sliding_ratio = NAN;
+	m->bulk_margin = NAN;
+	bulk_absent(m);
 	if (contacts_find(p, gc))
 		return -1;
 	cnt = malloc(p->n * sizeof *cnt);
@@ -285,7 +515,8 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	m->porosity = 1 - pack_grain_volume(p) / m->volume;
 	measure_radii(p, m);
 	measure_coordination(p, gc, cnt);
-	m->rattlers = measure_rattlers(p, gc, rat);
+	m->rattler_min_contacts = measure_rattler_rule(p);
+	m->rattlers = measure_rattlers(p, gc, m->rattler_min_contacts, rat);
 	for (k = 0; k < p->n; k++) {
 		m->under4 += cnt[k] < 4;
 		m->coordination += cnt[k];

@@ -1,8 +1,8 @@
 /* measure: what a pack says about itself (physics.md §7-8).
  *
  * Porosity, coordination (grain plus wall contacts per grain), grains under 4 contacts,
- * rattlers (grains left after iteratively removing every grain with fewer than 4 contacts
- * among the remaining ones and the walls: they carry no load in a frictionless pack), radius
+ * rattlers (the grains removed by iteratively removing every grain with fewer than 4 contacts
+ * among the remaining ones and the walls, 2 in a frictional pack: measure_rattler_rule), radius
  * statistics, the largest overlap over the smaller radius; and, when contacts carry forces,
  * wall stresses (normal contact forces on the two walls of an axis, averaged, over the wall
  * area), the volume-averaged (Love-Weber) stress, normal-force statistics, the force-balance
@@ -11,7 +11,11 @@
  * residual_strict has no floor), with moments |M_i|/R_i
  * counted the same way, and the mean unbalanced-force ratio mean|F_i| / mean|f_c|), the
  * sliding ratio from the contact history, and the fabric tensor <n n> of grain-grain
- * contacts with its anisotropy a = 15/2 sqrt(3/2 d:d), d = <n n> - I/3. */
+ * contacts with its anisotropy a = 15/2 sqrt(3/2 d:d), d = <n n> - I/3.
+ *
+ * The bulk (measure_bulk): the porosity and coordination of an inner box, the box shrunk by a
+ * margin from each wall, because the walls order the grains next to them (a layer of looser
+ * packing, fewer contacts) and the box values mix that layer in with the bulk. */
 #ifndef QUSGM_MEASURE_H
 #define QUSGM_MEASURE_H
 
@@ -36,14 +40,51 @@ struct pack_measures {
 	double residual_strict;	/* residual_max without the floor */
 	double sliding_ratio;	/* NaN when no contact carries friction history */
 	double fabric[6], fabric_anisotropy;
+	unsigned rattler_min_contacts;	/* the rule of rattlers and coordination_nr: 4 or 2 */
+	/* measure_bulk's, NaN (bulk_grains 0) until it runs or when the margin leaves no inner box */
+	int has_bulk;
+	double bulk_margin;	/* m, on each side with a wall */
+	double bulk_box[6];	/* the inner box, xlo ylo zlo xhi yhi zhi (m) */
+	double bulk_porosity;	/* 1 - (grain volume inside the inner box) / (its volume) */
+	double bulk_coordination;	/* mean contacts of the grains centred in it; NaN without any */
+	size_t bulk_grains;	/* grains whose centre is in the inner box */
 };
 
-/* Fills m; gc receives the contacts (may be reused by the caller).  0 or -1. */
+/* Fills m, all but the bulk (measure_bulk); gc receives the contacts (may be reused by the
+ * caller).  0 or -1. */
 int measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m);
 /* Per-grain contact counts (grain + wall) over gc; counts has p->n entries. */
 void measure_coordination(const struct pack *p, const struct geo_contacts *gc, unsigned *counts);
-/* Marks rattlers (1) in flag[p->n]; returns their number. */
-size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned char *flag);
+/* The fewest contacts a grain needs not to be a rattler in pack p.  Frictionless, 4: a sphere
+ * held by normal forces alone, which all pass through its centre, needs d + 1 = 4 of them
+ * (three balance only when they lie in one plane, and then nothing holds the grain across
+ * it).  Frictional, 2: with tangential forces two contacts can hold a grain (two equal and
+ * opposite forces along the line through the contact points, each within its friction cone)
+ * and so can three, so the rule of 4 would call load-bearing grains rattlers; a grain with 0
+ * or 1 contact carries no load in either kind.  A pack is frictional when one of its contact
+ * lines carries a tangential force Q0 or a torsional couple M0: its equilibrium holds grains
+ * by friction (frictionalize, loadtest).  A pack with mu > 0 whose lines carry only P0
+ * (densify's) is held by normal forces alone: frictionless. */
+unsigned measure_rattler_rule(const struct pack *p);
+/* Marks rattlers (1) in flag[p->n]: the grains removed by iteratively removing every grain
+ * with fewer than min_contacts contacts among the remaining ones and the walls.  Returns their
+ * number. */
+size_t measure_rattlers(const struct pack *p, const struct geo_contacts *gc, unsigned min_contacts, unsigned char *flag);
+/* The bulk measures of m (measure.h's fields bulk_*) over the inner box: p's box shrunk by
+ * margin (m, >= 0) on each side with a wall (none on a periodic axis), or by one mean grain
+ * diameter 2 m->r_mean when margin is NaN.  gc and m are measure_pack's of p.  A margin of 0
+ * is the box itself: bulk_porosity and bulk_coordination are then porosity and coordination
+ * exactly (wall overlaps counted in, as there).  The grain volume is each sphere's exact
+ * volume inside the inner box (measure_sphere_box_volume), overlaps between grains not
+ * subtracted; bulk_coordination counts the contacts of the grains centred in the inner box as
+ * coordination counts them, with their neighbours outside it and walls.  When the margin
+ * leaves no inner box (twice the margin >= a box length between walls) has_bulk is 0 and the
+ * fields but bulk_margin stay NaN.  0, or -1 (msg_seterr: out of memory, margin < 0). */
+int measure_bulk(const struct pack *p, const struct geo_contacts *gc, double margin, struct pack_measures *m);
+/* The volume (m^3) of the sphere of radius r about the origin inside the box lo[a] <= x_a <=
+ * hi[a] (bounds relative to the centre; -INFINITY and INFINITY for an open side), to rounding
+ * (1e-13 relative).  NaN (msg_seterr) when out of memory. */
+double measure_sphere_box_volume(double r, const double lo[3], const double hi[3]);
 
 /* What a pack with spheroplates (pack/shape.h) says about itself.  From the grains: its
  * packing fraction with the plates' volume, the spheroradius r and core side L, the

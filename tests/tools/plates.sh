@@ -77,10 +77,11 @@ expect_num "packinfo: normals z, -y, x: nematic order 0" "$(awk -v v="$(info_val
 want=$(awk 'BEGIN { r = 2e-5; L = 1e-4; pi = atan2(0, -1); printf "%.17g", 3 * (2 * r * L * L + 2 * pi * r * r * L + 4 / 3 * pi * r * r * r) / 1e-9 }')
 expect_num "packinfo: packing fraction with the plate volume" "$(rel "$(info_value three.info packing_fraction)" "$want")" '<' 1e-14
 # the interaction keys are the plates' own (measure_plates); what is defined for spheres only
-# (rattlers by the 4-contact rule, overlap over the radius, the sphere fabric) is left out
+# (rattlers by the 4-contact rule, overlap over the radius, the sphere fabric, the bulk keys)
+# is left out
 expect_num "packinfo: three plates apart, coordination 0" "$(info_value three.info coordination)" == 0
-if grep -Eq '^(rattlers|under4|overlap_max|fabric_xx) ' three.info; then
-	fail "packinfo: no sphere-only keys for plates" "$(grep -E '^(rattlers|under4|overlap_max|fabric_xx) ' three.info)"
+if grep -Eq '^(rattlers|under4|overlap_max|fabric_xx|bulk_porosity|bulk_margin) ' three.info; then
+	fail "packinfo: no sphere-only keys for plates" "$(grep -E '^(rattlers|under4|overlap_max|fabric_xx|bulk_porosity|bulk_margin) ' three.info)"
 else
 	pass "packinfo: no sphere-only keys for plates"
 fi

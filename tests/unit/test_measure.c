@@ -94,6 +94,7 @@ test_lattice(void)
 	    "lattice: mean coordination %.17g = (2 Ngg + Ngw) / N = 6", m.coordination);
 	CHECK(m.coordination_nr == 6, "lattice: coordination without rattlers %.17g = 6", m.coordination_nr);
 	CHECK(m.rattlers == 0 && m.under4 == 0, "lattice: no rattlers (%zu), none under 4 (%zu)", m.rattlers, m.under4);
+	CHECK(m.rattler_min_contacts == 4, "lattice: no contact lines, the frictionless rule of 4 contacts");
 	CHECK(m.grains == n3, "lattice: %zu grains", m.grains);
 
 	/* porosity: the same expression evaluated once here; both sides round a handful of
@@ -217,6 +218,231 @@ test_small(void)
 	CHECK(measure_pack(&p, &gc, &m) == 0, "four walls: measure_pack");
 	CHECK(m.contacts_gw == 4 && m.under4 == 0 && m.rattlers == 0 && m.coordination == 4,
 	    "four walls: 4 contacts, not under 4, not a rattler");
+	contacts_free(&gc);
+	pack_free(&p);
+}
+
+/* The rattler rule: 4 contacts without friction, 2 when a contact line carries a tangential
+ * force or couple.  A grain in a corner (3 wall contacts) is a rattler by the first, not by
+ * the second; a grain with one contact is one by both; lines with P0 alone (densify's) leave
+ * the pack frictionless. */
+static void
+test_rattler_rule(void)
+{
+	struct pack p;
+	struct geo_contacts gc;
+	struct pack_measures m;
+	struct pack_contact c;
+	double x[3] = {1e-4 - 1e-6, 1e-4 - 1e-6, 1e-4 - 1e-6};
+	int w, st;
+
+	pack_init(&p);
+	p.box[3] = p.box[4] = p.box[5] = 1e-3;
+	p.wall_E = 7e12;
+	p.mu = p.wall_mu = 0.3;
+	pack_add_grain(&p, 0, x, 1e-4, E_, NU, 2420);
+	memset(&c, 0, sizeof c);
+	c.P0 = 1;
+	for (w = 0; w < 3; w++) {
+		c.j = PACK_WALL(2 * w);	/* the low walls */
+		pack_add_contact(&p, &c);
+	}
+	contacts_init(&gc);
+	st = measure_pack(&p, &gc, &m);
+	CHECK(st == 0 && m.rattler_min_contacts == 4 && m.rattlers == 1 && m.under4 == 1,
+	    "rattler rule: lines with P0 alone, mu 0.3: frictionless, the corner grain (3 contacts) a rattler (rule %u)",
+	    m.rattler_min_contacts);
+	CHECK(measure_rattler_rule(&p) == 4, "rattler rule: measure_rattler_rule 4 without tangential forces");
+	p.c[1].Q0[0] = 0.1;	/* on the y wall, along x */
+	st = measure_pack(&p, &gc, &m);
+	CHECK(st == 0 && m.rattler_min_contacts == 2 && m.rattlers == 0 && m.under4 == 1 && m.coordination_nr == 3,
+	    "rattler rule: a line with Q0: frictional, the corner grain holds (rule %u, %zu rattlers, Z_nr %g)",
+	    m.rattler_min_contacts, m.rattlers, m.coordination_nr);
+	p.c[1].Q0[0] = 0, p.c[2].M0 = 1e-9;
+	CHECK(measure_rattler_rule(&p) == 2, "rattler rule: a torsional couple M0 alone is friction too");
+	/* one contact only: a rattler by either rule */
+	p.x[1] = p.x[2] = 5e-4;
+	st = measure_pack(&p, &gc, &m);
+	CHECK(st == 0 && m.rattler_min_contacts == 2 && m.rattlers == 1 && m.coordination == 1,
+	    "rattler rule: frictional, a grain on one wall is a rattler");
+	contacts_free(&gc);
+	pack_free(&p);
+}
+
+/* measure_sphere_box_volume on cases with closed forms.  The quadrature is at rounding
+ * (measure.c: 1e-13 or better), so 1e-12 relative is asked, well inside the 1e-9 that the
+ * bulk porosity needs. */
+static void
+test_sphere_box_volume(void)
+{
+	const double r = 3e-4, V = 4.0 / 3.0 * M_PI * r * r * r, inf = INFINITY;
+	const double d[] = {0.3 * r, -0.45 * r, 0.9 * r, 1e-3 * r};
+	double lo[3], hi[3], a, h, cap, v, sum;
+	size_t k;
+	int ax, o, b;
+
+	lo[0] = lo[1] = lo[2] = -r, hi[0] = hi[1] = hi[2] = r;
+	CHECK(measure_sphere_box_volume(r, lo, hi) == V, "sphere in box: the box touching the sphere holds it whole");
+	lo[0] = -1.5 * r, hi[2] = 2 * r;
+	CHECK(measure_sphere_box_volume(r, lo, hi) == V, "sphere in box: a sphere inside the box is whole");
+	for (ax = 0; ax < 3; ax++) {
+		char name[96];
+
+		for (b = 0; b < 3; b++)
+			lo[b] = -inf, hi[b] = inf;
+		lo[ax] = 0;
+		snprintf(name, sizeof name, "sphere in box: a plane through the centre (%c >= 0) leaves a hemisphere", 'x' + ax);
+		CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), V / 2, 1e-12, name);
+		for (k = 0; k < sizeof d / sizeof d[0]; k++) {
+			/* a plane at distance d: the cap of height h = r - d, pi h^2 (3 r - h) / 3 */
+			lo[ax] = d[k];
+			h = r - d[k];
+			snprintf(name, sizeof name, "sphere in box: a plane %c = %g r cuts the cap pi h^2 (3r - h)/3", 'x' + ax, d[k] / r);
+			CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), M_PI * h * h * (3 * r - h) / 3, 1e-12, name);
+		}
+	}
+	/* the eight octants about the centre: V/8 each (the sign of the corner does not matter) */
+	for (o = 0; o < 8; o++) {
+		char name[96];
+
+		for (b = 0; b < 3; b++)
+			if (o >> b & 1)
+				lo[b] = 0, hi[b] = inf;
+			else
+				lo[b] = -inf, hi[b] = 0;
+		snprintf(name, sizeof name, "sphere in box: the box corner at the centre, octant %d, holds V/8", o);
+		CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), V / 8, 1e-12, name);
+	}
+	lo[0] = lo[1] = 0, lo[2] = -inf, hi[0] = hi[1] = hi[2] = inf;
+	CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), V / 4, 1e-12, "sphere in box: an edge through the centre, V/4");
+	/* the cube inscribed in the sphere (corners on it): (2a)^3, a = r / sqrt 3 */
+	a = r / sqrt(3.0);
+	lo[0] = lo[1] = lo[2] = -a, hi[0] = hi[1] = hi[2] = a;
+	CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), 8 * a * a * a, 1e-12, "sphere in box: the inscribed cube, (2 r/sqrt 3)^3");
+	/* a cube of half side a in [r/sqrt 2, r): its six caps are disjoint (x, y > a is outside
+	 * the sphere), V - 6 caps; at r/sqrt 2 its edges touch the sphere */
+	for (k = 0; k < 2; k++) {
+		char name[96];
+
+		a = k ? r / sqrt(2.0) : 0.8 * r;
+		h = r - a, cap = M_PI * h * h * (3 * r - h) / 3;
+		lo[0] = lo[1] = lo[2] = -a, hi[0] = hi[1] = hi[2] = a;
+		snprintf(name, sizeof name, "sphere in box: a centred cube of half side %.4g r, V less six caps", a / r);
+		CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), V - 6 * cap, 1e-12, name);
+	}
+	/* off-centre boxes: two boxes that split one add up to it, and turning the axes (the
+	 * quadrature runs along z, the closed-form area across it) changes nothing */
+	lo[0] = -0.7 * r, lo[1] = -0.2 * r, lo[2] = -0.9 * r, hi[0] = 0.5 * r, hi[1] = 0.95 * r, hi[2] = 0.35 * r;
+	v = measure_sphere_box_volume(r, lo, hi);
+	sum = 0;
+	for (ax = 0; ax < 3; ax++) {
+		double lo1[3], hi1[3], lo2[3], hi2[3];
+
+		memcpy(lo1, lo, sizeof lo1), memcpy(hi1, hi, sizeof hi1), memcpy(lo2, lo, sizeof lo2), memcpy(hi2, hi, sizeof hi2);
+		hi1[ax] = lo2[ax] = 0.1 * r;
+		sum = fmax(sum, fabs(measure_sphere_box_volume(r, lo1, hi1) + measure_sphere_box_volume(r, lo2, hi2) - v) / v);
+	}
+	CHECK(sum <= 1e-12, "sphere in box: a box split in two along x, y or z: the halves add up (%.3g)", sum);
+	{
+		const double lor[3] = {lo[2], lo[0], lo[1]}, hir[3] = {hi[2], hi[0], hi[1]};
+
+		CHECK_CLOSE(measure_sphere_box_volume(r, lor, hir), v, 1e-12, "sphere in box: the same box with its axes turned");
+	}
+	lo[0] = r, hi[0] = 2 * r;
+	CHECK(measure_sphere_box_volume(r, lo, hi) == 0, "sphere in box: a box beside the sphere holds none of it");
+}
+
+/* The lattice of test_lattice with the walls moved out of reach by R, so that the grains on
+ * the faces have fewer contacts (corner 3, edge 4, face 5, inside 6; coordination 4.5). */
+static void
+lattice_free(struct pack *p)
+{
+	int a;
+
+	lattice(p);
+	for (a = 0; a < 3; a++)
+		p->box[a] -= R_, p->box[3 + a] += R_;
+}
+
+/* measure_bulk on constructed packs with closed forms. */
+static void
+test_bulk(void)
+{
+	struct pack p;
+	struct geo_contacts gc;
+	struct pack_measures m, m0;
+	const double s = 2 * R_ - DELTA, first = R_ - DELTA, Vs = 4.0 / 3.0 * M_PI * R_ * R_ * R_;
+	double phi_cell = 1 - Vs / (s * s * s);
+	int a;
+
+	contacts_init(&gc);
+	/* the lattice pressed by its walls: margin 0 counts the grains' overlaps with the walls
+	 * in, as the box porosity does */
+	lattice(&p);
+	a = measure_pack(&p, &gc, &m) || measure_bulk(&p, &gc, 0, &m);
+	CHECK(a == 0 && m.bulk_porosity == m.porosity && m.bulk_coordination == 6 && m.bulk_grains == 64,
+	    "bulk: lattice on its walls, margin 0: bulk_porosity %.17g = porosity %.17g, coordination 6", m.bulk_porosity,
+	    m.porosity);
+	pack_free(&p);
+	lattice_free(&p);
+	a = measure_pack(&p, &gc, &m);
+	CHECK(a == 0 && m.coordination == 4.5 && m.contacts_gw == 0,
+	    "bulk: lattice off the walls: coordination (2 * 144) / 64 = 4.5 (%.17g)", m.coordination);
+	CHECK(!m.has_bulk && isnan(m.bulk_porosity) && isnan(m.bulk_coordination) && isnan(m.bulk_margin),
+	    "bulk: measure_pack leaves the bulk absent");
+	/* margin 0: the box itself, to the last bit */
+	m0 = m;
+	a = measure_bulk(&p, &gc, 0, &m0);
+	CHECK(a == 0 && m0.has_bulk, "bulk: margin 0 measured");
+	CHECK(m0.bulk_porosity == m0.porosity && m0.bulk_coordination == m0.coordination && m0.bulk_grains == 64 &&
+	    m0.bulk_margin == 0, "bulk: margin 0: bulk_porosity %.17g = porosity, bulk_coordination %.17g = coordination, 64 grains",
+	    m0.bulk_porosity, m0.bulk_coordination);
+	/* the inner faces halfway between the outer layer and the next: the 2 x 2 x 2 block inside
+	 * (6 contacts each) loses three caps of height delta/2 each, the 24 grains facing it across
+	 * the faces bring one each in, so the inner box (2s)^3 holds 8 spheres: the unit cell's
+	 * porosity 1 - (4/3 pi R^3) / s^3 */
+	CHECK(measure_bulk(&p, &gc, R_ + first + s / 2, &m) == 0 && m.has_bulk, "bulk: lattice, margin to halfway between layers");
+	CHECK_CLOSE(m.bulk_porosity, phi_cell, 1e-12, "bulk: lattice: bulk porosity = 1 - (4/3 pi R^3) / s^3");
+	CHECK(m.bulk_grains == 8 && m.bulk_coordination == 6, "bulk: lattice: 8 grains inside (%zu), coordination 6 (%.17g)",
+	    m.bulk_grains, m.bulk_coordination);
+	CHECK(m.bulk_porosity < m.porosity && m.bulk_coordination > m.coordination,
+	    "bulk: lattice: the bulk is denser than the box (%.6f < %.6f) and better connected", m.bulk_porosity, m.porosity);
+	CHECK(m.bulk_box[0] == first + s / 2 && m.bulk_box[3] == p.box[3] - (R_ + first + s / 2),
+	    "bulk: the inner box is the box less the margin");
+	/* the default margin: one mean diameter, 2R: the inner faces at x = R, just past the
+	 * outer layer's centres (R - delta), so the 2 x 2 x 2 block is inside */
+	a = measure_bulk(&p, &gc, NAN, &m);
+	CHECK(a == 0 && m.bulk_margin == 2 * R_ && m.bulk_grains == 8,
+	    "bulk: default margin 2 r_mean = %.6g m (%zu grains centred inside)", m.bulk_margin, m.bulk_grains);
+	/* margins that meet: no inner box, nothing made up */
+	CHECK(measure_bulk(&p, &gc, pack_box_length(p.box, 0) / 2, &m) == 0 && !m.has_bulk && isnan(m.bulk_porosity) &&
+	    isnan(m.bulk_coordination) && m.bulk_grains == 0, "bulk: a margin of half the box: no inner box, the bulk absent");
+	a = measure_bulk(&p, &gc, -1e-6, &m);
+	CHECK(a != 0, "bulk: a negative margin is refused (%s)", msg_geterr());
+	CHECK(measure_bulk(&p, &gc, INFINITY, &m) != 0, "bulk: an infinite margin is refused");
+	pack_free(&p);
+
+	/* periodic along z (a period of 4 s: the top layer touches the bottom one), walls in x and
+	 * y out of reach: no margin along z, so the inner box is 2s x 2s x 4s and holds 16 spheres
+	 * (the caps cancel as above), the 2 x 2 columns inside have 6 contacts each; the box has
+	 * 5 (4 x 4 layers: (4 * 2 + 8 * 3 + 4 * 4) / 16 = 3 in the plane, 2 along z) */
+	lattice_free(&p);
+	p.periodic[2] = 1;
+	p.box[2] = first - s / 2, p.box[5] = first + 3.5 * s;
+	a = measure_pack(&p, &gc, &m);
+	CHECK(a == 0 && m.coordination == 5, "bulk: periodic z: box coordination 5 (%.17g)",
+	    m.coordination);
+	CHECK(measure_bulk(&p, &gc, R_ + first + s / 2, &m) == 0 && m.has_bulk && m.bulk_box[2] == p.box[2] &&
+	    m.bulk_box[5] == p.box[5], "bulk: periodic z: no margin along z");
+	CHECK_CLOSE(m.bulk_porosity, phi_cell, 1e-12, "bulk: periodic z: bulk porosity = 1 - (4/3 pi R^3) / s^3");
+	CHECK(m.bulk_grains == 16 && m.bulk_coordination == 6, "bulk: periodic z: 16 grains inside (%zu), coordination 6 (%.17g)",
+	    m.bulk_grains, m.bulk_coordination);
+	/* a margin that would empty a walled axis but for z's: still no inner box */
+	CHECK(measure_bulk(&p, &gc, pack_box_length(p.box, 0), &m) == 0 && !m.has_bulk, "bulk: periodic z, margins meeting in x: absent");
+	for (a = 0; a < 3; a++)
+		p.periodic[a] = 1;
+	CHECK(measure_bulk(&p, &gc, 1, &m) == 0 && m.has_bulk && m.bulk_porosity == m.porosity,
+	    "bulk: periodic on every axis: no walls, the bulk is the box whatever the margin");
 	contacts_free(&gc);
 	pack_free(&p);
 }
@@ -491,6 +717,9 @@ main(void)
 	test_lattice();
 	test_sliding();
 	test_small();
+	test_rattler_rule();
+	test_sphere_box_volume();
+	test_bulk();
 	test_hertz();
 	return unit_summary();
 }

@@ -1,0 +1,93 @@
+# packinfo's bulk keys on a real pack (the small pack of the loading tests: 200 grains,
+# densify --stress 4e6): the walls order the grains next to them, so the box away from them
+# is denser and better connected than the whole box; --bulk-margin 0 is the box itself; a
+# margin too large for the box leaves the bulk keys out; bad margins are usage errors.  Then
+# the rattlers of that pack frictionalized: the rule of 2 contacts, not 4.  The closed-form
+# cases are the unit test's (test_measure.c).  About a second.
+. "$TOP/tests/tools/lib.sh"
+
+small_pack dense "densify makes the dense pack"
+packinfo dense.pack >d.info 2>d.err || fail "packinfo reads the dense pack" "$(cat d.err)"
+
+# --- the wall effect ------------------------------------------------------------------------
+expect_num "bulk porosity below the box's (the looser layer at the walls left out)" \
+    "$(info_value d.info bulk_porosity)" "<" "$(info_value d.info porosity)"
+expect_num "bulk coordination above the box's" "$(info_value d.info bulk_coordination)" ">" "$(info_value d.info coordination)"
+expect_num "bulk porosity a porosity" "$(info_value d.info bulk_porosity)" ">" 0.3
+expect_num "the default margin is one mean grain diameter, 2 r_mean" \
+    "$(rel "$(info_value d.info bulk_margin)" "$(awk 'BEGIN { printf "%.17g", 2 * '"$(info_value d.info r_mean)"' }')")" "<" 1e-12
+expect_num "some grains are in the bulk" "$(info_value d.info bulk_grains)" ">" 10
+expect_num "... and not all" "$(info_value d.info bulk_grains)" "<" "$(info_value d.info grains)"
+# the keys next to porosity and coordination, in this order
+awk '{ print $1 }' d.info | sed -n 5,10p | tr '\n' ' ' >order
+if [ "$(cat order)" = "porosity bulk_porosity coordination bulk_coordination bulk_grains bulk_margin " ]; then
+	pass "bulk keys next to porosity and coordination"
+else
+	fail "bulk keys next to porosity and coordination" "$(cat order)"
+fi
+
+# --- margin 0: the box ------------------------------------------------------------------------
+packinfo --bulk-margin 0 dense.pack >m0.info 2>/dev/null
+expect_num "--bulk-margin 0: bulk_porosity = porosity" \
+    "$(rel "$(info_value m0.info bulk_porosity)" "$(info_value m0.info porosity)")" "<=" 1e-12
+expect_num "--bulk-margin 0: bulk_coordination = coordination" \
+    "$(info_value m0.info bulk_coordination)" "==" "$(info_value m0.info coordination)"
+expect_num "--bulk-margin 0: every grain" "$(info_value m0.info bulk_grains)" "==" "$(info_value m0.info grains)"
+expect_num "--bulk-margin 0: bulk_margin 0" "$(info_value m0.info bulk_margin)" "==" 0
+# a larger margin leaves a smaller, denser core
+packinfo --bulk-margin "$(awk 'BEGIN { printf "%.17g", 2 * '"$(info_value d.info bulk_margin)"' }')" dense.pack >m2.info 2>/dev/null
+expect_num "two diameters: fewer grains in the bulk" "$(info_value m2.info bulk_grains)" "<" "$(info_value d.info bulk_grains)"
+expect_num "two diameters: still below the box porosity" "$(info_value m2.info bulk_porosity)" "<" "$(info_value d.info porosity)"
+
+# --- --tsv: the same numbers ------------------------------------------------------------------
+packinfo --tsv dense.pack >d.tsv 2>/dev/null
+hdr=$(head -n 1 d.tsv | cut -f 5-10)
+if [ "$hdr" = "$(printf 'porosity\tbulk_porosity\tcoordination\tbulk_coordination\tbulk_grains\tbulk_margin[m]')" ]; then
+	pass "--tsv: the bulk columns next to porosity and coordination"
+else
+	fail "--tsv: the bulk columns next to porosity and coordination" "$hdr"
+fi
+expect_num "--tsv: bulk_porosity as in the key/value output" "$(sed -n 2p d.tsv | cut -f 6)" "==" "$(info_value d.info bulk_porosity)"
+expect_num "--tsv: bulk_margin as in the key/value output" "$(sed -n 2p d.tsv | cut -f 10)" "==" "$(info_value d.info bulk_margin)"
+
+# --- no inner box: the bulk keys left out (nan in --tsv) ---------------------------------------
+packinfo --bulk-margin 1 dense.pack >big.info 2>big.err
+if [ $? -eq 0 ] && [ ! -s big.err ] && ! grep -q '^bulk_' big.info && grep -q '^porosity ' big.info; then
+	pass "a margin larger than the box: no bulk keys, nothing on stderr"
+else
+	fail "a margin larger than the box: no bulk keys, nothing on stderr" "$(grep '^bulk_' big.info | tr '\n' ' ') $(cat big.err)"
+fi
+packinfo --tsv --bulk-margin 1 dense.pack >big.tsv 2>/dev/null
+if [ "$(sed -n 2p big.tsv | cut -f 6,8-10)" = "$(printf 'nan\tnan\tnan\tnan')" ]; then
+	pass "--tsv, no inner box: the bulk columns nan"
+else
+	fail "--tsv, no inner box: the bulk columns nan" "$(sed -n 2p big.tsv | cut -f 5-10)"
+fi
+
+# --- rattlers: 4 contacts without friction, 2 with ----------------------------------------------
+# the dense pack's contact lines carry P0 alone: frictionless, whatever its mu
+expect_num "dense pack: the frictionless rattler rule, 4 contacts" "$(info_value d.info rattler_min_contacts)" "==" 4
+frictionalize -o fr.pack dense.pack 2>/dev/null
+packinfo fr.pack >fr.info 2>/dev/null
+expect_num "frictional pack: the rattler rule of 2 contacts" "$(info_value fr.info rattler_min_contacts)" "==" 2
+# the same positions with the tangential forces taken out of the lines: the rule of 4
+awk '/^end$/ { on = 1; print; next } on && NF == 7 { $4 = $5 = $6 = $7 = 0 } { print }' fr.pack >fr0.pack
+packinfo fr0.pack >fr0.info 2>/dev/null
+expect_num "... its Q0 and M0 set to 0: the rule of 4" "$(info_value fr0.info rattler_min_contacts)" "==" 4
+u4=$(info_value fr.info under4)
+if [ "${u4:-0}" -gt 0 ]; then
+	# grains with 2 or 3 contacts, held by friction: the pack is in balance (residual <= 1e-4,
+	# frictionalize.sh) with them carrying load, so they are no rattlers here
+	expect_num "frictional pack: fewer rattlers than grains under 4 contacts" "$(info_value fr.info rattlers)" "<" "$u4"
+	expect_num "... which the rule of 4 would all call rattlers" "$(info_value fr0.info rattlers)" ">=" "$u4"
+	expect_num "... and the frictional pack is in balance with them" "$(info_value fr.info residual)" "<=" 1e-4
+else
+	echo "SKIP frictional rattlers: this build's frictional pack has no grain under 4 contacts"
+fi
+expect_num "frictional pack: the bulk denser than the box too" "$(info_value fr.info bulk_porosity)" "<" "$(info_value fr.info porosity)"
+
+# --- usage -----------------------------------------------------------------------------------
+expect_error "--bulk-margin negative" 2 '^packinfo: --bulk-margin: must be >= 0' packinfo --bulk-margin -1e-4 dense.pack
+expect_error "--bulk-margin nan" 2 "^packinfo: --bulk-margin: 'nan' is not a finite number" packinfo --bulk-margin nan dense.pack
+expect_error "--bulk-margin not a number" 2 "^packinfo: --bulk-margin: '2d' is not a finite number" packinfo --bulk-margin 2d dense.pack
+expect_help_version packinfo --bulk-margin --tsv
