@@ -94,7 +94,10 @@ main(int argc, char **argv)
 			    display, t.line[I->row_to], I->inc_from, I->inc_to, isnan(I->G_negative) ? "K" : "G",
 			    isnan(I->G_negative) ? I->K_negative : I->G_negative);
 	}
-	if (emt_arg && ((cphi = table_find(&t, "porosity")) < 0 || (cz = table_find(&t, "coordination")) < 0))
+	/* the effective medium is a model of the bulk: the state of the grains away from the
+	 * walls where the table has it (loadtest's bulk_ columns), else of the whole box */
+	if (emt_arg && ((cphi = table_find(&t, "bulk_porosity")) < 0 || (cz = table_find(&t, "bulk_coordination")) < 0) &&
+	    ((cphi = table_find(&t, "porosity")) < 0 || (cz = table_find(&t, "coordination")) < 0))
 		msg_die(EXIT_DATA, "%s: --emt needs the porosity and coordination columns", display);
 	if (file_out_open(&out, st.output))
 		msg_die_err(EXIT_DATA);

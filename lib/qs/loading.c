@@ -146,7 +146,10 @@ fill_row(struct loader *L, struct load_row *row, size_t *ncontacts)
 		contacts_free(&gc);
 		return -1;
 	}
+	measure_bulk(L->p, &gc, NAN, &m);
 	contacts_free(&gc);
+	row->bulk_porosity = m.bulk_porosity;
+	row->bulk_coordination = m.bulk_coordination;
 	row->inc = L->inc;
 	load_strain(L->p->box, L->p->refbox, row->eps);
 	for (a = 0; a < 3; a++)
@@ -311,6 +314,7 @@ static const struct table_col load_cols[] = {
 	{"sig_lw_xx", "Pa"}, {"sig_lw_yy", "Pa"}, {"sig_lw_zz", "Pa"},
 	{"sigma_c", "Pa"}, {"sig_lat", "Pa"}, {"porosity", NULL}, {"coordination", NULL},
 	{"sliding_ratio", NULL}, {"trial_slip_ratio", NULL}, {"iterations", NULL}, {"residual", NULL}, {"res_mean", NULL},
+	{"bulk_porosity", NULL}, {"bulk_coordination", NULL},
 	{"K", "Pa"}, {"G", "Pa"},
 };
 #define LOAD_NCOLS ((int)(sizeof load_cols / sizeof load_cols[0]))
@@ -344,6 +348,8 @@ load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, 
 	v[n++] = (double)row->iterations;
 	v[n++] = row->res_max;
 	v[n++] = row->res_mean;
+	v[n++] = row->bulk_porosity;
+	v[n++] = row->bulk_coordination;
 	if (with_moduli) {
 		v[n++] = K;
 		v[n++] = G;

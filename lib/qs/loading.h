@@ -49,6 +49,7 @@ struct load_row {
 	double sig_lw[6];	/* volume-averaged (Love-Weber) stress xx yy zz xy xz yz (Pa) */
 	double sigma_c;		/* tr(sig)/3 */
 	double porosity, coordination;
+	double bulk_porosity, bulk_coordination;	/* of the grains a diameter off the walls (measure_bulk) */
 	/* contacts committed at their Coulomb limit |Q0| >= mu P0 (the paper's sliding ratio),
 	 * and contacts whose elastic trial force reached mu P (DEM codes' slip fraction); of all
 	 * contacts, before the increment's settling (fr_commit, share/doc/friction.md) */
@@ -82,7 +83,8 @@ void loader_close(struct loader *L);
 
 /* The rows as TSV (share/doc/tables.md): inc, seg, strains, wall stresses, Love-Weber normal
  * stresses, sigma_c, the mean lateral stress sig_lat (of the two axes other than axis), porosity,
- * coordination, sliding_ratio, trial_slip_ratio, iterations, residual, res_mean; with_moduli adds K and G of
+ * coordination, sliding_ratio, trial_slip_ratio, iterations, residual, res_mean, bulk_porosity,
+ * bulk_coordination; with_moduli adds K and G of
  * the increment (NaN where the increment does not determine them, and on the first row). */
 #include <stdio.h>
 void load_table_header(FILE *fp, int with_moduli);

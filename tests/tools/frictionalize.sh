@@ -35,16 +35,16 @@ expect_num "uniaxial loading raised sigma_c" "$(info_value f.txt sigma_c)" ">" "
 if grep -q '^history frictionalize ' f.pack; then pass "history line"; else fail "history line" "none"; fi
 
 # --- the log -----------------------------------------------------------------------------
-hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\ttrial_slip_ratio\titerations\tresidual\tres_mean\tK[Pa]\tG[Pa]')
+hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\ttrial_slip_ratio\titerations\tresidual\tres_mean\tbulk_porosity\tbulk_coordination\tK[Pa]\tG[Pa]')
 if [ "$(head -n 1 f.tsv)" = "$hdr" ]; then pass "log header"; else fail "log header" "$(head -n 1 f.tsv)"; fi
 # the starting row (inc 0, seg 0, K and G nan), then increments 1..n of segment 1, 21 columns,
 # compression along z only (the default --axis), K and G positive
 awk -F '\t' 'NR == 1 { next }
-     { k = NR - 2; if (NF != 22) bad = "row " NR " has " NF " columns" }
+     { k = NR - 2; if (NF != 24) bad = "row " NR " has " NF " columns" }
      $1 != k { bad = "row " NR ": inc " $1 ", wanted " k }
-     k == 0 && !($2 == 0 && $21 == "nan" && $22 == "nan" && $18 == 0) { bad = "start row: seg " $2 ", K " $21 ", G " $22 }
+     k == 0 && !($2 == 0 && $23 == "nan" && $24 == "nan" && $18 == 0) { bad = "start row: seg " $2 ", K " $23 ", G " $24 }
      k > 0 && $2 != 1 { bad = "row " NR ": seg " $2 }
-     k > 0 && !($21 > 0 && $22 > 0 && $18 > 0) { bad = "row " NR ": K " $21 ", G " $22 ", iterations " $18 }
+     k > 0 && !($23 > 0 && $24 > 0 && $18 > 0) { bad = "row " NR ": K " $23 ", G " $24 ", iterations " $18 }
      k > 0 && !($19 <= 1e-4) { bad = "row " NR ": residual " $19 }
      k > 0 && !($5 > z && $3 == x && $4 == y) { bad = "row " NR ": not uniaxial along z" }
      { x = $3; y = $4; z = $5 }
@@ -63,7 +63,7 @@ awk -F '\t' 'NR > 2 { r[NR - 2] = $16 } END {
 # last W increments differs from that of the W before by less than --sat-tol (0.05) times itself
 W=$(frictionalize -v --max-inc 1000 -o /dev/null dense.pack 2>&1 | sed -n 's/.*saturation window \([0-9]*\) increments.*/\1/p')
 expect_num "saturation window at least --window" "${W:-0}" ">=" 10
-# the first increment K at which the window means agree (column C: 16 sliding ratio, 22 G)
+# the first increment K at which the window means agree (column C: 16 sliding ratio, 24 G)
 cat >sat.awk <<'AWK'
 NR > 2 { v[++n] = $C }
 END {
@@ -80,7 +80,7 @@ awk -F '\t' -v W="$W" -v C=16 -f sat.awk f.tsv >why && pass "stops at the first 
     fail "stops at the first increment where the window means agree" "$(cat why)"
 # --until shear: the first increment at which the mean G of the last window exceeds the one before
 expect_ok "--until shear runs" frictionalize --until shear --log sh.tsv -o sh.pack dense.pack
-awk -F '\t' -v W="$W" -v C=22 -f sat.awk sh.tsv >why && pass "--until shear stops once G has passed its minimum" ||
+awk -F '\t' -v W="$W" -v C=24 -f sat.awk sh.tsv >why && pass "--until shear stops once G has passed its minimum" ||
     fail "--until shear stops once G has passed its minimum" "$(cat why)"
 expect_error "--until bad" 2 '^frictionalize: --until: must be sliding or shear' frictionalize --until never dense.pack
 last=$(tail -n 1 f.tsv)
@@ -89,7 +89,7 @@ expect_num "log's last trial_slip_ratio is packinfo's" "$(echo "$last" | cut -f 
 # the log's K and G are those of the volume-averaged stress (moduli's default): moduli on
 # the log, one increment per interval, gives the same numbers
 expect_num "log's last G is moduli's of its last increment (volume-averaged stress)" \
-    "$(rel "$(echo "$last" | cut -f 22)" "$(moduli f.tsv 2>/dev/null | tail -n 1 | cut -f 8)")" "<" 1e-9
+    "$(rel "$(echo "$last" | cut -f 24)" "$(moduli f.tsv 2>/dev/null | tail -n 1 | cut -f 8)")" "<" 1e-9
 expect_num "log's last sigma_c is packinfo's" "$(rel "$(echo "$last" | cut -f 12)" "$(info_value f.txt sigma_c)")" "<" 1e-9
 
 # --- determinism --------------------------------------------------------------------------

@@ -6,7 +6,7 @@
 . "$TOP/tests/tools/lib.sh"
 
 # columns: 1 inc, 2 seg, 3-5 eps, 6-8 sig, 9-11 sig_lw, 12 sigma_c, 13 sig_lat, 14 porosity,
-# 15 coordination, 16 sliding_ratio, 17 trial_slip_ratio, 18 iterations, 19 residual, 20 res_mean
+# 15 coordination, 16 sliding_ratio, 17 trial_slip_ratio, 18 iterations, 19 residual, 20 res_mean, 21 bulk_porosity, 22 bulk_coordination
 
 small_pack frictional "frictionalize makes the frictional pack"
 packinfo fr.pack >fr.txt 2>/dev/null
@@ -19,7 +19,7 @@ if [ "$rc" -eq 0 ] && [ ! -s six.err ]; then pass "loadtest --steps 6: exit 0, q
 grep -q '^## path: uniaxial .*step=0.0001 steps=6$' six.tsv && pass "## path line" || fail "## path line" "$(grep '^## path' six.tsv)"
 grep -q '^## equilibrium: residual <= 0.0001 .*method lbfgs' six.tsv && pass "## equilibrium line" || fail "## equilibrium line" "$(grep '^## equil' six.tsv)"
 grep -q '^## friction: mu 0.3, wall_mu 0.3, rule return-map$' six.tsv && pass "## friction line" || fail "## friction line" "$(grep '^## fric' six.tsv)"
-hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\ttrial_slip_ratio\titerations\tresidual\tres_mean')
+hdr=$(printf '# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsig_lw_xx[Pa]\tsig_lw_yy[Pa]\tsig_lw_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\tporosity\tcoordination\tsliding_ratio\ttrial_slip_ratio\titerations\tresidual\tres_mean\tbulk_porosity\tbulk_coordination')
 if [ "$(grep -v '^##' six.tsv | head -n 1)" = "$hdr" ]; then pass "column header"; else fail "column header" "$(grep -v '^##' six.tsv | head -n 1)"; fi
 if [ "$(grep -c '^##' six.tsv)" -ge 3 ] && [ "$(head -n 1 six.tsv | cut -c 1-2)" = "##" ] && [ "$(grep -c '^# ' six.tsv)" -eq 1 ]; then
 	pass "## lines first, one column header"
@@ -29,7 +29,8 @@ fi
 # the starting row (inc 0, seg 0, 0 iterations: the pack as read), then 6 increments of
 # segment 1, 19 columns, 1e-4 more eps_zz each, lateral strains fixed
 expect_num "--steps 6: start row + 6 rows" "$(rows six.tsv | wc -l)" "==" 7
-rows six.tsv | awk -F '\t' '{ k = NR - 1; if (NF != 20) bad = "row " NR ": " NF " columns" }
+rows six.tsv | awk -F '\t' '{ k = NR - 1; if (NF != 22) bad = "row " NR ": " NF " columns"
+	if (!($21 < $14 && $22 > $15)) bad = "row " NR ": bulk porosity " $21 " (box " $14 "), bulk coordination " $22 " (box " $15 ")" }
      $1 != k { bad = "row " NR ": inc " $1 }
      k == 0 && !($2 == 0 && $18 == 0) { bad = "start row: seg " $2 ", iterations " $18 }
      k > 0 && !($2 == 1 && $18 > 0 && $19 <= 1e-4) { bad = "row " NR ": seg " $2 ", iterations " $18 ", residual " $19 }
