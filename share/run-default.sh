@@ -22,6 +22,10 @@ stage densify "$bin/densify" --stress 4e6 --log out/densify.tsv -o out/dense.pac
 stage frictionalize "$bin/frictionalize" --mu 0.3 --log out/frictionalize.tsv -o out/frictional.pack.gz out/dense.pack.gz
 stage loadtest sh -c "'$bin/loadtest' --path uniaxial --to-stress 20e6 -o out/final.pack.gz out/frictional.pack.gz >out/curve.tsv"
 stage moduli "$bin/moduli" --window 10 -o out/moduli.tsv out/curve.tsv
+# the effective-medium comparison like for like: an isotropic probe of the final pack (3
+# increments of 1e-4), its K from the volume-averaged stress, Walton's K from the bulk
+# porosity and coordination (moduli(1))
+stage probe sh -c "'$bin/loadtest' --path isotropic --steps 3 out/final.pack.gz | '$bin/moduli' --window 3 --emt glass -o out/probe.tsv"
 echo "== packinfo out/frictional.pack.gz" >&2
 "$bin/packinfo" out/frictional.pack.gz | grep -E '^(grains|porosity|coordination|under4|sigma_c|residual|sliding_ratio) '
 if command -v gnuplot >/dev/null 2>&1; then
@@ -33,3 +37,5 @@ echo "== stage times (s)"
 cat out/times.tsv
 echo "== moduli (out/moduli.tsv): sigma_c, K, G, E in MPa"
 awk -F'\t' 'NR > 1 { printf "%8.3f %9.1f %9.1f %9.1f  nu %.3f\n", $5 / 1e6, $7 / 1e6, $8 / 1e6, $10 / 1e6, $11 }' out/moduli.tsv
+echo "== isotropic probe of the final pack (out/probe.tsv) against effective-medium theory (bulk porosity, coordination)"
+awk -F'\t' 'NR > 1 { printf "sigma_c %.3f MPa  K %.1f MPa  K_emt %.1f MPa  K / K_emt %.3f  (bulk porosity %.4f, coordination %.3f)\n", $5 / 1e6, $7 / 1e6, $15 / 1e6, $7 / $15, $13, $14 }' out/probe.tsv
