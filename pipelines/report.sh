@@ -27,7 +27,7 @@ interp() {
 }
 # growth exponent of column C against sigma_c over a moduli table: slope of log C on log sigma_c
 expo() {
-	$cols "$1" sigma_c "$2" | awk '$2 > 0 { x = log($1); y = log($2); n++; sx += x; sy += y; sxx += x * x; sxy += x * y }
+	$cols "$1" sigma_c "$2" | awk '$2 !~ /nan/ && $2 > 0 { x = log($1); y = log($2); n++; sx += x; sy += y; sxx += x * x; sxy += x * y }
 		END { if (n > 2) printf "%.2f", (n * sxy - sx * sy) / (n * sxx - sx * sx); else printf "-" }'
 }
 # common stress of several moduli tables: the middle of the overlap of their sigma_c ranges
