@@ -474,10 +474,8 @@ measure_sliding(const struct pack *p, const struct geo_contacts *gc, struct pack
 	m->history = p->nc;
 	for (k = 0; k < gc->n; k++)
 		if (gc->c[k].hist >= 0) {
-			const struct pack_contact *h = &p->c[gc->c[k].hist];
-			double mu = PACK_IS_WALL(h->j) ? p->wall_mu : p->mu, qmax = mu * h->P0;
 			nfr++;
-			if (qmax > 0 && vec3_norm(h->Q0) >= qmax * (1 - 1e-9))
+			if (pack_contact_at_limit(p, &p->c[gc->c[k].hist]))
 				nsl++;
 		}
 	m->stale_history = p->nc - nfr;

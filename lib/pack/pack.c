@@ -2,6 +2,7 @@
 #include "pack/pack.h"
 #include "pack/shape.h"
 #include "base/msg.h"
+#include "base/vec3.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -144,6 +145,14 @@ pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, d
 		pack_set_grain_shape(p, i, 0, quat_identity);
 	p->n++;
 	return i;
+}
+
+int
+pack_contact_at_limit(const struct pack *p, const struct pack_contact *c)
+{
+	double qlim = (PACK_IS_WALL(c->j) ? p->wall_mu : p->mu) * c->P0;
+
+	return qlim > 0 && vec3_norm(c->Q0) >= qlim * (1 - 1e-9);
 }
 
 int

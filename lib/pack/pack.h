@@ -130,6 +130,10 @@ int pack_require_spheres(const struct pack *p, const char *who);
  * without the line keeps none (Hertz is the default).  0 or -1 (out of memory). */
 int pack_claim_hertz(struct pack *p);
 int pack_add_contact(struct pack *p, const struct pack_contact *c);
+/* Whether history line c is at its Coulomb limit: |Q0| >= mu P0 (1 - 1e-9) with mu P0 > 0 (the
+ * wall friction for a wall line).  The paper's sliding count (fr_commit) and packinfo's
+ * sliding_ratio_lines both count these. */
+int pack_contact_at_limit(const struct pack *p, const struct pack_contact *c);
 /* The history lines as sorted keys: three longs per line, (a, b, line) with a < b for a grain
  * pair (either order in the file: 'i j' and 'j i' name one pair) and (grain, wall) for a wall,
  * ascending in a, then b, then line.  For finding a pair's line and a pair named twice.

@@ -364,12 +364,9 @@ fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 	}
 	/* the paper's count: the committed lines at their limit mu P0 */
 	f->nlimit = 0;
-	for (k = 0; k < p->nc; k++) {
-		const struct pack_contact *h = &p->c[k];
-		double qlim = (PACK_IS_WALL(h->j) ? p->wall_mu : p->mu) * h->P0;
-		if (qlim > 0 && vec3_norm(h->Q0) >= qlim * (1 - 1e-9))
+	for (k = 0; k < p->nc; k++)
+		if (pack_contact_at_limit(p, &p->c[k]))
 			f->nlimit++;
-	}
 	return 0;
 }
 
