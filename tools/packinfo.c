@@ -93,8 +93,9 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 		double rec;
 		add(r, "sliding_ratio", NULL, pack_get_meta_double(p, "sliding_ratio", &rec) == 0 ? rec : m->sliding_ratio);
 		add(r, "sliding_ratio_lines", NULL, m->sliding_ratio);
-		if (pack_get_meta_double(p, "trial_slip_ratio", &rec) == 0)
-			add(r, "trial_slip_ratio", NULL, rec);
+		/* always added (NaN when not recorded: left out of the key list, nan in --tsv),
+		 * so that every --tsv row has the header's columns */
+		add(r, "trial_slip_ratio", NULL, pack_get_meta_double(p, "trial_slip_ratio", &rec) == 0 ? rec : NAN);
 	}
 	add(r, "fabric_xx", NULL, m->fabric[0]);
 	add(r, "fabric_yy", NULL, m->fabric[1]);

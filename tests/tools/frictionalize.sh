@@ -20,6 +20,10 @@ if packinfo f.pack >f.txt 2>f.txt.err; then pass "packinfo reads the frictional 
 expect_num "the pack has contact history" "$(info_value f.txt history_contacts)" ">" 100
 expect_num "packinfo sliding_ratio > 0" "$(info_value f.txt sliding_ratio)" ">" 0
 expect_num "the dense pack had sliding_ratio 0" "$(info_value dense.txt sliding_ratio)" "==" 0
+# the frictional pack records a trial slip ratio, the dense one none: packinfo --tsv on both
+# still gives every row the header's columns (nan where a pack has no record)
+packinfo --tsv dense.pack f.pack >both.tsv 2>/dev/null
+expect_num "packinfo --tsv, a frictionless and a frictional pack: one field count" "$(awk -F '\t' '{ print NF }' both.tsv | sort -u | wc -l)" "==" 1
 expect_num "packinfo reports mu 0.3 (the default --mu)" "$(info_value f.txt mu)" "==" 0.3
 if grep -q '^friction 0.3$' f.pack && grep -q '^walls .* 0.3$' f.pack; then
 	pass "friction 0.3 and wall mu 0.3 in the header"
