@@ -438,6 +438,19 @@ dem_write_back(const struct dem *d, struct pack *p, const size_t *order, double 
 		for (i = 0; i < n; i++)
 			memcpy(p->q + 4 * i, tmp + 4 * order[i], 4 * sizeof *tmp);
 	}
+	if (p->has_phase) {	/* the phase tag too (packgen --hydrate-volume tags before settling) */
+		unsigned char *ph = malloc(n);
+
+		if (!ph) {
+			free(tmp);
+			msg_seterr("out of memory");
+			return -1;
+		}
+		memcpy(ph, p->phase, n);
+		for (i = 0; i < n; i++)
+			p->phase[i] = ph[order[i]];
+		free(ph);
+	}
 	free(tmp);
 	for (i = 0; i < n; i++) {
 		p->id[i] = (long)i + 1;

@@ -30,6 +30,7 @@ pack_free(struct pack *p)
 	free(p->rho);
 	free(p->side);
 	free(p->q);
+	free(p->phase);
 	free(p->c);
 	for (k = 0; k < p->nhist; k++)
 		free(p->history[k]);
@@ -66,6 +67,8 @@ pack_reserve(struct pack *p, size_t n)
 		return -1;
 	if (p->has_shapes && (grow((void **)&p->side, n, sizeof *p->side) || grow((void **)&p->q, 4 * n, sizeof *p->q)))
 		return -1;
+	if (p->has_phase && grow((void **)&p->phase, n, sizeof *p->phase))
+		return -1;
 	p->cap = n;
 	return 0;
 }
@@ -86,6 +89,47 @@ pack_set_shapes(struct pack *p)
 	for (i = 0; i < p->n; i++)
 		pack_set_grain_shape(p, i, 0, quat_identity);
 	return 0;
+}
+
+int
+pack_set_phases(struct pack *p)
+{
+	if (p->has_phase)
+		return 0;
+	if (grow((void **)&p->phase, p->cap, sizeof *p->phase))
+		return -1;
+	p->has_phase = 1;
+	if (p->n)
+		memset(p->phase, PHASE_MINERAL, p->n * sizeof *p->phase);
+	return 0;
+}
+
+size_t
+pack_hydrate_grains(const struct pack *p, double *volume)
+{
+	size_t i, n = 0;
+	double v = 0;
+
+	for (i = 0; p->has_phase && i < p->n; i++)
+		if (p->phase[i] == PHASE_HYDRATE) {
+			n++;
+			v += p->has_shapes && p->side[i] > 0 ? shape_volume(p->r[i], p->side[i]) :
+			    4.0 / 3.0 * M_PI * p->r[i] * p->r[i] * p->r[i];
+		}
+	if (volume)
+		*volume = v;
+	return n;
+}
+
+double
+pack_hydrate_saturation(const struct pack *p)
+{
+	double vh, vpore;
+
+	if (!pack_hydrate_grains(p, &vh))
+		return 0;
+	vpore = pack_box_volume(p->box) - (pack_grain_volume(p) - vh);
+	return vh / vpore;
 }
 
 void
@@ -143,6 +187,8 @@ pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, d
 	p->rho[i] = rho;
 	if (p->has_shapes)
 		pack_set_grain_shape(p, i, 0, quat_identity);
+	if (p->has_phase)
+		p->phase[i] = PHASE_MINERAL;
 	p->n++;
 	return i;
 }

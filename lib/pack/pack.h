@@ -81,6 +81,13 @@ struct pack {
 	int has_shapes;
 	double *side;
 	double *q;
+	/* The phase column of format 2 (pack-format.md, "The phase column"): has_phase says
+	 * whether the pack has it; phase[i] is PHASE_MINERAL or PHASE_HYDRATE.  What a grain
+	 * is made of is told by this tag, never guessed from its density or moduli (hydrate
+	 * dissociation, physics.md section 11, acts on the hydrate grains only).  NULL without
+	 * the column. */
+	int has_phase;
+	unsigned char *phase;
 
 	double box[6];		/* xlo ylo zlo xhi yhi zhi (m) */
 	/* The boundary along each axis: 0, the two box faces are rigid walls (every pack of
@@ -112,6 +119,24 @@ size_t pack_add_grain(struct pack *p, long id, const double x[3], double r, doub
  * makes plates calls first, and what the reader calls for a columns line that names them.
  * Nothing happens when p has them already.  0, or -1 (msg_seterr) when out of memory. */
 int pack_set_shapes(struct pack *p);
+/* The grain phases of the phase column.  PHASE_MINERAL is every grain of a pack without it. */
+enum pack_phase { PHASE_MINERAL = 0, PHASE_HYDRATE = 1, PACK_NPHASES };
+/* Give p the phase column, every grain PHASE_MINERAL: what packgen --hydrate-volume calls
+ * first, and what the reader calls for a columns line that names it.  Nothing happens when p
+ * has it already.  0, or -1 (msg_seterr) when out of memory. */
+int pack_set_phases(struct pack *p);
+/* Grain i's phase: PHASE_MINERAL when p has no phase column. */
+static inline int
+pack_grain_phase(const struct pack *p, size_t i)
+{
+	return p->has_phase ? p->phase[i] : PHASE_MINERAL;
+}
+/* The number of hydrate grains and their volume (m^3, overlaps not subtracted). */
+size_t pack_hydrate_grains(const struct pack *p, double *volume);
+/* Hydrate saturation S = V_hydrate / V_pores with the hydrate counted as pore space
+ * (physics.md section 11): V_pores = V_box - V_mineral, grain volumes as in
+ * pack_grain_volume (overlaps not subtracted).  0 for a pack without hydrate grains. */
+double pack_hydrate_saturation(const struct pack *p);
 /* Grain i's core side L (m) and orientation (a unit quaternion, copied); p has the shape
  * columns.  The reader and pack_validate check the values. */
 void pack_set_grain_shape(struct pack *p, size_t i, double side, const double q[4]);

@@ -296,10 +296,11 @@ static const struct column {
 } columns[] = {
 	{"id", 0}, {"x", 0}, {"y", 0}, {"z", 0}, {"r", 0}, {"E", 0}, {"nu", 0}, {"rho", 0},
 	{"side", 1}, {"qw", 1}, {"qx", 1}, {"qy", 1}, {"qz", 1},
+	{"phase", 2},
 };
 #define NCOLUMNS ((int)(sizeof columns / sizeof columns[0]))
-enum { COL_SIDE = 8, GROUP_SHAPE = 1, NGROUPS = 2 };
-static const char *const groups[NGROUPS] = {"required", "shape"};
+enum { COL_SIDE = 8, COL_PHASE = 13, GROUP_SHAPE = 1, GROUP_PHASE = 2, NGROUPS = 3 };
+static const char *const groups[NGROUPS] = {"required", "shape", "phase"};
 
 /* A columns line naming every known column once, and one more name, fits in tok[]: so the
  * unknown or repeated name of a longer line is among the fields kept. */
@@ -503,7 +504,7 @@ kw_columns(struct header *h, char **tok, int n)
 		h->col[k - 1] = column_index(tok[k]);
 	}
 	h->ncol = n - 1;
-	if (have[GROUP_SHAPE] && pack_set_shapes(h->p))
+	if ((have[GROUP_SHAPE] && pack_set_shapes(h->p)) || (have[GROUP_PHASE] && pack_set_phases(h->p)))
 		return rd_error(h->rd, "out of memory");
 	return 0;
 }
@@ -664,13 +665,23 @@ read_grain_line(const struct header *h, char *s)
 		    h->version < 2 && n > h->ncol ? "; more columns need 'qusgm-pack 2' and a columns line" : "");
 	if (num_parse_long(tok[0], &id))
 		return rd_error(rd, "grain id '%s' is not an integer", tok[0]);
-	for (k = 1; k < n; k++)
-		if (num_parse(tok[k], &v[h->col[k]]))
+	for (k = 1; k < n; k++) {
+		long ph;
+
+		if (h->col[k] == COL_PHASE) {	/* a tag, written as an integer: nothing else reads back alike */
+			if (num_parse_long(tok[k], &ph) || ph < 0 || ph >= PACK_NPHASES)
+				return rd_error(rd, "grain %ld: phase '%s' is neither 0 (mineral) nor 1 (hydrate)", id, tok[k]);
+			v[COL_PHASE] = (double)ph;
+		} else if (num_parse(tok[k], &v[h->col[k]])) {
 			return rd_error(rd, "grain: '%s' is not a finite number", tok[k]);
+		}
+	}
 	if (pack_add_grain(h->p, id, v + 1, v[4], v[5], v[6], v[7]) == (size_t)-1)
 		return rd_error(rd, "out of memory");
 	if (h->p->has_shapes)
 		pack_set_grain_shape(h->p, h->p->n - 1, v[COL_SIDE], v + COL_SIDE + 1);
+	if (h->p->has_phase)
+		h->p->phase[h->p->n - 1] = (unsigned char)v[COL_PHASE];
 	if (check_grain_values(h->p, h->p->n - 1, why, sizeof why))
 		return rd_error(rd, "%s", why);
 	return 0;
@@ -992,7 +1003,7 @@ sb_printf(struct sbuf *b, const char *fmt, ...)
 int
 pack_format_version(const struct pack *p)
 {
-	return p->periodic[0] || p->periodic[1] || p->periodic[2] || p->has_shapes ? 2 : 1;
+	return p->periodic[0] || p->periodic[1] || p->periodic[2] || p->has_shapes || p->has_phase ? 2 : 1;
 }
 
 /* The version-2 lines: the boundary along x y z, and the grain columns. */
@@ -1014,7 +1025,8 @@ format_columns(const struct pack *p, struct sbuf *b)
 
 	sb_puts(b, "columns");
 	for (k = 0; k < NCOLUMNS; k++)
-		if (columns[k].group == 0 || (columns[k].group == GROUP_SHAPE && p->has_shapes)) {
+		if (columns[k].group == 0 || (columns[k].group == GROUP_SHAPE && p->has_shapes) ||
+		    (columns[k].group == GROUP_PHASE && p->has_phase)) {
 			sb_puts(b, " ");
 			sb_puts(b, columns[k].name);
 		}
@@ -1077,6 +1089,10 @@ format_pack(const struct pack *p, struct sbuf *b)
 			sb_nums(b, p->q + 4 * k, 4);
 		} else {
 			sb_nums(b, v, 7);
+		}
+		if (p->has_phase && !b->oom) {	/* the tag last: the line's newline becomes a blank */
+			b->s[b->len - 1] = ' ';
+			sb_printf(b, "%d\n", p->phase[k]);
 		}
 	}
 	for (k = 0; k < p->nc && !b->oom; k++) {
