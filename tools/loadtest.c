@@ -172,21 +172,6 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 	o.lp.nsub = (int)o.nsub;
 }
 
-/* --mu alone sets the wall's coefficient too; with both 0 the test runs frictionless, on
- * 3N unknowns. */
-static void
-set_friction(struct pack *p)
-{
-	if (!isnan(o.mu)) {
-		p->mu = o.mu;
-		p->wall_mu = isnan(o.wall_mu) ? o.mu : o.wall_mu;
-	} else if (!isnan(o.wall_mu))
-		p->wall_mu = o.wall_mu;
-	o.lp.friction = p->mu > 0 || p->wall_mu > 0;
-	if (!o.lp.friction)
-		p->mu = p->wall_mu = 0;
-}
-
 /* A test continued from a pack that loadtest wrote numbers its increments on. */
 static void
 continue_increments(struct loader *L, const struct pack *p, const char *in)
@@ -261,7 +246,7 @@ main(int argc, char **argv)
 	if (stale)
 		msg_warn("%s: %zu history lines name grains that do not touch: dropped", in, stale);
 	oc.grains = p.n;
-	set_friction(&p);
+	o.lp.friction = path_set_friction(&p, o.mu, o.wall_mu);
 	check_stop(run_test(&p, &path, in, &oc), &st);
 	if (st.output) {
 		if (pack_write_tool(&p, &tool, &st))

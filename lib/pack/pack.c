@@ -215,6 +215,51 @@ pack_add_contact(struct pack *p, const struct pack_contact *c)
 }
 
 int
+pack_copy(struct pack *dst, const struct pack *src)
+{
+	size_t n = src->n, k;
+
+	pack_init(dst);
+	dst->has_shapes = src->has_shapes;
+	dst->has_phase = src->has_phase;
+	if (pack_reserve(dst, n ? n : 1))
+		goto oom;
+	memcpy(dst->id, src->id, n * sizeof *dst->id);
+	memcpy(dst->x, src->x, 3 * n * sizeof *dst->x);
+	memcpy(dst->r, src->r, n * sizeof *dst->r);
+	memcpy(dst->E, src->E, n * sizeof *dst->E);
+	memcpy(dst->nu, src->nu, n * sizeof *dst->nu);
+	memcpy(dst->rho, src->rho, n * sizeof *dst->rho);
+	if (src->has_shapes) {
+		memcpy(dst->side, src->side, n * sizeof *dst->side);
+		memcpy(dst->q, src->q, 4 * n * sizeof *dst->q);
+	}
+	if (src->has_phase)
+		memcpy(dst->phase, src->phase, n * sizeof *dst->phase);
+	dst->n = n;
+	memcpy(dst->box, src->box, sizeof dst->box);
+	memcpy(dst->periodic, src->periodic, sizeof dst->periodic);
+	memcpy(dst->refbox, src->refbox, sizeof dst->refbox);
+	dst->has_refbox = src->has_refbox;
+	dst->wall_E = src->wall_E, dst->wall_nu = src->wall_nu;
+	dst->mu = src->mu, dst->wall_mu = src->wall_mu;
+	for (k = 0; k < src->nc; k++)
+		if (pack_add_contact(dst, &src->c[k]))
+			goto oom;
+	for (k = 0; k < src->nhist; k++)
+		if (pack_add_history(dst, src->history[k]))
+			goto oom;
+	for (k = 0; k < src->nmeta; k++)
+		if (pack_set_meta(dst, src->meta[k].key, src->meta[k].value))
+			goto oom;
+	return 0;
+oom:
+	pack_free(dst);
+	msg_seterr("out of memory copying a pack of %zu grains", n);
+	return -1;
+}
+
+int
 pack_add_history(struct pack *p, const char *line)
 {
 	char **h = realloc(p->history, (p->nhist + 1) * sizeof *h);

@@ -155,6 +155,10 @@ int pack_require_spheres(const struct pack *p, const char *who);
  * without the line keeps none (Hertz is the default).  0 or -1 (out of memory). */
 int pack_claim_hertz(struct pack *p);
 int pack_add_contact(struct pack *p, const struct pack_contact *c);
+/* dst (uninitialised) becomes a deep copy of src: grains, columns, box, contacts, history,
+ * meta.  For a tool that tries something on a pack and keeps the original (dissociate's
+ * probe of the bulk modulus).  0, or -1 (msg_seterr; dst freed) when out of memory. */
+int pack_copy(struct pack *dst, const struct pack *src);
 /* Whether history line c is at its Coulomb limit: |Q0| >= mu P0 (1 - 1e-9) with mu P0 > 0 (the
  * wall friction for a wall line).  The paper's sliding count (fr_commit) and packinfo's
  * sliding_ratio_lines both count these. */

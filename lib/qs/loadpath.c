@@ -337,6 +337,20 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 	return 0;
 }
 
+int
+path_set_friction(struct pack *p, double mu, double wall_mu)
+{
+	if (!isnan(mu)) {
+		p->mu = mu;
+		p->wall_mu = isnan(wall_mu) ? mu : wall_mu;
+	} else if (!isnan(wall_mu))
+		p->wall_mu = wall_mu;
+	if (p->mu > 0 || p->wall_mu > 0)
+		return 1;
+	p->mu = p->wall_mu = 0;
+	return 0;
+}
+
 /* Whether a segment has reached its stop at the state prev, after n increments. */
 static int
 reached_stop(const struct path_seg *sg, const struct load_row *prev, long n)

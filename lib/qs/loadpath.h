@@ -77,6 +77,10 @@ struct path_limits {
  * pack, for the tool to prefix the input's name; -1 with msg_seterr when reading (the message
  * names the input) or measuring fails. */
 int path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale);
+/* The friction of a loading (loadtest, dissociate): mu and wall_mu NaN keep the pack's; mu
+ * alone sets the wall's coefficient too.  Returns whether the loading is frictional; with
+ * both 0 it is not, and runs on 3N unknowns. */
+int path_set_friction(struct pack *p, double mu, double wall_mu);
 
 typedef int (*path_row_fn)(int seg, const struct load_row *row, void *ctx);
 
