@@ -61,12 +61,6 @@ mean_lw(const struct load_row *row)
 	return (row->sig_lw[0] + row->sig_lw[1] + row->sig_lw[2]) / 3;
 }
 
-static double
-strain_kk(const struct load_row *row)
-{
-	return row->eps[0] + row->eps[1] + row->eps[2];
-}
-
 /* The pack's state, measured by a loader that changes nothing. */
 static int
 measure_state(struct pack *p, const struct load_params *lp, struct load_row *row)
@@ -120,7 +114,10 @@ dissociate_probe_K(const struct pack *p, const struct load_params *lp, double pr
 	pack_free(&q);
 	if (r)
 		return -1;
-	*K = (mean_lw(&after) - mean_lw(before)) / (strain_kk(&after) - strain_kk(before));
+	/* against the current lengths, each of which grew by the fraction probe: the modulus
+	 * that step (c) divides by, which also changes the current lengths (the tables' strains
+	 * are against the reference box, longer by the densification strain) */
+	*K = (mean_lw(&after) - mean_lw(before)) / (-3 * probe);
 	*iterations = after.iterations;
 	if (!(*K > 0 && isfinite(*K)))
 		return msg_seterr("the probe measured a bulk modulus of %g Pa (mean stress %g Pa before): no skeleton to unload; give --K",

@@ -56,7 +56,8 @@ int dissociate_check(const struct pack *p, const struct dissociation *d, double 
 void dissociate_radii(struct pack *p, double dS, double S, double pex);
 
 /* The drained bulk modulus of p by a probe on a copy: the isotropic extension 'probe' per
- * axis in one loader increment from the pack's state, K = d(mean sig_lw) / d(eps_kk).  An
+ * axis in one loader increment from the pack's state, K = -d(mean sig_lw) / (3 probe), the
+ * volumetric strain against the current box (as in step (c)).  An
  * extension, because dissociation unloads the skeleton (on a frictional pack the unloading
  * modulus is the one that applies).  p is not changed.  before receives the pack's state.
  * 0, or -1 (msg_seterr; the minimiser not converging is an error too). */

@@ -90,7 +90,7 @@ else
 fi
 # --help never shows 'nan' as a default (an option not given): it says what the default means
 # (issue 19)
-for t in densify frictionalize loadtest moduli packexport packgen packimport packinfo; do
+for t in densify dissociate frictionalize loadtest moduli packexport packgen packimport packinfo; do
 	if "$t" --help 2>&1 | grep -q 'default: nan'; then fail "$t --help: no [default: nan]" "$("$t" --help | grep 'default: nan' | head -n 1)"; else pass "$t --help: no [default: nan]"; fi
 done
 if loadtest --help | grep -q -- '--to-stress PA .*\[default: none\]$'; then pass "loadtest --help: --to-stress [default: none]"; else fail "loadtest --help: --to-stress [default: none]" "$(loadtest --help | grep -- --to-stress)"; fi
