@@ -92,7 +92,9 @@ study_time() {
 
 echo "# $study"
 echo
-if [ "$study" = platy ]; then
+if [ "$study" = s-fig5 ]; then
+	echo "Pack: ${N_HYD:-?} grains, quartz with hydrate (seed ${SEED:-1})."
+elif [ "$study" = platy ]; then
 	echo "Packs: ${N_PLATY:-?} spheroplates per platyness (seed ${SEED:-1}), sheared at I = ${PLATY_I:-?} to gamma ${PLATY_STRAIN:-?}, steady state from gamma ${PLATY_FROM:-?}."
 else
 	echo "Pack sizes: G2740-style $n2740 grains, G5036-style $n5036, Q2654-style $n2654 (seed ${SEED:-1})."
@@ -292,6 +294,58 @@ EOF
 			if (a == "nan" || b == "nan") { printf "| %s | %s -> %s | %s -> %s | - |\n", n, p, q, a, b; exit }
 			printf "| %s | %s -> %s | %.3f -> %.3f | %s |\n", n, p, q, a, b, ((q - p) * (b - a) > 0) ? "yes" : "no" }'
 	done
+	;;
+s-fig5)
+	sm=$out/s-fig5/summary.tsv
+	pk=$P/hyd.s21.pack.gz
+	cat <<'EOF'
+**Paper** (frictionless, section 4 and Fig. 5): a 2740-grain hydrate-bearing sediment, the
+smallest grains hydrate and the rest quartz, porosity about 45 % with the hydrate counted as
+pore space, hydrate saturation S = 0.215, effective stress about 21 MPa, Biot-Willis
+coefficient 0.8.  Dissociation shrinks the hydrate grains (dS < 0) and raises the pore pressure
+(p_ex), which shrinks every grain and expands the pack; both moduli fall (Fig. 5: against p_ex
+at dS = -0.01 and against dS at p_ex = 1 MPa).  The paper gives no values.
+
+**This run** (packgen --hydrate-volume 0.15, densify to 21 MPa, frictionless; each point
+dissociate from that pack, then a probe of 3 uniaxial increments of 1e-5 along each of x, y
+and z fitted together; stresses volume-averaged, K and G at the probe's sigma_c)
+
+EOF
+	echo "The dense pack: $(info "$pk" grains) grains, $(info "$pk" hydrate_grains) of them hydrate" \
+	    "($(info "$pk" hydrate_volume_fraction | awk '{ printf "%.1f", 100 * $1 }') % of the grain volume);" \
+	    "S = $(info "$pk" hydrate_saturation | awk '{ printf "%.3f", $1 }'), porosity" \
+	    "$(info "$pk" porosity | awk '{ printf "%.1f", 100 * $1 }') % (hydrate as solid) and" \
+	    "$(info "$pk" porosity_hydrate_as_pore | awk '{ printf "%.1f", 100 * $1 }') % (hydrate as pore space)."
+	echo
+	echo '| run | dS | p_ex (MPa) | S after | sigma_eff before -> after (MPa) | drop (MPa) | alpha_b p_ex (MPa) | total after (MPa) | K (GPa) | G (GPa) |'
+	echo '| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |'
+	$cols "$sm" run dS pex S sigma_before sigma_after sigma_total K G | awk -F '\t' '{
+		printf "| %s | %s | %.1f | %.4f | %.2f -> %.2f | %.2f | %.2f | %.2f | %s | %s |\n", $1, $2, $3 / 1e6, $4, $5 / 1e6, $6 / 1e6,
+		    ($5 - $6) / 1e6, 0.8 * $3 / 1e6, $7 / 1e6, ($8 ~ /nan/ ? "nan" : sprintf("%.3f", $8 / 1e9)), ($9 ~ /nan/ ? "nan" : sprintf("%.3f", $9 / 1e9)) }'
+	echo
+	# least-squares slopes of K and G over each series (nan points left out)
+	slope() { awk -v xs="$1" '$3 !~ /nan/ { x = $1 * xs; n++; sx += x; sy += $3; sxx += x * x; sxy += x * $3 }
+		END { if (n > 1 && n * sxx != sx * sx) printf "%.1f", (n * sxy - sx * sy) / (n * sxx - sx * sx) / 1e6; else printf "-" }'; }
+	sA() { $cols "$sm" pex dS "$1" | awk '$2 + 0 == -0.01'; }
+	sB() { $cols "$sm" dS pex "$1" | awk '$2 + 0 == 1e6'; }
+	echo "The falls, least-squares slopes over each series:"
+	echo
+	echo '| series | K (MPa per unit) | G (MPa per unit) |'
+	echo '| --- | --- | --- |'
+	echo "| p_ex at dS = -0.01, per MPa of p_ex | $(sA K | slope 1e-6) | $(sA G | slope 1e-6) |"
+	echo "| dS at p_ex = 1 MPa, per 0.01 of -dS | $(sB K | slope -100) | $(sB G | slope -100) |"
+	echo
+	echo "Effective stress against the Biot prediction, p_ex alone (dS = 0): the drop over alpha_b p_ex is" \
+	    "$($cols "$sm" dS pex sigma_before sigma_after | awk '$1 + 0 == 0 && $2 > 0 { printf "%.3f at p_ex = %.1f MPa", ($3 - $4) / (0.8 * $2), $2 / 1e6; f = 1 } END { if (!f) printf "-" }')" \
+	    "(above 1 by the grains' own compression, about K / K_grain)."
+	g0=$($cols "$sm" run G | awk '$1 == "hyd-d0-p0" { print $2 }')
+	lost=$($cols "$sm" run G | awk -v g0="$g0" '$2 ~ /nan/ || $2 <= 0.01 * g0 { printf "%s%s", s, $1; s = ", " }')
+	echo
+	if [ -n "$lost" ]; then
+		echo "Shear rigidity lost (G nan, or below 1 % of the pack's before dissociation) in: $lost."
+	else
+		echo "Shear rigidity kept at every point (G above 1 % of the pack's before dissociation)."
+	fi
 	;;
 *)
 	echo "report.sh: unknown study $study" >&2
