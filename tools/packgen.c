@@ -3,6 +3,7 @@
 #include "base/cli.h"
 #include "dem/dem.h"
 #include "dem/platepack.h"
+#include "pack/hydrate.h"
 #include "pack/material.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
@@ -24,9 +25,9 @@ static struct opts {
 	const char *shape_name, *plate_radius_name, *periodic_spec;
 	double wall_E, wall_nu, mu, wall_mu;
 	double dem_mu, dem_wall_mu, jitter, overlap, damping, phi0, rest_tol;
-	double eta, spheroradius, kn, kt, restitution, sigma0, density;
+	double eta, spheroradius, kn, kt, restitution, sigma0, density, hydrate_volume;
 	struct psd psd;
-	struct material mat;
+	struct material mat, hydrate;
 	double aspect[3];
 	int plates, periodic[3];
 	enum shape_radius conv;
@@ -37,7 +38,7 @@ static struct opts {
 	.wall_E = 0, .wall_nu = 0.495, .mu = NAN, .wall_mu = -1,
 	.dem_mu = NAN, .dem_wall_mu = NAN, .jitter = NAN, .overlap = 1e-4, .damping = NAN, .phi0 = 0.3, .rest_tol = NAN,
 	.eta = 0.5, .spheroradius = 3e-8, .kn = 1.5e3, .kt = 1.5e3, .restitution = 0.6, .sigma0 = NAN,
-	.density = NAN,
+	.density = NAN, .hydrate_volume = 0,
 };
 
 static struct cli_opt opt_table[] = {
@@ -45,6 +46,7 @@ static struct cli_opt opt_table[] = {
 	{"seed", 's', CLI_LONG, &o.seed, "S", "seed of the random generator (GSL mt19937)", NULL},
 	{"psd", 0, CLI_STRING, &o.psd_spec, "SPEC", "radius distribution: uniform:RMIN,RMAX | lognormal:MEDIAN,SIGMA[,RMIN,RMAX] | table:FILE", "m"},
 	{"material", 'm', CLI_STRING, &o.material_name, "NAME", "grain material: glass, quartz, hydrate, or a preset file", NULL},
+	{"hydrate-volume", 0, CLI_DOUBLE, &o.hydrate_volume, "F", "spheres: make the smallest grains hydrate (phase column; the hydrate preset's E, nu, rho) until they hold the fraction F of the grain volume, in [0, 1); 0: none, no phase column", NULL},
 	{"aspect", 0, CLI_STRING, &o.aspect_spec, "AX,AY,AZ", "box side ratios", NULL},
 	{"wall-E", 0, CLI_DOUBLE, &o.wall_E, "PA", "Young's modulus of the walls (0: 100 x the material's)", "Pa"},
 	{"wall-nu", 0, CLI_DOUBLE, &o.wall_nu, "NU", "Poisson ratio of the walls", NULL},
@@ -211,6 +213,12 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--rest-tol: must be positive");
 	if (o.max_steps < 1)
 		cli_usage_error("--max-steps: must be positive");
+	if (!(o.hydrate_volume >= 0 && o.hydrate_volume < 1))
+		cli_usage_error("--hydrate-volume: must be in [0, 1) (the hydrate's fraction of the grain volume), got %g", o.hydrate_volume);
+	else if (o.hydrate_volume > 0 && o.plates)
+		cli_usage_error("--hydrate-volume: spheres only (not with --shape spheroplate)");
+	if (material_lookup("hydrate", &o.hydrate))
+		cli_usage_error("%s", msg_geterr());
 	cli_usage_done();
 	shape_defaults();
 	if (o.wall_E == 0)
@@ -236,6 +244,23 @@ draw_grains(struct pack *p, gsl_rng *rng)
 		material_sample(&o.mat, rng, &E, &nu);
 		pack_add_grain(p, k + 1, x, r, E, nu, o.density);
 	}
+}
+
+/* --hydrate-volume: the smallest grains become hydrate (pack/hydrate.h), before the DEM
+ * places them, so that its renumbering carries the tag; F = 0 leaves the pack as without
+ * the option (no phase column, no draw). */
+static void
+tag_hydrate(struct pack *p, gsl_rng *rng)
+{
+	size_t n;
+	double reached;
+
+	if (o.hydrate_volume == 0)
+		return;
+	if (pack_tag_hydrate(p, o.hydrate_volume, &o.hydrate, rng, &n, &reached))
+		msg_die_err(EXIT_DATA);
+	msg_info(1, "%zu hydrate grains of %zu, %.6g of the grain volume (--hydrate-volume %g)", n, p->n, reached,
+	    o.hydrate_volume);
 }
 
 static void
@@ -326,6 +351,7 @@ main(int argc, char **argv)
 	rng = gsl_rng_alloc(gsl_rng_mt19937);
 	gsl_rng_set(rng, (unsigned long)o.seed);
 	draw_grains(&p, rng);
+	tag_hydrate(&p, rng);
 	if (o.plates)
 		compact_plates(&p, rng);
 	else
@@ -335,6 +361,10 @@ main(int argc, char **argv)
 	p.mu = o.mu;
 	p.wall_mu = o.wall_mu;
 	pack_set_meta(&p, "material", o.mat.name);
+	if (o.hydrate_volume > 0) {
+		set_meta_number(&p, "hydrate-volume", o.hydrate_volume);
+		pack_set_meta(&p, "hydrate-material", o.hydrate.name);
+	}
 	if (pack_validate(&p) || pack_write_tool(&p, &tool, &st))
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);

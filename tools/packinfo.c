@@ -46,6 +46,21 @@ add(struct row *r, const char *name, const char *unit, double v)
 	r->v[r->n++] = v;
 }
 
+/* The hydrate keys, right after the porosities of either report: always in the key set (NaN
+ * without the phase column: left out of the key list, nan in --tsv), so that every --tsv row
+ * has the header's columns whatever packs the stream mixes. */
+static void
+add_hydrate(const struct pack *p, struct row *r)
+{
+	struct hydrate_measures h;
+
+	measure_hydrate(p, &h);
+	add(r, "hydrate_grains", NULL, h.grains);
+	add(r, "hydrate_volume_fraction", NULL, h.volume_fraction);
+	add(r, "hydrate_saturation", NULL, h.saturation);
+	add(r, "porosity_hydrate_as_pore", NULL, h.porosity_hydrate_as_pore);
+}
+
 static void
 fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 {
@@ -56,6 +71,7 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "lz", "m", pack_box_length(p->box, 2));
 	add(r, "porosity", NULL, m->porosity);
 	add(r, "bulk_porosity", NULL, m->bulk_porosity);
+	add_hydrate(p, r);
 	add(r, "coordination", NULL, m->coordination);
 	/* the bulk's keys are absent (NaN) together when the margin leaves no inner box */
 	add(r, "bulk_coordination", NULL, m->bulk_coordination);
@@ -120,6 +136,7 @@ fill_plate_row(const struct pack *p, const struct plate_measures *m, struct row 
 	add(r, "lz", "m", pack_box_length(p->box, 2));
 	add(r, "porosity", NULL, m->porosity);
 	add(r, "packing_fraction", NULL, m->packing_fraction);
+	add_hydrate(p, r);
 	add(r, "r_mean", "m", m->r_mean);
 	add(r, "r_std", "m", m->r_std);
 	add(r, "r_min", "m", m->r_min);

@@ -121,6 +121,12 @@ export_vtp_grains(const struct pack *p, FILE *fp)
 	vtk_array_doubles(fp, "radius", p->r, p->n);
 	vtk_array_doubles(fp, "E", p->E, p->n);
 	vtk_array_doubles(fp, "nu", p->nu, p->n);
+	if (p->has_phase) {
+		vtk_array_open(fp, "Int32", "phase", 1);
+		for (i = 0; i < p->n; i++)
+			fprintf(fp, "%d\n", p->phase[i]);
+		fputs("</DataArray>\n", fp);
+	}
 	fputs("</PointData>\n<Points>\n", fp);
 	vtk_array_open(fp, "Float64", "Points", 3);
 	for (i = 0; i < p->n; i++)
@@ -197,6 +203,13 @@ export_vtp_plates(const struct pack *p, FILE *fp)
 	vtk_cell_doubles(fp, "E", p->E, p->n, 1);
 	vtk_cell_doubles(fp, "nu", p->nu, p->n, 1);
 	vtk_cell_doubles(fp, "normal", nrm, p->n, 3);
+	if (p->has_phase) {
+		vtk_array_open(fp, "Int32", "phase", 1);
+		for (i = 0; i < p->n; i++)
+			for (f = 0; f < 6; f++)
+				fprintf(fp, "%d\n", p->phase[i]);
+		fputs("</DataArray>\n", fp);
+	}
 	fputs("</CellData>\n<Points>\n", fp);
 	vtk_array_open(fp, "Float64", "Points", 3);
 	for (i = 0; i < p->n; i++) {
@@ -365,7 +378,7 @@ export_lammps_dump(const struct pack *p, FILE *fp, long timestep)
 		memcpy(v, p->x + 3 * i, 3 * sizeof *v);
 		if (!plates) {
 			v[3] = p->r[i];
-			fprintf(fp, "%ld 1 ", p->id[i]);
+			fprintf(fp, "%ld %d ", p->id[i], 1 + pack_grain_phase(p, i));
 			put_nums(fp, v, 4);
 			continue;
 		}
@@ -375,7 +388,7 @@ export_lammps_dump(const struct pack *p, FILE *fp, long timestep)
 		memcpy(v + 3, p->q + 4 * i, 4 * sizeof *v);
 		v[7] = v[8] = p->side[i] + 2 * p->r[i];
 		v[9] = 2 * p->r[i];
-		fprintf(fp, "%ld %d ", p->id[i], p->side[i] > 0 ? 1 : 2);
+		fprintf(fp, "%ld %d ", p->id[i], (p->side[i] > 0 ? 1 : 2) + 2 * pack_grain_phase(p, i));
 		put_nums(fp, v, 10);
 	}
 	return finish(fp);
@@ -391,14 +404,14 @@ export_lammps_data(const struct pack *p, FILE *fp)
 		return -1;
 	/* LAMMPS skips the first line; the rest is its header grammar, then the section. */
 	fprintf(fp, "LAMMPS data file: qusgm pack, atom_style sphere, SI units\n\n"
-	    "%zu atoms\n1 atom types\n\n", p->n);
+	    "%zu atoms\n%d atom types\n\n", p->n, p->has_phase ? 2 : 1);
 	lammps_bounds(fp, p, "lohi");
 	fputs("\nAtoms # sphere\n\n", fp);
 	for (i = 0; i < p->n; i++) {
 		v[0] = 2 * p->r[i];
 		v[1] = p->rho[i];
 		memcpy(v + 2, p->x + 3 * i, 3 * sizeof *v);
-		fprintf(fp, "%ld 1 ", p->id[i]);
+		fprintf(fp, "%ld %d ", p->id[i], 1 + pack_grain_phase(p, i));
 		put_nums(fp, v, 5);
 	}
 	return finish(fp);

@@ -22,14 +22,16 @@
  * -4 yhi, -5 zlo, -6 zhi (PACK_WALL(w) for w in pack.h's order). */
 #define EXPORT_VTK_WALL_ID(w) PACK_WALL(w)
 
-/* Grains: points at the centres, PointData id (Int64), radius, E, nu (Float64), one vertex
- * cell per point. */
+/* Grains: points at the centres, PointData id (Int64), radius, E, nu (Float64) and, for a
+ * pack with the phase column, phase (Int32, 0 mineral, 1 hydrate), one vertex cell per
+ * point. */
 int export_vtp_grains(const struct pack *p, FILE *fp);
 /* Spheroplates (pack/shape.h): each grain a closed box, 8 points and 6 quadrilaterals
  * (outward, counter-clockwise), the body-frame box |x|, |y| <= L/2 + r, |z| <= r turned by
  * R(q) about the centre: the plate's extent, L + 2 r wide and 2 r thick (a sphere, L = 0, is
  * its bounding cube).  CellData, one value per grain on each of its faces: id (Int64),
- * side, radius (r), E, nu and normal (R(q) e3, 3 components; Float64). */
+ * side, radius (r), E, nu and normal (R(q) e3, 3 components; Float64), and phase (Int32)
+ * for a pack with the phase column. */
 int export_vtp_plates(const struct pack *p, FILE *fp);
 /* Contacts found from the positions (contacts_find): a line from centre i to centre j, or
  * from the centre to the contact point on the wall; CellData id1, id2, normal_force (the
@@ -40,11 +42,13 @@ int export_vtm(FILE *fp, const char *grains_vtp, const char *contacts_vtp);
 
 /* One LAMMPS dump frame; box bounds "ff ff ff" (walls).  Atom ids are the grain ids,
  * which LAMMPS wants positive: a pack holding id 0 is refused.  Spheres: "id type x y z
- * radius", type 1.  A pack with a spheroplate (pack_first_plate): "id type x y z quatw quati
- * quatj quatk shapex shapey shapez", the quaternion as stored and the full extents L + 2 r,
- * L + 2 r, 2 r along the body axes; type 1 for a plate, 2 for a sphere (L = 0). */
+ * radius", type 1, or 2 for a hydrate grain (the phase column).  A pack with a spheroplate
+ * (pack_first_plate): "id type x y z quatw quati quatj quatk shapex shapey shapez", the
+ * quaternion as stored and the full extents L + 2 r, L + 2 r, 2 r along the body axes; type 1
+ * for a plate, 2 for a sphere (L = 0), 2 more for a hydrate grain. */
 int export_lammps_dump(const struct pack *p, FILE *fp, long timestep);
-/* A LAMMPS data file for atom_style sphere: "id type diameter density x y z", type 1. */
+/* A LAMMPS data file for atom_style sphere: "id type diameter density x y z", type 1; a pack
+ * with the phase column has 2 atom types, type 2 a hydrate grain. */
 int export_lammps_data(const struct pack *p, FILE *fp);
 
 /* "x y z r" lines, nothing else; with periodic, a first line "##PERIODIC:: Lx Ly Lz" with

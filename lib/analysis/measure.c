@@ -483,6 +483,25 @@ measure_sliding(const struct pack *p, const struct geo_contacts *gc, struct pack
 		m->sliding_ratio = gc->n ? (double)nsl / gc->n : 0;
 }
 
+void
+measure_hydrate(const struct pack *p, struct hydrate_measures *h)
+{
+	double vh, vg;
+	size_t n;
+
+	h->has_phase = p->has_phase;
+	if (!p->has_phase) {
+		h->grains = h->volume_fraction = h->saturation = h->porosity_hydrate_as_pore = NAN;
+		return;
+	}
+	n = pack_hydrate_grains(p, &vh);
+	vg = pack_grain_volume(p);
+	h->grains = (double)n;
+	h->volume_fraction = vh / vg;
+	h->saturation = pack_hydrate_saturation(p);
+	h->porosity_hydrate_as_pore = 1 - (vg - vh) / pack_box_volume(p->box);
+}
+
 int
 measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m)
 {

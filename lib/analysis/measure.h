@@ -50,6 +50,18 @@ struct pack_measures {
 	size_t bulk_grains;	/* grains whose centre is in the inner box */
 };
 
+/* The hydrate grains of a pack with the phase column (pack.h, pack-format.md "The phase
+ * column"), what packinfo reports after the porosities: the count, their fraction of the grain
+ * volume V_h / V_grains, the saturation S = V_h / (V_box - V_mineral) with the hydrate counted
+ * as pore space (pack_hydrate_saturation), and the porosity that way, 1 - V_mineral / V_box.
+ * Grain volumes as in pack_grain_volume, overlaps not subtracted.  Without the column,
+ * has_phase 0 and every value NaN: the pack says nothing about its phases. */
+struct hydrate_measures {
+	int has_phase;
+	double grains, volume_fraction, saturation, porosity_hydrate_as_pore;
+};
+void measure_hydrate(const struct pack *p, struct hydrate_measures *h);
+
 /* Fills m, all but the bulk (measure_bulk); gc receives the contacts (may be reused by the
  * caller).  0 or -1. */
 int measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m);

@@ -162,6 +162,8 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 	else if (p->has_shapes && !(isfinite(p->side[i]) && p->side[i] >= 0))
 		snprintf(why, len, "grain %ld: side %g is %s", p->id[i], p->side[i],
 		    isfinite(p->side[i]) ? "negative" : "not finite");
+	else if (p->has_phase && p->phase[i] >= PACK_NPHASES)
+		snprintf(why, len, "grain %ld: phase %d is neither 0 (mineral) nor 1 (hydrate)", p->id[i], p->phase[i]);
 	else if (p->has_shapes && !(fabs(quat_norm(p->q + 4 * i) - 1) <= PACK_QUAT_TOL))
 		/* not renormalised: what is read is what is written back (pack-format.md) */
 		snprintf(why, len, "grain %ld: (qw, qx, qy, qz) = (%.9g, %.9g, %.9g, %.9g) is not a unit quaternion (norm %.9g, off 1 by more than %g)",
@@ -452,7 +454,7 @@ static int
 kw_columns(struct header *h, char **tok, int n)
 {
 	unsigned named = 0;
-	int k, c, g, have[NGROUPS] = {0};
+	int k, c, g, last, have[NGROUPS] = {0};
 	char names[128];
 
 	if (n < 2)
@@ -484,9 +486,13 @@ kw_columns(struct header *h, char **tok, int n)
 			return rd_error(h->rd, "columns: only some of the %s columns (%s): they come all %d or none; '%s' is missing",
 			    groups[g], names, group_size(g), columns[c].name);
 		}
-	/* after the required columns, each group from its first column on, in order */
-	while (k < n) {
+	/* after the required columns, each group from its first column on, in order, and the
+	 * groups in their order (shape before phase), as writers put them */
+	for (last = 0; k < n; last = g) {
 		g = columns[column_index(tok[k])].group;
+		if (g < last)
+			return rd_error(h->rd, "columns: column %d '%s': the %s columns come before the %s columns",
+			    k, tok[k], groups[g], groups[last]);
 		group_names(g, names, sizeof names);
 		for (c = 0; c < NCOLUMNS; c++) {
 			if (columns[c].group != g)

@@ -26,7 +26,8 @@ int pack_read_path(const char *path, struct pack *p);
 
 /* The version a writer emits for p: the lowest that represents it, 1 for the standard
  * grain columns and six walls (byte for byte what qusgm wrote before version 2 existed,
- * readable by older readers), 2 for a periodic axis or the shape columns (has_shapes). */
+ * readable by older readers), 2 for a periodic axis, the shape columns (has_shapes) or the
+ * phase column (has_phase). */
 int pack_format_version(const struct pack *p);
 
 /* Write one pack to an open stream, compressed if gz; 0 on success. */

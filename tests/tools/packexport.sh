@@ -308,3 +308,19 @@ for fmt in vtk lammps lammps-data xyzr; do
 	packexport --$fmt in0.pack >b.out 2>/dev/null
 	if [ -s a.out ] && cmp -s a.out b.out; then pass "shape columns with side 0: --$fmt as for spheres"; else fail "shape columns with side 0: --$fmt" "differs"; fi
 done
+
+# --- the phase column (issue 20): hydrate grains keep their tag where the format has a type ---
+cp "$TOP/tests/fuzz/corpus/fuzz_pack/v2_phase.pack" ph.pack
+awk '/^end$/ { on = 1; next } on && NF == 9 { print $1, $9 + 1 }' ph.pack >ph.want
+expect_num "phase pack: some hydrate grains" "$(awk '$2 == 2' ph.want | wc -l)" ">" 0
+packexport --lammps ph.pack 2>/dev/null | awk 'f { print $1, $2 } /^ITEM: ATOMS/ { f = 1 }' >ph.dump
+expect_same "--lammps: atom type 1 mineral, 2 hydrate, by id" ph.want ph.dump
+packexport --lammps-data ph.pack >ph.data 2>/dev/null
+grep -q '^2 atom types$' ph.data && pass "--lammps-data: 2 atom types with the phase column" || fail "--lammps-data: 2 atom types" "$(grep 'atom types' ph.data)"
+awk 'f && NF == 7 { print $1, $2 } /^Atoms/ { f = 1 }' ph.data >ph.dat
+expect_same "--lammps-data: atom type 1 mineral, 2 hydrate, by id" ph.want ph.dat
+packexport --vtk ph.pack 2>/dev/null | awk '/Name="phase"/ { f = 1; next } f && /<\/DataArray>/ { exit } f { print }' >ph.vtk
+awk '{ print $2 - 1 }' ph.want >ph.vwant
+expect_same "--vtk: a phase array, 0 mineral, 1 hydrate, in pack order" ph.vwant ph.vtk
+packexport --lammps in.pack 2>/dev/null | grep -q '^ITEM: ATOMS id type x y z radius$' && ! packexport --vtk in.pack 2>/dev/null | grep -q phase &&
+    pass "no phase column: no phase array, type 1" || fail "no phase column: no phase array" "phase written"

@@ -2,7 +2,8 @@
 # One check for every error the reader reports (share/doc/pack-format.md, "Errors"), each
 # with exit status 1, an empty stdout and exactly one "packinfo: FILE:LINE: what" line on
 # stderr, and the positive cases: plain, gzip, stdin, '-', several packs in one stream, -o;
-# then the same for the lines of format version 2 (columns, boundary) and its shape columns.
+# then the same for the lines of format version 2 (columns, boundary), its shape columns and
+# its phase column, which every tool that writes a pack keeps.
 . "$TOP/tests/tools/lib.sh"
 
 # Line numbers of good.pack, used by the error checks below:
@@ -302,7 +303,7 @@ bad2 v2-missing-boundary 13 "missing 'boundary' line" '/^boundary /d'
 bad2 v2-duplicate-columns 14 "duplicate 'columns' line" '13p'
 bad2 v2-duplicate-boundary 8 "duplicate 'boundary' line" '7p'
 bad2 v2-columns-no-names 13 'columns: expected the names of the grain columns' '13s/.*/columns/'
-bad2 v2-unknown-column 13 "columns: unknown column 'phase'" '13s/$/ phase/'
+bad2 v2-unknown-column 13 "columns: unknown column 'type'" '13s/$/ type/'
 bad2 v2-unknown-column-first 13 "columns: unknown column 'ID'" '13s/ id / ID /'
 bad2 v2-column-twice 13 "columns: column 'x' named twice" '13s/$/ x/'
 bad2 v2-column-twice-long 13 "columns: column 'id' named twice" '13s/$/ id x y z r E nu rho id x y z r E nu rho/'
@@ -394,3 +395,77 @@ bad3 shapes-unknown 10 "columns: unknown column 'qs'" '10s/ qz$/ qs/'
 # version 1 has no columns line, so no shape columns
 bad3 shapes-in-v1 9 "columns: not in version 1 of the format" '1s/2$/1/;5d'
 bad3 shapes-lines-in-v1 10 "grain line: expected 8 columns \(id x y z r E nu rho\), found 13; more columns need 'qusgm-pack 2' and a columns line$" '1s/2$/1/;5d;10d'
+
+# --- version 2: the phase column (0 mineral, 1 hydrate) --------------------------------------
+# The example of pack-format.md, "The phase column".  Line numbers of good4.pack:
+#  1 magic   2 meta   3 units   4 box   5 boundary   6 walls   7 friction   8 grains
+#  9 contacts   10 columns   11 end   12-15 grains (9 columns)
+cat >good4.pack <<'EOF4'
+qusgm-pack 2
+meta material quartz
+units SI
+box 0 0 0 4e-4 2e-4 2e-4
+boundary walls walls walls
+walls 1e13 0.495 0.3
+friction 0.3
+grains 4
+contacts 0
+columns id x y z r E nu rho phase
+end
+1 1e-4 1e-4 1e-4 1e-4 1e11 0.15 2650 0
+2 3e-4 1e-4 1e-4 1e-4 1e11 0.15 2650 0
+3 2e-4 1e-4 1.9e-4 1e-5 1e11 0.15 2650 0
+4 2e-4 1.75e-4 1e-4 2e-5 6.6e9 0.32 900 1
+EOF4
+awk '/^    qusgm-pack 2$/ { on = 0 } /^## The phase column/ { sec = 1 } sec && /^    qusgm-pack 2$/ { on = 1 } on && /^    / { print substr($0, 5) } on && /^$/ && n++ { exit }' \
+    "$TOP/share/doc/pack-format.md" >doc4.pack
+expect_same phase-the-example-of-pack-format.md good4.pack doc4.pack
+
+bad4() {
+	name=$1 line=$2 re=$3
+	sed "$4" good4.pack >"$name.pack"
+	expect_error "$name" 1 "^packinfo: $name\\.pack:$line: .*$re" packinfo "$name.pack"
+}
+
+expect_ok phase-good packinfo good4.pack
+packinfo good4.pack >good4.info 2>/dev/null
+expect_num phase-hydrate-grains "$(info_value good4.info hydrate_grains)" == 1
+bad4 phase-two 15 "grain 4: phase '2' is neither 0 \(mineral\) nor 1 \(hydrate\)$" '15s/ 1$/ 2/'
+bad4 phase-minus-one 12 "grain 1: phase '-1' is neither 0 \(mineral\) nor 1 \(hydrate\)$" '12s/ 0$/ -1/'
+bad4 phase-half 13 "grain 2: phase '0.5' is neither 0 \(mineral\) nor 1 \(hydrate\)$" '13s/ 0$/ 0.5/'
+bad4 phase-real 15 "grain 4: phase '1.0' is neither 0 \(mineral\) nor 1 \(hydrate\)$" '15s/ 1$/ 1.0/'
+bad4 phase-exponent 15 "grain 4: phase '1e0' is neither" '15s/ 1$/ 1e0/'
+bad4 phase-nan 14 "grain 3: phase 'nan' is neither" '14s/ 0$/ nan/'
+bad4 phase-word 15 "grain 4: phase 'hydrate' is neither" '15s/ 1$/ hydrate/'
+bad4 phase-missing-field 15 'grain line: expected 9 columns \(id x y z r E nu rho phase\), found 8$' '15s/ 1$//'
+bad4 phase-extra-field 15 'grain line: expected 9 columns \(id x y z r E nu rho phase\), found 10$' '15s/$/ 1/'
+bad4 phase-without-column 12 'grain line: expected 8 columns \(id x y z r E nu rho\), found 9$' '10s/ phase$//'
+bad4 phase-twice 10 "columns: column 'phase' named twice$" '10s/$/ phase/'
+bad4 phase-before-rho 10 "columns: column 8 must be 'rho' \(the required columns come first" '10s/rho phase$/phase rho/'
+bad4 phase-before-shapes 10 "columns: column 10 'side': the shape columns come before the phase columns$" \
+    '10s/$/ side qw qx qy qz/;12,15s/$/ 0 1 0 0 0/'
+bad4 phase-in-v1 9 "columns: not in version 1 of the format" '1s/2$/1/;5d'
+bad4 phase-lines-in-v1 10 "grain line: expected 8 columns \(id x y z r E nu rho\), found 9; more columns need 'qusgm-pack 2' and a columns line$" '1s/2$/1/;5d;10d'
+# with the shape columns: all four columns lines read
+sed '10s/ phase$/ side qw qx qy qz phase/;12,15s/ \([01]\)$/ 0 1 0 0 0 \1/' good4.pack >shph.pack
+expect_ok phase-after-shapes packinfo shph.pack
+expect_num phase-after-shapes-hydrate-grains "$(packinfo shph.pack | awk '$1 == "hydrate_grains" { print $2 }')" == 1
+
+# every tool that writes a pack keeps the tags: the same ids carry the same phase after
+# densify, frictionalize and loadtest (each grain followed by its id), and packgen's
+# renumbering keeps the hydrate's density with its tag
+phase_of() { awk '/^end$/ { on = 1; next } on && NF == 9 { print $1, $9, $8 }' "$1" | sort -n; }
+packgen -n 200 --seed 5 --material quartz --hydrate-volume 0.15 -o hy.pack 2>/dev/null
+phase_of hy.pack >hy.ph
+expect_num phase-packgen-tags-some "$(awk '$2 == 1' hy.ph | wc -l)" ">" 10
+expect_num phase-packgen-density-with-tag "$(awk '($2 == 1) != ($3 == 900)' hy.ph | wc -l)" == 0
+expect_ok phase-densify densify --stress 4e6 -o hyd.pack hy.pack
+phase_of hyd.pack >hyd.ph
+expect_same phase-densify-keeps-the-tags hy.ph hyd.ph
+expect_ok phase-frictionalize frictionalize -o hyf.pack hyd.pack
+phase_of hyf.pack >hyf.ph
+expect_same phase-frictionalize-keeps-the-tags hy.ph hyf.ph
+expect_ok phase-loadtest loadtest --steps 2 -o hyl.pack hyf.pack
+phase_of hyl.pack >hyl.ph
+expect_same phase-loadtest-keeps-the-tags hy.ph hyl.ph
+grep -q '^columns id x y z r E nu rho phase$' hyl.pack && pass phase-loadtest-columns-line || fail phase-loadtest-columns-line "$(grep ^columns hyl.pack)"

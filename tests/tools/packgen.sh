@@ -178,3 +178,62 @@ expect_error "--jitter for spheres" 2 '^packgen: --jitter: only with --shape sph
 expect_error "--jitter 2" 2 '^packgen: --jitter: must be in \[0, 1\]' packgen --shape spheroplate --jitter 2
 expect_error "--periodic for spheres" 2 '^packgen: --periodic: only with --shape spheroplate' packgen --periodic x
 expect_error "--periodic bad" 2 '^packgen: --periodic: expected' packgen --shape spheroplate --periodic xq
+
+# --- --hydrate-volume F (issue 20): the smallest grains hydrate ------------------------------
+# The rule (packgen.1, "Hydrate"): grains by radius, ties by id order (packgen draws in id
+# order, and ids are renumbered by position after the DEM, so the check orders by radius
+# alone: uniform radii have no ties); the hydrate grains are the shortest prefix whose sum of
+# r^3 reaches F of the total.  awk redoes it from the pack's own numbers.
+expect_ok "--hydrate-volume 0.15" packgen -n 300 --seed 3 --material quartz --hydrate-volume 0.15 -o hy.pack
+expect_ok "--hydrate-volume 0.15 again" packgen -n 300 --seed 3 --material quartz --hydrate-volume 0.15 -o hy2.pack
+expect_same "--hydrate-volume: same seed, same bytes" hy.pack hy2.pack
+grep -q '^columns id x y z r E nu rho phase$' hy.pack && pass "--hydrate-volume: the phase column" || fail "--hydrate-volume: the phase column" "$(grep ^columns hy.pack)"
+grep -q '^qusgm-pack 2$' hy.pack && pass "--hydrate-volume: version 2" || fail "--hydrate-volume: version 2" "$(head -n 1 hy.pack)"
+for m in 'hydrate-volume 0.15' 'hydrate-material hydrate' 'material quartz'; do
+	grep -q "^meta $m\$" hy.pack && pass "--hydrate-volume: meta $m" || fail "--hydrate-volume: meta $m" "$(grep ^meta hy.pack | tr '\n' ' ')"
+done
+grep -q -- ' --hydrate-volume=0.15 ' hy.pack && pass "--hydrate-volume: in the history's resolved options" || fail "--hydrate-volume: in the history" "none"
+awk '/^end$/ { on = 1; next } on && NF == 9 { print $5, $9, $6, $7, $8 }' hy.pack | sort -g -k1,1 >hy.rows
+awk -v F=0.15 '{ r[NR] = $1; ph[NR] = $2; v = $1 * $1 * $1; tot += v }
+    END {
+	# the prefix by the rule
+	for (k = 1; k <= NR && !(s >= F * tot); k++) { s += r[k] ^ 3; m = k }
+	bad = 0
+	for (k = 1; k <= NR; k++) if ((k <= m) != (ph[k] == 1)) bad++
+	printf "%d %d %.17g %.17g %.17g\n", bad, m, s / tot, (s - r[m] ^ 3) / tot, r[m]
+    }' hy.rows >hy.rule
+read -r hbad hm hF hFprev hrmax <hy.rule
+expect_num "--hydrate-volume: the hydrate grains are exactly the smallest (grains off the rule)" "$hbad" == 0
+expect_num "--hydrate-volume: some grains hydrate" "$hm" ">" 10
+expect_num "--hydrate-volume: their volume fraction reaches F" "$hF" ">=" 0.15
+expect_num "--hydrate-volume: one grain fewer does not (the first prefix >= F)" "$hFprev" "<" 0.15
+expect_num "--hydrate-volume: hydrate grains counted" "$(awk '$2 == 1' hy.rows | wc -l)" == "$hm"
+# uniform 0.07-0.13 mm: F = 0.15 below r_c with (r_c^4 - a^4) / (b^4 - a^4) = 0.15, 0.0892 mm;
+# 300 grains move it by a few um
+expect_num "--hydrate-volume: the largest hydrate radius near 0.089 mm" "$(rel "$hrmax" 8.92e-5)" "<" 0.05
+# the hydrate's constants: rho 900 exactly, E and nu drawn around 6.6 GPa and 0.32 (spread
+# 0.1: 4 standard deviations are 40 %; the quartz grains, 100 GPa and 0.15, are far out)
+expect_num "--hydrate-volume: every hydrate grain rho 900" "$(awk '$2 == 1 && $5 != 900' hy.rows | wc -l)" == 0
+expect_num "--hydrate-volume: every hydrate E within 40 % of 6.6 GPa" "$(awk '$2 == 1 && ($3 < 0.6 * 6.6e9 || $3 > 1.4 * 6.6e9)' hy.rows | wc -l)" == 0
+expect_num "--hydrate-volume: every hydrate nu within 40 % of 0.32" "$(awk '$2 == 1 && ($4 < 0.6 * 0.32 || $4 > 1.4 * 0.32)' hy.rows | wc -l)" == 0
+expect_num "--hydrate-volume: mean hydrate E within 5 % of 6.6 GPa" "$(awk '$2 == 1 { s += $3; n++ } END { print s / n }' hy.rows | xargs -I{} awk 'BEGIN { d = {} - 6.6e9; print (d < 0 ? -d : d) / 6.6e9 }')" "<" 0.05
+expect_num "--hydrate-volume: the mineral grains quartz (rho 2650, E above 50 GPa)" "$(awk '$2 == 0 && ($5 != 2650 || $3 < 5e10)' hy.rows | wc -l)" == 0
+# F = 0 is no option: no phase column, the same pack but for the command line in the history
+packgen -n 60 --seed 3 -o h0a.pack 2>/dev/null
+packgen -n 60 --seed 3 --hydrate-volume 0 -o h0b.pack 2>/dev/null
+grep -v '^history' h0a.pack >h0a.body
+grep -v '^history' h0b.pack >h0b.body
+if [ -s h0a.body ] && cmp -s h0a.body h0b.body && ! grep -q phase h0b.pack && grep -q '^qusgm-pack 1$' h0b.pack; then
+	pass "--hydrate-volume 0: the pack without the option (version 1, no phase column)"
+else
+	fail "--hydrate-volume 0: the pack without the option" "they differ"
+fi
+# the resolved options given back make the same hydrate pack
+packgen $(sed -n 's/^history packgen [^:]*: .* ; //p' hy.pack) -o hy3.pack 2>/dev/null
+grep -v '^history' hy.pack >hy.body
+grep -v '^history' hy3.pack >hy3.body 2>/dev/null
+if [ -s hy.body ] && cmp -s hy.body hy3.body; then pass "--hydrate-volume: resolved options given back, same pack"; else fail "--hydrate-volume: resolved options given back" "the packs differ"; fi
+expect_error "--hydrate-volume 1" 2 '^packgen: --hydrate-volume: must be in \[0, 1\) \(the hydrate.s fraction of the grain volume\), got 1 ' packgen --hydrate-volume 1
+expect_error "--hydrate-volume -0.1" 2 '^packgen: --hydrate-volume: must be in \[0, 1\)' packgen --hydrate-volume -0.1
+expect_error "--hydrate-volume nan" 2 "^packgen: --hydrate-volume: 'nan' is not a finite number" packgen --hydrate-volume nan
+expect_error "--hydrate-volume with spheroplates" 2 '^packgen: --hydrate-volume: spheres only \(not with --shape spheroplate\)' packgen --shape spheroplate --hydrate-volume 0.1

@@ -41,14 +41,14 @@ expect_num "two diameters: still below the box porosity" "$(info_value m2.info b
 
 # --- --tsv: the same numbers ------------------------------------------------------------------
 packinfo --tsv dense.pack >d.tsv 2>/dev/null
-hdr=$(head -n 1 d.tsv | cut -f 5-10)
-if [ "$hdr" = "$(printf 'porosity\tbulk_porosity\tcoordination\tbulk_coordination\tbulk_grains\tbulk_margin[m]')" ]; then
-	pass "--tsv: the bulk columns next to porosity and coordination"
+hdr=$(head -n 1 d.tsv | cut -f 5-14)
+if [ "$hdr" = "$(printf 'porosity\tbulk_porosity\thydrate_grains\thydrate_volume_fraction\thydrate_saturation\tporosity_hydrate_as_pore\tcoordination\tbulk_coordination\tbulk_grains\tbulk_margin[m]')" ]; then
+	pass "--tsv: the bulk columns next to porosity and coordination, the hydrate columns after the porosities"
 else
 	fail "--tsv: the bulk columns next to porosity and coordination" "$hdr"
 fi
 expect_num "--tsv: bulk_porosity as in the key/value output" "$(sed -n 2p d.tsv | cut -f 6)" "==" "$(info_value d.info bulk_porosity)"
-expect_num "--tsv: bulk_margin as in the key/value output" "$(sed -n 2p d.tsv | cut -f 10)" "==" "$(info_value d.info bulk_margin)"
+expect_num "--tsv: bulk_margin as in the key/value output" "$(sed -n 2p d.tsv | cut -f 14)" "==" "$(info_value d.info bulk_margin)"
 
 # --- no inner box: the bulk keys left out (nan in --tsv) ---------------------------------------
 packinfo --bulk-margin 1 dense.pack >big.info 2>big.err
@@ -58,10 +58,10 @@ else
 	fail "a margin larger than the box: no bulk keys, nothing on stderr" "$(grep '^bulk_' big.info | tr '\n' ' ') $(cat big.err)"
 fi
 packinfo --tsv --bulk-margin 1 dense.pack >big.tsv 2>/dev/null
-if [ "$(sed -n 2p big.tsv | cut -f 6,8-10)" = "$(printf 'nan\tnan\tnan\tnan')" ]; then
+if [ "$(sed -n 2p big.tsv | cut -f 6,12-14)" = "$(printf 'nan\tnan\tnan\tnan')" ]; then
 	pass "--tsv, no inner box: the bulk columns nan"
 else
-	fail "--tsv, no inner box: the bulk columns nan" "$(sed -n 2p big.tsv | cut -f 5-10)"
+	fail "--tsv, no inner box: the bulk columns nan" "$(sed -n 2p big.tsv | cut -f 5-14)"
 fi
 
 # --- rattlers: 4 contacts without friction, 2 with ----------------------------------------------
@@ -85,6 +85,53 @@ else
 	echo "SKIP frictional rattlers: this build's frictional pack has no grain under 4 contacts"
 fi
 expect_num "frictional pack: the bulk denser than the box too" "$(info_value fr.info bulk_porosity)" "<" "$(info_value fr.info porosity)"
+
+# --- hydrate (issue 20): the phase column's keys ---------------------------------------------
+# a dense pack whose smallest grains held 15 % of the grain volume as hydrate (densify grows
+# grains, the small hydrate ones among them, so the fraction is no longer 0.15)
+packgen -n 200 --seed 5 --material quartz --hydrate-volume 0.15 2>/dev/null | densify --stress 4e6 -o hy.pack 2>/dev/null
+packinfo hy.pack >hy.info 2>hy.err || fail "packinfo reads the hydrate pack" "$(cat hy.err)"
+# the pack's own numbers: V_h, V_mineral (sum r^3, times 4/3 pi) and the box
+awk '$1 == "box" { V = ($5 - $2) * ($6 - $3) * ($7 - $4) } /^end$/ { on = 1; next }
+    on && NF == 9 { v = $5 * $5 * $5; if ($9 == 1) { h += v; n++ } else m += v }
+    END { c = 4 / 3 * 3.141592653589793; h *= c; m *= c
+	printf "%d %.17g %.17g %.17g %.17g\n", n, h / (h + m), h / (V - m), 1 - m / V, 1 - (h + m) / V }' hy.pack >hy.want
+read -r wn wf ws wph wpo <hy.want
+expect_num "hydrate: hydrate_grains, the tagged grains" "$(info_value hy.info hydrate_grains)" == "$wn"
+# 1e-12: the sums differ only in their order (200 terms, a few 1e-16 each) and S's
+# denominator V_box - V_mineral cancels about half of V_box
+expect_num "hydrate: hydrate_volume_fraction V_h / V_grains (rel)" "$(rel "$(info_value hy.info hydrate_volume_fraction)" "$wf")" "<" 1e-12
+expect_num "hydrate: hydrate_saturation V_h / (V_box - V_mineral) (rel)" "$(rel "$(info_value hy.info hydrate_saturation)" "$ws")" "<" 1e-12
+expect_num "hydrate: porosity_hydrate_as_pore 1 - V_mineral / V_box (rel)" "$(rel "$(info_value hy.info porosity_hydrate_as_pore)" "$wph")" "<" 1e-12
+expect_num "hydrate: porosity 1 - V_grains / V_box (rel)" "$(rel "$(info_value hy.info porosity)" "$wpo")" "<" 1e-12
+# S = F (1 - n) / (n (1 - F)) with n the porosity the hydrate counted as pore space
+expect_num "hydrate: S = F (1 - n) / (n (1 - F))" "$(rel "$(info_value hy.info hydrate_saturation)" \
+    "$(awk -v f="$(info_value hy.info hydrate_volume_fraction)" -v n="$(info_value hy.info porosity_hydrate_as_pore)" 'BEGIN { printf "%.17g", f * (1 - n) / (n * (1 - f)) }')")" "<" 1e-12
+awk '{ print $1 }' hy.info | sed -n 5,10p | tr '\n' ' ' >order
+if [ "$(cat order)" = "porosity bulk_porosity hydrate_grains hydrate_volume_fraction hydrate_saturation porosity_hydrate_as_pore " ]; then
+	pass "hydrate: the keys right after the porosities"
+else
+	fail "hydrate: the keys right after the porosities" "$(cat order)"
+fi
+# a pack without the column: no hydrate keys (the key/value output as before); with --tsv
+# over both kinds one header and rows of its width, nan for the pack without the column
+if grep -q '^hydrate_\|^porosity_hydrate' d.info; then fail "no phase column: no hydrate keys" "$(grep hydrate d.info)"; else pass "no phase column: no hydrate keys"; fi
+packinfo --tsv dense.pack hy.pack dense.pack >mix.tsv 2>/dev/null
+expect_num "--tsv over packs with and without the phase column: one field count" "$(awk -F '\t' '{ print NF }' mix.tsv | sort -u | wc -l)" == 1
+expect_num "--tsv: 3 rows" "$(rows mix.tsv | wc -l)" == 3
+if [ "$(rows mix.tsv | sed -n 1p | cut -f 7-10)" = "$(printf 'nan\tnan\tnan\tnan')" ] &&
+    [ "$(rows mix.tsv | sed -n 2p | cut -f 7)" = "$wn" ]; then
+	pass "--tsv: hydrate columns nan without the column, the count with it"
+else
+	fail "--tsv: hydrate columns nan without the column, the count with it" "$(rows mix.tsv | cut -f 7-10 | tr '\n' ' ')"
+fi
+expect_num "--tsv: hydrate_saturation as in the key/value output" "$(rows mix.tsv | sed -n 2p | cut -f 9)" == "$(info_value hy.info hydrate_saturation)"
+# the column with every grain mineral: 0 hydrate, S 0, both porosities the same
+awk '/^end$/ { on = 1; print; next } on && NF == 9 { $9 = 0 } { print }' hy.pack >min.pack
+packinfo min.pack >min.info 2>/dev/null
+expect_num "phase column, no hydrate: hydrate_grains 0" "$(info_value min.info hydrate_grains)" == 0
+expect_num "phase column, no hydrate: S 0" "$(info_value min.info hydrate_saturation)" == 0
+expect_num "phase column, no hydrate: porosity_hydrate_as_pore = porosity" "$(rel "$(info_value min.info porosity_hydrate_as_pore)" "$(info_value min.info porosity)")" "<" 1e-15
 
 # --- usage -----------------------------------------------------------------------------------
 expect_error "--bulk-margin negative" 2 '^packinfo: --bulk-margin: must be >= 0' packinfo --bulk-margin -1e-4 dense.pack

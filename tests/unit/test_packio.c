@@ -645,6 +645,140 @@ shapes(const char *dir)
 	pack_free(&s);
 }
 
+/* A small pack with the phase column for the reader's refusals: grain 2 hydrate; %s is the
+ * columns line's names after rho, %s each grain's fields after rho. */
+static const char phase_pack[] = "qusgm-pack 2\n"		/* 1 */
+				 "units SI\n"			/* 2 */
+				 "box 0 0 0 1 1 1\n"		/* 3 */
+				 "boundary walls walls walls\n"	/* 4 */
+				 "walls 7e12 0.3 0.3\n"		/* 5 */
+				 "friction 0.3\n"		/* 6 */
+				 "grains 2\n"			/* 7 */
+				 "contacts 0\n"			/* 8 */
+				 "columns id x y z r E nu rho%s\n"	/* 9 */
+				 "end\n"			/* 10 */
+				 "1 0.25 0.5 0.5 0.1 1e11 0.15 2650%s\n"	/* 11 */
+				 "2 0.75 0.5 0.5 0.05 6.6e9 0.32 900%s\n";	/* 12 */
+
+/* Write phase_pack with the given columns tail and grain tails, and read it: 0, or -1 with
+ * the reader's message in the slot. */
+static int
+read_phase_pack(const char *path, const char *cols, const char *g1, const char *g2, struct pack *p)
+{
+	FILE *fp = fopen(path, "wb");
+
+	if (!fp)
+		return -1;
+	fprintf(fp, phase_pack, cols, g1, g2);
+	fclose(fp);
+	return pack_read_path(path, p);
+}
+
+/* The phase column (0 mineral, 1 hydrate): storage and growth, the writer's version 2 and
+ * its columns line, the round trip to the byte, with and without the shape columns, and what
+ * the reader and pack_validate refuse. */
+static void
+phases(const char *dir)
+{
+	struct pack p, q;
+	char a[160], b[160], in[160], how[64], *t;
+	double x[3] = {0.5e-4, 0.5e-4, 0.5e-4}, vh;
+	size_t k;
+	int ok, sh;
+	static const struct {
+		const char *cols, *g1, *g2, *want;
+	} bad[] = {
+		{" phase", " 0", " 2", "p.pack:12: grain 2: phase '2' is neither 0 (mineral) nor 1 (hydrate)"},
+		{" phase", " 0.5", " 1", "p.pack:11: grain 1: phase '0.5' is neither 0 (mineral) nor 1 (hydrate)"},
+		{" phase", " 0", " -1", "p.pack:12: grain 2: phase '-1' is neither 0 (mineral) nor 1 (hydrate)"},
+		{" phase", " 1.0", " 1", "p.pack:11: grain 1: phase '1.0' is neither 0 (mineral) nor 1 (hydrate)"},
+		{" phase", " nan", " 1", "p.pack:11: grain 1: phase 'nan' is neither 0 (mineral) nor 1 (hydrate)"},
+		{" phase", " 0", " hydrate", "p.pack:12: grain 2: phase 'hydrate' is neither 0 (mineral) nor 1 (hydrate)"},
+		{" phase", " 0", "", "p.pack:12: grain line: expected 9 columns (id x y z r E nu rho phase), found 8"},
+		{"", " 0", " 1", "p.pack:11: grain line: expected 8 columns (id x y z r E nu rho), found 9"},
+		{" phase side qw qx qy qz", " 0 0 1 0 0 0", " 1 0 1 0 0 0",
+		    "p.pack:9: columns: column 10 'side': the shape columns come before the phase columns"},
+		{" phase phase", " 0 0", " 1 1", "p.pack:9: columns: column 'phase' named twice"},
+		{" rho", " 0", " 1", "p.pack:9: columns: column 'rho' named twice"},
+	};
+
+	build(&p);
+	CHECK(!p.has_phase && !p.phase && pack_grain_phase(&p, 0) == PHASE_MINERAL,
+	    "a pack has no phase column until pack_set_phases: every grain mineral");
+	CHECK(pack_hydrate_grains(&p, &vh) == 0 && vh == 0 && pack_hydrate_saturation(&p) == 0,
+	    "no phase column: no hydrate grains, S = 0");
+	CHECK(pack_set_phases(&p) == 0 && p.has_phase, "pack_set_phases");
+	for (k = 0, ok = 1; k < p.n; k++)
+		ok = ok && p.phase[k] == PHASE_MINERAL;
+	CHECK(ok, "pack_set_phases: every grain mineral");
+	CHECK(pack_format_version(&p) == 2, "pack_format_version: 2 with the phase column");
+	for (k = 0, ok = 1; k < 300; k++) {
+		x[0] = 1e-7 * (double)(k + 1);
+		ok = ok && pack_add_grain(&p, 1000 + (long)k, x, 1e-5, 7e10, 0.2, 2420) != (size_t)-1;
+	}
+	for (k = 0; k < p.n; k++)
+		ok = ok && p.phase[k] == PHASE_MINERAL;
+	CHECK(ok && p.n == 305 && p.cap >= 305, "pack_add_grain with the phase column: 300 more grains, each mineral");
+	pack_free(&p);
+
+	for (sh = 0; sh < 2; sh++) {
+		snprintf(how, sizeof how, "phase column round trip%s", sh ? " with the shape columns" : "");
+		snprintf(a, sizeof a, "%s/ph-a.pack", dir);
+		snprintf(b, sizeof b, "%s/ph-b.pack", dir);
+		if (sh)
+			build_shapes(&p);
+		else
+			build(&p);
+		pack_set_phases(&p);
+		p.phase[1] = p.phase[4] = PHASE_HYDRATE;
+		CHECK(pack_validate(&p) == 0, "%s: the built pack is valid (%s)", how, msg_geterr());
+		CHECK(pack_write_path(&p, a) == 0, "%s: write", how);
+		t = text_of(a);
+		CHECK(t && strncmp(t, "qusgm-pack 2\n", 13) == 0 &&
+		    strstr(t, sh ? "\ncolumns id x y z r E nu rho side qw qx qy qz phase\nend\n" : "\ncolumns id x y z r E nu rho phase\nend\n"),
+		    "%s: version 2, the columns line ends in phase", how);
+		CHECK(t && strstr(t, sh ? " 2420.123456789123 0 1 0 0 0 0\n" : " 2420.123456789123 0\n") &&
+		    strstr(t, sh ? " -0 -0 0 0 -1 1\n" : " 2420.123456789123 1\n"), "%s: the tag last on each grain line, 0 or 1", how);
+		free(t);
+		CHECK(pack_read_path(a, &q) == 0, "%s: read back (%s)", how, msg_geterr());
+		check_fields(&p, &q, how);
+		CHECK(q.has_phase && memcmp(p.phase, q.phase, p.n) == 0, "%s: the phases read back", how);
+		CHECK(pack_write_path(&q, b) == 0 && same_file(a, b, 0), "%s: write-read-write is byte-identical", how);
+		pack_free(&p);
+		pack_free(&q);
+		unlink(a);
+		unlink(b);
+	}
+
+	/* a hand-written pack: reads, S and the volumes from its own numbers */
+	snprintf(in, sizeof in, "%s/p.pack", dir);
+	CHECK(read_phase_pack(in, " phase", " 0", " 1", &p) == 0, "the phase pack reads (%s)", msg_geterr());
+	CHECK(p.has_phase && p.phase[0] == PHASE_MINERAL && p.phase[1] == PHASE_HYDRATE && pack_grain_phase(&p, 1) == PHASE_HYDRATE,
+	    "the phase pack: grain 1 mineral, grain 2 hydrate");
+	CHECK(pack_hydrate_grains(&p, &vh) == 1 && fabs(vh - 4.0 / 3.0 * M_PI * 1.25e-4) <= 1e-15 * vh,
+	    "pack_hydrate_grains: one, 4/3 pi 0.05^3 (%.17g)", vh);
+	CHECK_CLOSE(pack_hydrate_saturation(&p), 4.0 / 3.0 * M_PI * 1.25e-4 / (1 - 4.0 / 3.0 * M_PI * 1e-3), 1e-14,
+	    "pack_hydrate_saturation: V_h / (V_box - V_mineral)");
+	p.phase[1] = 2;
+	CHECK(pack_validate(&p) != 0 && strcmp(msg_geterr(), "grain 2: phase 2 is neither 0 (mineral) nor 1 (hydrate)") == 0,
+	    "pack_validate: phase 2 (%s)", msg_geterr());
+	pack_free(&p);
+	CHECK(read_phase_pack(in, " side qw qx qy qz phase", " 0 1 0 0 0 1", " 0 1 0 0 0 0", &p) == 0 && p.has_shapes &&
+	    p.has_phase && p.phase[0] == PHASE_HYDRATE, "the shape columns then phase read (%s)", msg_geterr());
+	pack_free(&p);
+	for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+		int rc = read_phase_pack(in, bad[k].cols, bad[k].g1, bad[k].g2, &p);
+		const char *e = rc ? msg_geterr() : "";
+		size_t le = strlen(e), lw = strlen(bad[k].want);
+
+		CHECK(rc != 0 && le >= lw && strcmp(e + le - lw, bad[k].want) == 0, "refused: columns '%s', grains '%s' '%s': '%s' (want '%s')",
+		    bad[k].cols, bad[k].g1, bad[k].g2, e, bad[k].want);
+		if (!rc)
+			pack_free(&p);
+	}
+	unlink(in);
+}
+
 int
 main(void)
 {
@@ -671,6 +805,7 @@ main(void)
 	two_in_a_stream(b);
 	format_2(dir);
 	shapes(dir);
+	phases(dir);
 	carriage_returns(dir);
 	unlink(a);
 	unlink(b);
