@@ -306,11 +306,13 @@ coefficient 0.8.  Dissociation shrinks the hydrate grains (dS < 0) and raises th
 (p_ex), which shrinks every grain and expands the pack; both moduli fall (Fig. 5: against p_ex
 at dS = -0.01 and against dS at p_ex = 1 MPa).  The paper gives no values.
 
-**This run** (packgen --hydrate-volume 0.15, densify to 21 MPa, frictionless; each point
-dissociate from that pack, then a probe of 3 uniaxial increments of 1e-5 along each of x, y
-and z fitted together; stresses volume-averaged, K and G at the probe's sigma_c)
-
 EOF
+	echo "**This run** (packgen --hydrate-volume ${HYD_F:-?}, densify to 21 MPa, frictionless; each point"
+	echo "dissociate from that pack, then a probe of 3 uniaxial increments of 1e-5 along each of x, y"
+	echo "and z fitted together; stresses volume-averaged, K and G at the probe's sigma_c).  densify"
+	echo "grows the grains with fewer than 4 contacts, most of them small hydrate grains, so the dense"
+	echo "pack's hydrate fraction is above packgen's:"
+	echo
 	echo "The dense pack: $(info "$pk" grains) grains, $(info "$pk" hydrate_grains) of them hydrate" \
 	    "($(info "$pk" hydrate_volume_fraction | awk '{ printf "%.1f", 100 * $1 }') % of the grain volume);" \
 	    "S = $(info "$pk" hydrate_saturation | awk '{ printf "%.3f", $1 }'), porosity" \

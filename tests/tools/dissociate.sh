@@ -12,7 +12,7 @@ meta() { awk -v k="$2" '$1 == "meta" && $2 == k { print $3 } /^end/ { exit }' "$
 lw_mean() { packinfo "$1" | awk '$1 ~ /^sig_lw_(xx|yy|zz)$/ { s += $2 } END { printf "%.17g", s / 3 }'; }
 
 # --- nothing asked, nothing changed --------------------------------------------------------
-expect_ok "dS 0, p_ex 0" dissociate --mu 0 -o same.pack hyd.pack
+expect_ok "dS 0, p_ex 0" dissociate -o same.pack hyd.pack
 grep -v '^history' hyd.pack >a.txt
 grep -v '^history' same.pack >b.txt
 expect_same "dS 0 and p_ex 0: the pack byte for byte but the history" a.txt b.txt
