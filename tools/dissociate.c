@@ -64,18 +64,8 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--K: must be positive (Pa)");
 	if (!(o.d.probe > 0 && o.d.probe <= 1e-3))
 		cli_usage_error("--probe-strain: must be in (0, 1e-3]");
-	if (!isnan(o.mu) && !(o.mu >= 0 && o.mu <= 10))
-		cli_usage_error("--mu: must be in [0, 10]");
-	if (!isnan(o.wall_mu) && !(o.wall_mu >= 0 && o.wall_mu <= 10))
-		cli_usage_error("--wall-mu: must be in [0, 10]");
-	if (fr_rule_parse(o.rule, &o.lp.rule))
-		cli_usage_error("--rule: must be return-map or paper");
-	if (o.nsub < 1 || o.nsub > 1000 || o.lp.k_inc < 1)
-		cli_usage_error("--sub-increments (<= 1000) and --k-inc must be positive");
-	if (!(o.lp.skin > 0 && o.lp.skin <= 2))
-		cli_usage_error("--skin: must be in (0, 2]");
+	qs_load_opts_check(&o.lp, o.rule, o.nsub, o.mu, o.wall_mu);
 	cli_usage_done();
-	o.lp.nsub = (int)o.nsub;
 }
 
 static void

@@ -80,14 +80,11 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	fric_params_default(&o.fp);
 	cli_parse(&tool, argc, argv, st);
 	qs_min_opts_check(&o.fp.lp.min);
-	if (!(isnan(o.mu) || (o.mu >= 0 && o.mu <= 10)) || !(isnan(o.wall_mu) || (o.wall_mu >= 0 && o.wall_mu <= 10)))
-		cli_usage_error("--mu and --wall-mu: must be in [0, 10]");
+	qs_load_opts_check(&o.fp.lp, o.rule, o.nsub, o.mu, o.wall_mu);
 	if (!(o.fp.strain_step > 0 && o.fp.strain_step <= 0.01))
 		cli_usage_error("--strain-step: must be in (0, 0.01]");
 	if (path_parse_axis(o.axis, &o.fp.axis))
 		cli_usage_error("--axis: must be x, y or z");
-	if (fr_rule_parse(o.rule, &o.fp.lp.rule))
-		cli_usage_error("--rule: must be return-map or paper");
 	if (o.fp.window < 2 || o.fp.min_inc < 1 || o.fp.max_inc < 1 || o.fp.max_inc > 100000)
 		cli_usage_error("--window (>= 2), --min-inc and --max-inc (<= 100000) must be positive");
 	if (strcmp(o.until, "sliding") == 0)
@@ -102,12 +99,7 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--window and --min-inc must not exceed --max-inc");
 	if (!(o.fp.sat_tol > 0 && o.fp.sat_tol < 1))
 		cli_usage_error("--sat-tol: must be in (0, 1)");
-	if (o.nsub < 1 || o.nsub > 1000 || o.fp.lp.k_inc < 1)
-		cli_usage_error("--sub-increments (<= 1000) and --k-inc must be positive");
-	if (!(o.fp.lp.skin > 0 && o.fp.lp.skin <= 2))
-		cli_usage_error("--skin: must be in (0, 2]");
 	cli_usage_done();
-	o.fp.lp.nsub = (int)o.nsub;
 	o.fp.lp.friction = 1;
 }
 

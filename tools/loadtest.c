@@ -147,16 +147,7 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 		cli_usage_error("--steps: must be positive");
 	if (!isnan(o.def.to_stress) && !(o.def.to_stress > 0))
 		cli_usage_error("--to-stress: must be positive");
-	if (!isnan(o.mu) && !(o.mu >= 0 && o.mu <= 10))
-		cli_usage_error("--mu: must be in [0, 10]");
-	if (!isnan(o.wall_mu) && !(o.wall_mu >= 0 && o.wall_mu <= 10))
-		cli_usage_error("--wall-mu: must be in [0, 10]");
-	if (fr_rule_parse(o.rule, &o.lp.rule))
-		cli_usage_error("--rule: must be return-map or paper");
-	if (o.nsub < 1 || o.nsub > 1000 || o.lp.k_inc < 1)
-		cli_usage_error("--sub-increments (<= 1000) and --k-inc must be positive");
-	if (!(o.lp.skin > 0 && o.lp.skin <= 2))
-		cli_usage_error("--skin: must be in (0, 2]");
+	qs_load_opts_check(&o.lp, o.rule, o.nsub, o.mu, o.wall_mu);
 	if (o.lim.max_steps < 1 || !(o.lim.max_strain > 0 && o.lim.max_strain <= 0.5))
 		cli_usage_error("--max-steps must be positive and --max-strain in (0, 0.5]");
 	if (!isnan(o.def.to_strain) && !(fabs(o.def.to_strain) <= 0.5))
@@ -169,7 +160,6 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 	if (path_parse(o.path, &o.def, path))
 		cli_usage_error("--path: %s", msg_geterr());
 	cli_usage_done();
-	o.lp.nsub = (int)o.nsub;
 }
 
 /* A test continued from a pack that loadtest wrote numbers its increments on. */

@@ -1,6 +1,8 @@
 /* minopts: validation of the shared minimiser options (see minopts.h). */
 #include "qs/minopts.h"
 
+#include <math.h>
+
 const char *qs_method_arg = "lbfgs";
 
 void
@@ -26,4 +28,20 @@ qs_min_opts_check(struct qs_min_params *mp)
 		cli_usage_error("--lbfgs-m: must be in [1, 100]");
 	if (!(mp->fire_dt > 0 && mp->fire_dt <= 10))
 		cli_usage_error("--fire-dt: must be in (0, 10]");
+}
+
+void
+qs_load_opts_check(struct load_params *lp, const char *rule, long nsub, double mu, double wall_mu)
+{
+	if (!isnan(mu) && !(mu >= 0 && mu <= 10))
+		cli_usage_error("--mu: must be in [0, 10]");
+	if (!isnan(wall_mu) && !(wall_mu >= 0 && wall_mu <= 10))
+		cli_usage_error("--wall-mu: must be in [0, 10]");
+	if (fr_rule_parse(rule, &lp->rule))
+		cli_usage_error("--rule: must be return-map or paper");
+	if (nsub < 1 || nsub > 1000 || lp->k_inc < 1)
+		cli_usage_error("--sub-increments (<= 1000) and --k-inc must be positive");
+	if (!(lp->skin > 0 && lp->skin <= 2))
+		cli_usage_error("--skin: must be in (0, 2]");
+	lp->nsub = (int)nsub;
 }

@@ -7,6 +7,7 @@
 
 #include "base/cli.h"
 #include "qs/minimize.h"
+#include "qs/loading.h"
 
 extern const char *qs_method_arg;
 
@@ -25,5 +26,9 @@ extern const char *qs_method_arg;
 
 /* Validate the values and resolve --method; reports through cli_usage_error. */
 void qs_min_opts_check(struct qs_min_params *mp);
+/* The loading options of loadtest, frictionalize and dissociate: --mu and --wall-mu in [0, 10]
+ * or NaN (not given), --rule resolved into lp->rule, --sub-increments (1 to 1000, into
+ * lp->nsub) and --k-inc positive, --skin in (0, 2]; reports through cli_usage_error. */
+void qs_load_opts_check(struct load_params *lp, const char *rule, long nsub, double mu, double wall_mu);
 
 #endif
