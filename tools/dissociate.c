@@ -34,10 +34,7 @@ static struct cli_opt opt_table[] = {
 	{"probe-strain", 0, CLI_DOUBLE, &o.d.probe, "E", "the probe's isotropic extension per axis", NULL},
 	{"mu", 'm', CLI_DOUBLE, &o.mu, "M", "grain-grain friction (default: the pack's; 0: frictionless)", NULL},
 	{"wall-mu", 0, CLI_DOUBLE, &o.wall_mu, "M", "grain-wall friction (default: the pack's, or --mu when given)", NULL},
-	{"rule", 0, CLI_STRING, &o.rule, "NAME", "sliding rule of a frictional pack: return-map or paper", NULL},
-	{"sub-increments", 0, CLI_LONG, &o.nsub, "N", "sub-increments of the equilibrium step (affine guess each)", NULL},
-	{"k-inc", 0, CLI_LONG, &o.lp.k_inc, "N", "minimiser iterations between sub-increments", NULL},
-	{"skin", 0, CLI_DOUBLE, &o.lp.skin, "RATIO", "Verlet skin / smallest radius", NULL},
+	QS_LOAD_OPTS(o.lp, o.rule, o.nsub),
 	QS_MIN_OPTS(o.lp.min),
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };

@@ -26,6 +26,14 @@ extern const char *qs_method_arg;
 
 /* Validate the values and resolve --method; reports through cli_usage_error. */
 void qs_min_opts_check(struct qs_min_params *mp);
+/* The options of a loading (loadtest, frictionalize, dissociate) inside a cli_opt table: lp a
+ * struct load_params, rule a const char *, nsub a long; qs_load_opts_check after cli_parse. */
+#define QS_LOAD_OPTS(lp, rule, nsub)                                                                         \
+	{"rule", 0, CLI_STRING, &(rule), "NAME", "sliding rule: return-map (exact potential) or paper (F (6)-(7b))", NULL}, \
+	{"sub-increments", 0, CLI_LONG, &(nsub), "N", "sub-increments per increment (affine guess each)", NULL}, \
+	{"k-inc", 0, CLI_LONG, &(lp).k_inc, "N", "minimiser iterations between sub-increments", NULL},            \
+	{"skin", 0, CLI_DOUBLE, &(lp).skin, "RATIO", "Verlet skin / smallest radius", NULL}
+
 /* The loading options of loadtest, frictionalize and dissociate: --mu and --wall-mu in [0, 10]
  * or NaN (not given), --rule resolved into lp->rule, --sub-increments (1 to 1000, into
  * lp->nsub) and --k-inc positive, --skin in (0, 2]; reports through cli_usage_error. */
