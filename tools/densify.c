@@ -147,14 +147,15 @@ check_stress(const struct pack *p)
 
 /* A minimisation at its limit fails the run unless --allow-limit; a failed run leaves no log. */
 static void
-check_stop(int r, struct file_out *logout, const struct densify_stage *last)
+check_stop(int r, struct file_out *logout, const struct densify_stage *last, const char *name)
 {
 	if (r < 0 || (r == 1 && !o.allow_limit)) {
 		if (o.log)
 			file_out_abort(logout);
 		if (r == 1)
-			msg_die(EXIT_DATA, "%s; rerun with a larger --max-iter, or --allow-limit to keep the pack", msg_geterr());
-		msg_die_err(EXIT_DATA);
+			msg_die(EXIT_DATA, "%s: %s; rerun with a larger --max-iter, or --allow-limit to keep the pack", name,
+			    msg_geterr());
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	}
 	/* never a pack that does not carry what it claims: the end conditions, checked on the
 	 * final state itself (densify_run loops until they hold; this guards that loop) */
@@ -195,7 +196,7 @@ main(int argc, char **argv)
 	}
 	r = densify_run(&p, &o.dp, on_stage, &lc, &last);
 	cli_progress_end();
-	check_stop(r, &logout, &last);
+	check_stop(r, &logout, &last, st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>");
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
 	if (pack_write_tool(&p, &tool, &st))

@@ -91,7 +91,7 @@ base_name(const char *path)
 /* -o NAME.vtm: the two .vtp files next to it, then the .vtm that names them (last, so that
  * it never points at files that are not there). */
 static void
-write_vtm(const struct pack *p, const char *vtm)
+write_vtm(const struct pack *p, const char *vtm, const char *name)
 {
 	struct text g, c, m;
 	size_t n = strlen(vtm) - 4;
@@ -103,7 +103,7 @@ write_vtm(const struct pack *p, const char *vtm)
 	snprintf(cname, n + 16, "%.*s_contacts.vtp", (int)n, vtm);
 	if (export_vtp_grains(p, text_open(&g)) || export_vtp_contacts(p, text_open(&c)) ||
 	    export_vtm(text_open(&m), base_name(gname), base_name(cname)))
-		msg_die_err(EXIT_DATA);
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	text_close(&g);
 	text_close(&c);
 	text_close(&m);
@@ -179,7 +179,7 @@ main(int argc, char **argv)
 	if (who && pack_require_spheres(&p, who))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	if (vtk && out && has_suffix(out, ".vtm")) {
-		write_vtm(&p, out);
+		write_vtm(&p, out, name);
 		pack_free(&p);
 		return 0;
 	}

@@ -212,7 +212,7 @@ measure_row(const struct pack *p, const char *name, struct geo_contacts *gc, str
 	 * (spheres at --platyness 0 too) gets the plate report, whose forces are that law's */
 	if (pack_first_plate(p) == (size_t)-1 && !(law && strcmp(law, "linear") == 0)) {
 		if (measure_pack(p, gc, &m) || measure_bulk(p, gc, bulk_margin, &m))
-			msg_die_err(EXIT_DATA);
+			msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 		fill_row(p, &m, r);
 		return 0;
 	}

@@ -331,8 +331,8 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 	contacts_init(&gc);
 	r = measure_pack(p, &gc, &m);
 	contacts_free(&gc);
-	if (r)
-		return -1;
+	if (r)	/* the pack's fault (a periodic box too short for its grains), or out of memory */
+		return 1;
 	*stale = m.stale_history;
 	return 0;
 }
