@@ -163,7 +163,11 @@ table_read(FILE *fp, const char *display, struct table *t)
 			continue;
 		}
 		if (!header) {
-			lines_error(in, "no header line before the first row");
+			/* a pack given where a table belongs: say so, not only what is missing */
+			if (strncmp(s, "qusgm-pack", 10) == 0)
+				lines_error(in, "a qusgm pack, not a table (a table is loadtest's output, a frictionalize or densify --log, or moduli's)");
+			else
+				lines_error(in, "no header line before the first row (a table starts with '# name name ...')");
 			goto out;
 		}
 		if (parse_row(in, t, s))

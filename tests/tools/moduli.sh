@@ -231,6 +231,9 @@ cut -f 1-6,8- synth.tsv >nosigyy.tsv
 expect_fail "a missing column" 1 "^moduli: nosigyy\.tsv: no column 'sig_yy'" nosigyy.tsv
 awk 'NR == 4 { held = $0; next } { print } NR == 5 { print held }' synth.tsv >order.tsv
 expect_fail "rows out of order" 1 '^moduli: order\.tsv:5: rows out of order' order.tsv
+# a pack where a table belongs is named as such (it said only "no header line"; issue 19)
+packgen -n 20 --seed 1 -o apack.pack 2>/dev/null
+expect_fail "a pack instead of a table" 1 "^moduli: apack\.pack:1: a qusgm pack, not a table" apack.pack
 awk -F '\t' -v OFS='\t' 'NR == 6 { $4 = "0.00.1" } { print }' synth.tsv >malformed.tsv
 expect_fail "a malformed number" 1 "^moduli: malformed\.tsv:6: column eps_yy: '0\.00\.1' is not a number" malformed.tsv
 awk -F '\t' -v OFS='\t' 'NR == 6 { $6 = "nan" } { print }' synth.tsv >nan.tsv
