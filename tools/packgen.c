@@ -189,10 +189,13 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	parse_periodic();
 	if (!o.plates && o.periodic_spec && strcmp(o.periodic_spec, "none") != 0)
 		cli_usage_error("--periodic: only with --shape spheroplate");
-	if (!isnan(o.mu) && o.mu < 0)
-		cli_usage_error("--friction: must be non-negative");
-	if (!isnan(o.dem_mu) && o.dem_mu < 0)
-		cli_usage_error("--dem-friction: must be non-negative");
+	/* [0, 10], the range of every tool's --mu */
+	if (!isnan(o.mu) && !(o.mu >= 0 && o.mu <= 10))
+		cli_usage_error("--friction: must be in [0, 10]");
+	if (!(o.wall_mu <= 10))
+		cli_usage_error("--wall-friction: must be at most 10 (negative: the same as --friction)");
+	if (!isnan(o.dem_mu) && !(o.dem_mu >= 0 && o.dem_mu <= 10))
+		cli_usage_error("--dem-friction: must be in [0, 10]");
 	if (!isnan(o.jitter) && !o.plates && o.jitter != 0)
 		cli_usage_error("--jitter: only with --shape spheroplate (spheres are placed at random)");
 	else if (!isnan(o.jitter) && !(o.jitter >= 0 && o.jitter <= 1))
@@ -201,8 +204,8 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	 * options can be given back */
 	if (!isnan(o.dem_wall_mu) && !o.plates && o.dem_wall_mu != (isnan(o.dem_mu) ? 0.5 : o.dem_mu))
 		cli_usage_error("--dem-wall-friction: only with --shape spheroplate (the sphere DEM uses --dem-friction at the walls)");
-	else if (!isnan(o.dem_wall_mu) && !(o.dem_wall_mu >= 0 && isfinite(o.dem_wall_mu)))
-		cli_usage_error("--dem-wall-friction: must be non-negative");
+	else if (!isnan(o.dem_wall_mu) && !(o.dem_wall_mu >= 0 && o.dem_wall_mu <= 10))
+		cli_usage_error("--dem-wall-friction: must be in [0, 10]");
 	if (!(o.overlap > 0 && o.overlap <= 1e-2))
 		cli_usage_error("--overlap: must be in (0, 0.01]");
 	if (!isnan(o.damping) && !(o.damping >= 0 && o.damping < 1))

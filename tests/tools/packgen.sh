@@ -237,3 +237,7 @@ expect_error "--hydrate-volume 1" 2 '^packgen: --hydrate-volume: must be in \[0,
 expect_error "--hydrate-volume -0.1" 2 '^packgen: --hydrate-volume: must be in \[0, 1\)' packgen --hydrate-volume -0.1
 expect_error "--hydrate-volume nan" 2 "^packgen: --hydrate-volume: 'nan' is not a finite number" packgen --hydrate-volume nan
 expect_error "--hydrate-volume with spheroplates" 2 '^packgen: --hydrate-volume: spheres only \(not with --shape spheroplate\)' packgen --shape spheroplate --hydrate-volume 0.1
+# friction coefficients in [0, 10] like every tool's --mu (1e300 was accepted; issue 19)
+expect_error "--friction 11" 2 '^packgen: --friction: must be in \[0, 10\]' packgen --friction 11
+expect_error "--wall-friction 1e300" 2 '^packgen: --wall-friction: must be at most 10' packgen --wall-friction 1e300
+expect_error "--dem-friction 11" 2 '^packgen: --dem-friction: must be in \[0, 10\]' packgen --dem-friction 11
