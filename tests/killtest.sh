@@ -38,6 +38,7 @@ cases="packgen|p.pack.gz|packgen -q -n 300 --seed 3 -o p.pack.gz
 densify|d.pack.gz d.tsv|densify -q --stress 4e6 --log d.tsv -o d.pack.gz $I/loose.pack
 frictionalize|f.pack.gz f.tsv|frictionalize -q --max-inc 6 --window 3 --window-overlap 0 --allow-limit --log f.tsv -o f.pack.gz $I/dense.pack
 loadtest|l.pack.gz|loadtest -q --path uniaxial --steps 5 -o l.pack.gz $I/fr.pack >/dev/null
+dissociate|s.pack.gz|dissociate -q --pex 2e5 -o s.pack.gz $I/dense.pack
 moduli|m.tsv.gz|moduli -q -o m.tsv.gz $I/lt.tsv
 packexport|x.xyzr.gz|packexport -q --xyzr -o x.xyzr.gz $I/big.pack
 packimport|i.pack.gz|packimport -q -o i.pack.gz $I/big.xyzr"
