@@ -101,6 +101,12 @@ else
 fi
 echo "Figure: \`$study.png\`; exact commands: \`commands.txt\`; remake: \`make -C pipelines $study$( [ "$out" = out-small ] && echo ' SMALL=1')\`."
 echo "Cost: $(study_time) (the sum of its stages; run alone with -j1 it takes about that long)."
+if [ -n "${PIC:-}" ]; then
+	echo
+	echo "The pack \`${PIC#$out/}\`: a slab one mean radius thick through its middle, seen along y (z up); discs coloured by $( [ "$study" = s-fig5 ] && echo "phase (1: hydrate)" || echo "each grain's number of contacts"), lines from centre to centre with a width that follows the normal force (share/plot/packpic.sh):"
+	echo
+	echo "![pack](pack.png)"
+fi
 echo
 case $study in
 fig4)

@@ -3,7 +3,8 @@
 # pack: packgen -> densify (4 MPa, frictionless) -> frictionalize (mu 0.3) -> loadtest
 # (uniaxial strain to 20 MPa) -> moduli (K, G, lambda, E, nu per 10 increments), printed at
 # the end; every stage's output stays in out/ for inspection, with its wall time in
-# out/times.tsv, and out/moduli.png plots K and G against sigma_c when gnuplot is installed.
+# out/times.tsv, and out/moduli.png plots K and G against sigma_c and out/forces.png draws the
+# force network of a slab of the final pack when gnuplot is installed.
 set -e
 bin=${1:-build/bin}
 mkdir -p out
@@ -30,6 +31,8 @@ echo "== packinfo out/frictional.pack.gz" >&2
 "$bin/packinfo" out/frictional.pack.gz | grep -E '^(grains|porosity|coordination|under4|sigma_c|residual|sliding_ratio) '
 if command -v gnuplot >/dev/null 2>&1; then
 	gnuplot -e "in='out/moduli.tsv'; out='out/moduli.png'" share/plot/moduli.gp && echo "wrote out/moduli.png" >&2
+	BIN=$bin sh share/plot/packpic.sh out/final.pack.gz out/forces.png contacts "final pack at 20 MPa" &&
+	    echo "wrote out/forces.png (the force network of a slab of the final pack)" >&2
 else
 	echo "gnuplot not installed (apt-get install gnuplot-nox): no figure" >&2
 fi

@@ -10,19 +10,21 @@
 #include <unistd.h>
 #include <zlib.h>
 
-static int vtk, lammps, lammps_data, xyzr, periodic;
+static int vtk, lammps, lammps_data, xyzr, periodic, tsv_grains, tsv_contacts;
 
 static struct cli_opt opts[] = {
 	{"vtk", 0, CLI_FLAG, &vtk, NULL, "VTK XML PolyData; -o NAME.vtm also writes NAME_grains.vtp and NAME_contacts.vtp, stdout gets the grains .vtp only; plates as closed boxes (.vtp only)", NULL},
 	{"lammps", 0, CLI_FLAG, &lammps, NULL, "LAMMPS dump, one frame per pack of the input; plates with quaternion and shape", NULL},
 	{"lammps-data", 0, CLI_FLAG, &lammps_data, NULL, "LAMMPS data file (atom_style sphere; spheres only)", NULL},
 	{"xyzr", 0, CLI_FLAG, &xyzr, NULL, "'x y z r' lines, as YADE's SpherePack.load reads them (spheres only)", NULL},
+	{"tsv-grains", 0, CLI_FLAG, &tsv_grains, NULL, "a table of the grains: id x y z r E nu rho [phase] contacts (share/doc/tables.md)", NULL},
+	{"tsv-contacts", 0, CLI_FLAG, &tsv_contacts, NULL, "a table of the contacts: id1 id2, both ends' coordinates, normal_force, overlap", NULL},
 	{"periodic", 0, CLI_FLAG, &periodic, NULL, "with --xyzr: first line '##PERIODIC:: Lx Ly Lz' (box lengths)", NULL},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
 static const struct cli_tool tool = {
-	"packexport", "--vtk|--lammps|--lammps-data|--xyzr [--periodic] [-o FILE] [FILE]",
+	"packexport", "--vtk|--lammps|--lammps-data|--xyzr|--tsv-grains|--tsv-contacts [--periodic] [-o FILE] [FILE]",
 	"Write a pack in the formats of ParaView and OVITO (VTK), LAMMPS and YADE; spheroplates for ParaView and OVITO.",
 	opts, 1,
 };
@@ -155,8 +157,8 @@ main(int argc, char **argv)
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
 	out = st.output && strcmp(st.output, "-") != 0 ? st.output : NULL;
-	if ((vtk > 0) + (lammps > 0) + (lammps_data > 0) + (xyzr > 0) != 1)
-		cli_usage_error("give exactly one of --vtk, --lammps, --lammps-data, --xyzr");
+	if ((vtk > 0) + (lammps > 0) + (lammps_data > 0) + (xyzr > 0) + (tsv_grains > 0) + (tsv_contacts > 0) != 1)
+		cli_usage_error("give exactly one of --vtk, --lammps, --lammps-data, --xyzr, --tsv-grains, --tsv-contacts");
 	if (periodic && !xyzr)
 		cli_usage_error("--periodic goes with --xyzr only");
 	if (vtk && out && !has_suffix(out, ".vtm") && !has_suffix(out, ".vtp"))
@@ -175,7 +177,7 @@ main(int argc, char **argv)
 	/* what cannot hold a plate: the .vtm's contacts file (sphere contacts; plate contacts
 	 * are not in lib/ yet), atom_style sphere, and YADE's x y z r */
 	who = vtk ? (out && has_suffix(out, ".vtm") ? "the contacts file of --vtk -o NAME.vtm" : NULL) :
-	    lammps_data ? "--lammps-data" : "--xyzr";
+	    lammps_data ? "--lammps-data" : xyzr ? "--xyzr" : tsv_grains ? "--tsv-grains" : "--tsv-contacts";
 	if (who && pack_require_spheres(&p, who))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	if (vtk && out && has_suffix(out, ".vtm")) {
@@ -188,6 +190,10 @@ main(int argc, char **argv)
 		r = plates ? export_vtp_plates(&p, t.fp) : export_vtp_grains(&p, t.fp);
 	else if (lammps_data)
 		r = export_lammps_data(&p, t.fp);
+	else if (tsv_grains)
+		r = export_tsv_grains(&p, t.fp);
+	else if (tsv_contacts)
+		r = export_tsv_contacts(&p, t.fp);
 	else
 		r = export_xyzr(&p, t.fp, periodic);
 	if (r)

@@ -21,13 +21,20 @@ put_num(FILE *fp, double v, int sep)
 	fputc(sep, fp);
 }
 
+/* n numbers separated by sep, then a newline */
 static void
-put_nums(FILE *fp, const double *v, int n)
+put_nums_sep(FILE *fp, const double *v, int n, int sep)
 {
 	int k;
 
 	for (k = 0; k < n; k++)
-		put_num(fp, v[k], k + 1 < n ? ' ' : '\n');
+		put_num(fp, v[k], k + 1 < n ? sep : '\n');
+}
+
+static void
+put_nums(FILE *fp, const double *v, int n)
+{
+	put_nums_sep(fp, v, n, ' ');
 }
 
 /* The writers print without checking each call; the stream's error flag, checked once at
@@ -295,6 +302,74 @@ export_vtp_contacts(const struct pack *p, FILE *fp)
 	fputs("</DataArray>\n</Points>\n", fp);
 	vtk_cells(fp, "Lines", gc.n, 2);
 	vtk_close(fp);
+	contacts_free(&gc);
+	return finish(fp);
+}
+
+int
+export_tsv_grains(const struct pack *p, FILE *fp)
+{
+	struct geo_contacts gc;
+	size_t i, k, *nc;
+	double v[7];
+
+	contacts_init(&gc);
+	if (contacts_find(p, &gc)) {
+		contacts_free(&gc);
+		return -1;
+	}
+	if (!(nc = calloc(p->n ? p->n : 1, sizeof *nc))) {
+		contacts_free(&gc);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	for (k = 0; k < gc.n; k++) {
+		nc[gc.c[k].i]++;
+		if (!PACK_IS_WALL(gc.c[k].j))
+			nc[gc.c[k].j]++;
+	}
+	fprintf(fp, "# id\tx[m]\ty[m]\tz[m]\tr[m]\tE[Pa]\tnu\trho[kg/m^3]%s\tcontacts\n", p->has_phase ? "\tphase" : "");
+	for (i = 0; i < p->n; i++) {
+		fprintf(fp, "%ld\t", p->id[i]);
+		memcpy(v, p->x + 3 * i, 3 * sizeof *v);
+		v[3] = p->r[i], v[4] = p->E[i], v[5] = p->nu[i], v[6] = p->rho[i];
+		for (k = 0; k < 7; k++)
+			put_num(fp, v[k], '\t');
+		if (p->has_phase)
+			fprintf(fp, "%d\t", p->phase[i]);
+		fprintf(fp, "%zu\n", nc[i]);
+	}
+	free(nc);
+	contacts_free(&gc);
+	return finish(fp);
+}
+
+int
+export_tsv_contacts(const struct pack *p, FILE *fp)
+{
+	struct geo_contacts gc;
+	size_t k;
+	double v[8];
+	int a;
+
+	contacts_init(&gc);
+	if (contacts_find(p, &gc)) {
+		contacts_free(&gc);
+		return -1;
+	}
+	fputs("# id1\tid2\tx1[m]\ty1[m]\tz1[m]\tx2[m]\ty2[m]\tz2[m]\tnormal_force[N]\toverlap[m]\n", fp);
+	for (k = 0; k < gc.n; k++) {
+		const struct geo_contact *c = &gc.c[k];
+
+		fprintf(fp, "%ld\t%ld\t", p->id[c->i], PACK_IS_WALL(c->j) ? EXPORT_VTK_WALL_ID(PACK_WALL_INDEX(c->j)) : p->id[c->j]);
+		/* the other end from grain 1 along the normal: right across a periodic boundary */
+		for (a = 0; a < 3; a++) {
+			v[a] = p->x[3 * c->i + a];
+			v[3 + a] = v[a] - c->d * c->n[a];
+		}
+		v[6] = c->P, v[7] = c->h;
+		put_nums_sep(fp, v, 8, '\t');
+	}
 	contacts_free(&gc);
 	return finish(fp);
 }

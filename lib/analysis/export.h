@@ -37,6 +37,15 @@ int export_vtp_plates(const struct pack *p, FILE *fp);
  * from the centre to the contact point on the wall; CellData id1, id2, normal_force (the
  * Hertz force P, N) and overlap (m). */
 int export_vtp_contacts(const struct pack *p, FILE *fp);
+/* Tables in the convention of share/doc/tables.md (a '# ' header of tab-separated names with
+ * units in brackets, one row per line), for gnuplot, awk and numpy.  Grains: id x y z r E nu
+ * rho, phase with the phase column, and contacts, the grain's contacts found from the
+ * positions (grains and walls).  Contacts (contacts_find): id1 id2 (id2 a wall as in the
+ * .vtp: -1 xlo .. -6 zhi), x1 y1 z1 the centre of grain 1, x2 y2 z2 the other end (the
+ * centre of grain 2 as seen from grain 1, across a periodic boundary too, or the contact
+ * point on the wall), normal_force (N) and overlap (m). */
+int export_tsv_grains(const struct pack *p, FILE *fp);
+int export_tsv_contacts(const struct pack *p, FILE *fp);
 /* A vtkMultiBlockDataSet naming the two .vtp files, given relative to the .vtm. */
 int export_vtm(FILE *fp, const char *grains_vtp, const char *contacts_vtp);
 

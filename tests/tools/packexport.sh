@@ -324,3 +324,29 @@ awk '{ print $2 - 1 }' ph.want >ph.vwant
 expect_same "--vtk: a phase array, 0 mineral, 1 hydrate, in pack order" ph.vwant ph.vtk
 packexport --lammps in.pack 2>/dev/null | grep -q '^ITEM: ATOMS id type x y z radius$' && ! packexport --vtk in.pack 2>/dev/null | grep -q phase &&
     pass "no phase column: no phase array, type 1" || fail "no phase column: no phase array" "phase written"
+
+# --- the tables --tsv-grains and --tsv-contacts, and the picture drawn from them ---------------
+# on the small dense pack: a row per grain and per contact, the contact counts agree with
+# packinfo's, the second end of a grain pair is that grain's centre, and packpic.sh draws a PNG
+small_pack dense
+expect_ok "--tsv-grains" packexport --tsv-grains -o g.tsv dense.pack
+expect_ok "--tsv-contacts" packexport --tsv-contacts -o c.tsv dense.pack
+packinfo dense.pack >d.info
+expect_num "--tsv-grains: a row per grain" "$(rows g.tsv | wc -l)" "==" "$(info_value d.info grains)"
+expect_num "--tsv-contacts: a row per contact (grain pairs and walls)" "$(rows c.tsv | wc -l)" "==" \
+    "$(($(info_value d.info contacts_gg) + $(info_value d.info contacts_gw)))"
+expect_num "the grains' contacts sum to 2 pairs + walls" "$(sh "$TOP/pipelines/cols.sh" g.tsv contacts | awk '{ s += $1 } END { print s }')" "==" \
+    "$((2 * $(info_value d.info contacts_gg) + $(info_value d.info contacts_gw)))"
+bad=$(awk -F '\t' 'FNR == NR { if (!/^#/) { x[$1] = $2; y[$1] = $3; z[$1] = $4 }; next }
+	/^#/ || $2 < 0 { next }
+	{ for (a = 0; a < 3; a++) { v = (a == 0 ? x[$2] : a == 1 ? y[$2] : z[$2]); d = $(6 + a) - v; if (d < 0) d = -d; if (d > 1e-12 * (v < 0 ? -v : v) + 1e-18) n++ } }
+	END { print n + 0 }' g.tsv c.tsv)
+expect_num "--tsv-contacts: the second end of a pair is the second grain's centre (to 1e-12)" "$bad" "==" 0
+expect_num "--tsv-contacts: the normal forces are positive" "$(sh "$TOP/pipelines/cols.sh" c.tsv normal_force | awk '$1 <= 0 { n++ } END { print n + 0 }')" "==" 0
+if command -v gnuplot >/dev/null 2>&1; then
+	if BIN="$BIN" sh "$TOP/share/plot/packpic.sh" dense.pack pic.png contacts >pic.out 2>&1 && head -c 8 pic.png | od -c | grep -q 'P   N   G'; then
+		pass "packpic.sh draws a PNG"
+	else
+		fail "packpic.sh draws a PNG" "$(head -c 300 pic.out)"
+	fi
+fi
