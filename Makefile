@@ -23,6 +23,7 @@ SONAME    = libqusgm.so.$(SOMAJOR)
 SOLIB     = libqusgm.so.$(VERSION)
 DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config
 DEB_PLOT  = gnuplot-nox
+DEB_PY    = python3-numpy
 
 # Build directories: build/ is the normal build, build-san/ the sanitizer build.
 B        ?= build
@@ -54,7 +55,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: libs all deps plotdeps pipelines check check-fast killtest run bench bench-plates validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -131,9 +132,22 @@ plotdeps:
 	  fi; \
 	fi
 
+# The Python reader's test (tests/tools/python.sh) needs numpy (Debian python3-numpy): installed
+# as root when no python3 has it, else the test says SKIP.
+pydeps:
+	@if ! python3 -c 'import numpy' >/dev/null 2>&1 && ! /usr/bin/python3 -c 'import numpy' >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "qusgm: installing $(DEB_PY) for the Python reader's test" >&2; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PY) >/dev/null || \
+	      echo "qusgm: apt-get install $(DEB_PY) failed: the Python test will be skipped" >&2; \
+	  else \
+	    echo "qusgm: numpy not found, the Python test will be skipped; run: sudo apt-get install $(DEB_PY)" >&2; \
+	  fi; \
+	fi
+
 # make check: the normal build and the sanitizer build, unit tests and tool tests under both,
 # then one closing line "N passed, N failed".
-check: deps
+check: deps pydeps
 	@$(MAKE) --no-print-directory B=build tools unit libs
 	@$(MAKE) --no-print-directory B=build-san OPT="-O1 -g" EXTRA_CFLAGS="$(SANFLAGS)" tools unit libs
 	@sh tests/run.sh build build-san
@@ -228,6 +242,8 @@ install: all
 	cp $(MAN1) $(DESTDIR)$(MANPREFIX)/man1/
 	cp $(MAN5) $(DESTDIR)$(MANPREFIX)/man5/
 	cp -R share/doc $(DESTDIR)$(DATADIR)/
+	mkdir -p $(DESTDIR)$(DATADIR)/python
+	cp share/python/qusgm.py $(DESTDIR)$(DATADIR)/python/
 	mkdir -p $(DESTDIR)$(LIBDIR) $(DESTDIR)$(PKGCONFIGDIR)
 	cp $(B)/libqusgm.a $(B)/$(SOLIB) $(DESTDIR)$(LIBDIR)/
 	ln -sf $(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME)
@@ -264,6 +280,6 @@ help:
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
 	@echo "make fuzz       each libFuzzer harness (tests/fuzz/) for FUZZ_SECONDS=$(FUZZ_SECONDS) s, built with clang in build-fuzz/"
 	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs, the library (libqusgm.a, $(SOLIB),"
-	@echo "                headers in include/qusgm, qusgm.pc)"
+	@echo "                headers in include/qusgm, qusgm.pc) and the Python reader (share/qusgm/python/qusgm.py)"
 	@echo "make uninstall  removes what make install installed (same PREFIX and DESTDIR)"
 	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR BINDIR LIBDIR INCLUDEDIR PKGCONFIGDIR MANPREFIX DATADIR"

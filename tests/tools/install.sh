@@ -1,5 +1,5 @@
 # install: make install into a staged DESTDIR installs the library (static and shared, with its
-# soname links), its headers under include/qusgm and qusgm.pc; a user's
+# soname links), its headers under include/qusgm, qusgm.pc and the Python reader; a user's
 # program (tests/install/example.c) compiles against the staged install through
 # `pkg-config --cflags --libs qusgm`, linked shared and static, and reads a pack and evaluates
 # the functional as packinfo measures it; make uninstall leaves no file behind (issue 18).
@@ -36,6 +36,7 @@ for h in "$TOP"/lib/*/*.h; do
 	[ -f "$inc/$rel" ] || missing="$missing $rel"
 done
 if [ -z "$missing" ]; then pass "headers in include/qusgm/LAYER/"; else fail "headers in include/qusgm/LAYER/" "missing:$missing"; fi
+if [ -f "$stage/usr/local/share/qusgm/python/qusgm.py" ]; then pass "installed share/qusgm/python/qusgm.py"; else fail "installed share/qusgm/python/qusgm.py" missing; fi
 
 # pkg-config, pointed at the stage: the staged qusgm.pc names /usr/local, so a copy with its
 # prefix line moved into the stage (libdir and includedir follow ${prefix}); a
