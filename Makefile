@@ -6,6 +6,9 @@ PREFIX   ?= /usr/local
 BINDIR   ?= $(PREFIX)/bin
 MANPREFIX ?= $(PREFIX)/share/man
 DATADIR  ?= $(PREFIX)/share/qusgm
+LIBDIR   ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
 DESTDIR  ?=
 
 CC       ?= cc
@@ -13,8 +16,14 @@ OPT      ?= -O2 -g
 WARN      = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 STD       = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 PKGS      = gsl ccd zlib
+# The shared library: libqusgm.so.$(VERSION), soname libqusgm.so.$(SOMAJOR).  Version 0: no
+# ABI stability promised yet (share/doc/library.md, "Using the library").
+SOMAJOR   = 0
+SONAME    = libqusgm.so.$(SOMAJOR)
+SOLIB     = libqusgm.so.$(VERSION)
 DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config
 DEB_PLOT  = gnuplot-nox
+DEB_PY    = python3-numpy
 
 # Build directories: build/ is the normal build, build-san/ the sanitizer build.
 B        ?= build
@@ -31,6 +40,7 @@ ALL_LIBS   = $(PKG_LIBS) -lm
 
 LIB_SRC   = $(wildcard lib/*/*.c)
 LIB_OBJ   = $(LIB_SRC:lib/%.c=$(B)/lib/%.o)
+PIC_OBJ   = $(LIB_SRC:lib/%.c=$(B)/pic/%.o)
 LIB_HDR   = $(wildcard lib/*/*.h)
 TOOL_SRC  = $(wildcard tools/*.c)
 TOOLS     = $(TOOL_SRC:tools/%.c=%)
@@ -45,13 +55,15 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: all deps plotdeps pipelines check check-fast killtest run bench bench-plates validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
-	@$(MAKE) --no-print-directory tools unit
+	@$(MAKE) --no-print-directory tools unit libs
 
 tools: $(TOOL_BIN)
+# The installable library, static and shared (the tools link the static one).
+libs: $(B)/libqusgm.a $(B)/$(SOLIB)
 unit: $(UNIT_BIN) $(FUZZ_REPLAY)
 
 # The dependencies come from Debian packages.  As root, install what is missing; otherwise
@@ -79,6 +91,15 @@ $(B)/lib/%.o: lib/%.c $(LIB_HDR)
 $(B)/libqusgm.a: $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
+
+# The shared library's objects: a second set, position-independent, so that the tools keep
+# the static objects (no PIC in their hot loops).
+$(B)/pic/%.o: lib/%.c $(LIB_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -fPIC -c -o $@ $<
+
+$(B)/$(SOLIB): $(PIC_OBJ)
+	$(CC) $(ALL_CFLAGS) -shared -Wl,-soname,$(SONAME) -o $@ $^ $(ALL_LIBS)
 
 $(B)/bin/%: tools/%.c $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
@@ -111,11 +132,24 @@ plotdeps:
 	  fi; \
 	fi
 
+# The Python reader's test (tests/tools/python.sh) needs numpy (Debian python3-numpy): installed
+# as root when no python3 has it, else the test says SKIP.
+pydeps:
+	@if ! python3 -c 'import numpy' >/dev/null 2>&1 && ! /usr/bin/python3 -c 'import numpy' >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "qusgm: installing $(DEB_PY) for the Python reader's test" >&2; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PY) >/dev/null || \
+	      echo "qusgm: apt-get install $(DEB_PY) failed: the Python test will be skipped" >&2; \
+	  else \
+	    echo "qusgm: numpy not found, the Python test will be skipped; run: sudo apt-get install $(DEB_PY)" >&2; \
+	  fi; \
+	fi
+
 # make check: the normal build and the sanitizer build, unit tests and tool tests under both,
 # then one closing line "N passed, N failed".
-check: deps
-	@$(MAKE) --no-print-directory B=build tools unit
-	@$(MAKE) --no-print-directory B=build-san OPT="-O1 -g" EXTRA_CFLAGS="$(SANFLAGS)" tools unit
+check: deps pydeps
+	@$(MAKE) --no-print-directory B=build tools unit libs
+	@$(MAKE) --no-print-directory B=build-san OPT="-O1 -g" EXTRA_CFLAGS="$(SANFLAGS)" tools unit libs
 	@sh tests/run.sh build build-san
 
 # Quicker loop while developing: normal build only.
@@ -208,12 +242,27 @@ install: all
 	cp $(MAN1) $(DESTDIR)$(MANPREFIX)/man1/
 	cp $(MAN5) $(DESTDIR)$(MANPREFIX)/man5/
 	cp -R share/doc $(DESTDIR)$(DATADIR)/
+	mkdir -p $(DESTDIR)$(DATADIR)/python
+	cp share/python/qusgm.py $(DESTDIR)$(DATADIR)/python/
+	mkdir -p $(DESTDIR)$(LIBDIR) $(DESTDIR)$(PKGCONFIGDIR)
+	cp $(B)/libqusgm.a $(B)/$(SOLIB) $(DESTDIR)$(LIBDIR)/
+	ln -sf $(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME)
+	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libqusgm.so
+	for h in $(LIB_HDR:lib/%=%); do \
+	  mkdir -p $(DESTDIR)$(INCLUDEDIR)/qusgm/$${h%/*} && cp lib/$$h $(DESTDIR)$(INCLUDEDIR)/qusgm/$$h || exit 1; \
+	done
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(patsubst $(PREFIX)%,$${prefix}%,$(LIBDIR))|' \
+	  -e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)%,$${prefix}%,$(INCLUDEDIR))|' -e 's|@VERSION@|$(VERSION)|' \
+	  -e 's|@PKGS@|$(PKGS)|' share/qusgm.pc.in >$(DESTDIR)$(PKGCONFIGDIR)/qusgm.pc
 
 uninstall:
 	for t in $(TOOLS); do rm -f $(DESTDIR)$(BINDIR)/$$t; done
 	for m in $(notdir $(MAN1)); do rm -f $(DESTDIR)$(MANPREFIX)/man1/$$m; done
 	for m in $(notdir $(MAN5)); do rm -f $(DESTDIR)$(MANPREFIX)/man5/$$m; done
 	rm -rf $(DESTDIR)$(DATADIR)
+	rm -f $(DESTDIR)$(LIBDIR)/libqusgm.a $(DESTDIR)$(LIBDIR)/$(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME) \
+	  $(DESTDIR)$(LIBDIR)/libqusgm.so $(DESTDIR)$(PKGCONFIGDIR)/qusgm.pc
+	rm -rf $(DESTDIR)$(INCLUDEDIR)/qusgm
 
 clean:
 	rm -rf build build-san build-fuzz tests/out
@@ -230,5 +279,7 @@ help:
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
 	@echo "make fuzz       each libFuzzer harness (tests/fuzz/) for FUZZ_SECONDS=$(FUZZ_SECONDS) s, built with clang in build-fuzz/"
-	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs"
-	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR"
+	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs, the library (libqusgm.a, $(SOLIB),"
+	@echo "                headers in include/qusgm, qusgm.pc) and the Python reader (share/qusgm/python/qusgm.py)"
+	@echo "make uninstall  removes what make install installed (same PREFIX and DESTDIR)"
+	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR BINDIR LIBDIR INCLUDEDIR PKGCONFIGDIR MANPREFIX DATADIR"

@@ -15,7 +15,16 @@
  *
  * The bulk (measure_bulk): the porosity and coordination of an inner box, the box shrunk by a
  * margin from each wall, because the walls order the grains next to them (a layer of looser
- * packing, fewer contacts) and the box values mix that layer in with the bulk. */
+ * packing, fewer contacts) and the box values mix that layer in with the bulk.
+ *
+ * Public API (share/doc/library.md): the measures only read the pack.  A struct
+ * geo_contacts (contact/contacts.h) is the caller's: contacts_init it once, pass it to
+ * measure_pack (which fills it with the pack's contacts, reusing its memory) and
+ * contacts_free it at the end.  The struct pack_measures is filled by value (no pointer in
+ * it); has_forces says whether the force measures (stresses, forces, residual) mean
+ * anything: without contacts carrying force, ignore them (packinfo prints them as absent),
+ * and sliding_ratio and the bulk fields not computed are NaN.  Functions return
+ * 0, or -1 with the error slot of base/msg.h set (out of memory). */
 #ifndef QUSGM_MEASURE_H
 #define QUSGM_MEASURE_H
 

@@ -2,7 +2,16 @@
  *
  * Every message is "tool: where: what" on one line.  Exit statuses are the same in every
  * tool: 0 success, 1 bad data or runtime failure, 2 usage error.  The library reports
- * failures through return values and msg_seterr(); only tools decide to exit. */
+ * failures through return values and msg_seterr(); only tools decide to exit.
+ *
+ * Public API (share/doc/library.md, "Errors"): a library function that fails returns -1 (a
+ * pointer function NULL, an energy NAN: each header says which) and leaves one line saying
+ * why in the error slot, read with msg_geterr() until the next failure overwrites it (the
+ * slot is one static buffer: not thread-safe; "unknown error" when nothing set it).  A
+ * program that links the library should call msg_gsl_handler_install() first, so that a GSL
+ * error becomes a failure with a message instead of GSL's abort().  msg_die*, msg_warn and
+ * msg_info print on stderr and are for programs, never called by the library's own
+ * computations. */
 #ifndef QUSGM_MSG_H
 #define QUSGM_MSG_H
 

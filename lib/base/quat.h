@@ -9,6 +9,10 @@
 
 #include <math.h>
 
+/* pi, the value of <math.h>'s M_PI, which strict C11 (-std=c11 without a feature macro)
+ * does not define: the installed header compiles in a user's program either way. */
+#define QUAT_PI 3.14159265358979323846
+
 /* c = a b (Hamilton product): the rotation b, then a. */
 static inline void
 quat_mul(const double a[4], const double b[4], double c[4])
@@ -50,7 +54,7 @@ quat_to_matrix(const double q[4], double m[9])
 static inline void
 quat_from_uniform(double u1, double u2, double u3, double q[4])
 {
-	double a = sqrt(1 - u1), b = sqrt(u1), t1 = 2 * M_PI * u2, t2 = 2 * M_PI * u3;
+	double a = sqrt(1 - u1), b = sqrt(u1), t1 = 2 * QUAT_PI * u2, t2 = 2 * QUAT_PI * u3;
 
 	q[0] = b * cos(t2), q[1] = a * sin(t1), q[2] = a * cos(t1), q[3] = b * sin(t2);
 }

@@ -10,7 +10,15 @@
  * Grains are spheres unless the pack carries the shape columns (has_shapes): then each is a
  * spheroplate (pack/shape.h) of spheroradius r[i], core side side[i] (0: a sphere) and
  * orientation q[4 i .. 4 i + 3] (base/quat.h), and only a tool that knows plates may use it
- * (pack_require_spheres). */
+ * (pack_require_spheres).
+ *
+ * Public API (share/doc/library.md): a struct pack is a value the caller owns.  pack_init
+ * makes an empty one, pack_free releases everything in it (and leaves it empty, so freeing
+ * twice is harmless), pack_copy deep-copies; the pointers of the struct (x, r, c, history,
+ * meta ...) belong to the pack and stay valid until the next function that adds to it
+ * (pack_add_grain, pack_add_contact, ...) or pack_free.  Functions returning int give 0 on
+ * success and -1 with the error slot of base/msg.h set; those returning an index give
+ * (size_t)-1; a returned long * (pack_history_keys) is the caller's to free(). */
 #ifndef QUSGM_PACK_H
 #define QUSGM_PACK_H
 

@@ -4,7 +4,19 @@
  * error slot (msg_geterr).  Input goes through the line reader (base/lines.h), so
  * gzip-compressed and plain packs share one code path and a truncated .gz is an error.  A
  * stream may hold several packs back to back.  The writer prints every number with num_format, so write(read(f)) == f byte for
- * byte, and compresses when the output name ends in ".gz". */
+ * byte, and compresses when the output name ends in ".gz".
+ *
+ * Public API (installed as <qusgm/pack/packio.h>, share/doc/library.md):
+ * - Ownership: a pack read into a caller's struct pack (pack_read_next, pack_read_path) owns
+ *   every array, string and contact in it; the caller frees them with pack_free.  After a
+ *   failed read the pack holds nothing (pack_free on it is harmless).  The reader made by
+ *   pack_reader_open reads a duplicate of fp's descriptor and reads ahead: the caller must not
+ *   read fp meanwhile, and closes fp itself after pack_reader_close.  The writers only read p.
+ * - Errors: every function returns its status (-1, or NULL for pack_reader_open) and fills
+ *   the error slot of base/msg.h with one line, "FILE:LINE: what is wrong" for a reader error
+ *   (msg_geterr); none prints or exits.
+ * - Promises: what is read passed every check of share/doc/pack-format.md; what is written
+ *   reads back to the same doubles; an output path is replaced atomically or left alone. */
 #ifndef QUSGM_PACKIO_H
 #define QUSGM_PACKIO_H
 

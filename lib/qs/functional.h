@@ -8,7 +8,14 @@
  * term plugs in the same way.  The constant U(h0) of the papers' Pi is left out: minimisers
  * only need differences.  Contacts come from the contact enumerator (contact/contacts.h),
  * whose Verlet list is rebuilt whenever it may have gone stale, so no contact is missed
- * however far the grains move between evaluations.  The order of the unknowns is layout.h's. */
+ * however far the grains move between evaluations.  The order of the unknowns is layout.h's.
+ *
+ * Public API (share/doc/library.md): qs_init(&s, &p, 0.3) makes a system over a pack that the
+ * caller owns and keeps alive (s->p points at it; the radii, moduli and box are read at each
+ * evaluation); qs_free releases what qs_init allocated, never the pack.  qs_energy reads x
+ * (s->dim values, p->x itself for the stored centres) and writes g and fmax, arrays of the
+ * caller.  Errors: qs_init returns -1 and qs_energy NAN with the error slot set (base/msg.h).
+ * A system is not thread-safe (its neighbour list is updated by every evaluation). */
 #ifndef QUSGM_FUNCTIONAL_H
 #define QUSGM_FUNCTIONAL_H
 
