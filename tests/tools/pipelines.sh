@@ -19,6 +19,8 @@ for f in $o/packs/g2740.s4.pack.gz $r/fric.pack.gz $r/fric.tsv $r/curve.tsv $r/m
 done
 if command -v gnuplot >/dev/null 2>&1; then
 	if head -c 8 "$o/fig4/fig4.png" 2>/dev/null | od -c | grep -q 'P   N   G'; then pass "fig4.png is a PNG"; else fail "fig4.png is a PNG" "not written"; fi
+	if head -c 8 "$o/fig4/pack.png" 2>/dev/null | od -c | grep -q 'P   N   G'; then pass "the picture of the pack, pack.png, is a PNG"; else fail "the picture of the pack, pack.png, is a PNG" "not written"; fi
+	grep -q '^!\[pack\](pack.png)$' "$o/fig4/report.md" && pass "report.md shows the pack" || fail "report.md shows the pack" "no pack.png line"
 fi
 grep -q 'frictionalize --mu 0.3' "$o/fig4/commands.txt" && pass "commands.txt holds the frictionalize command" ||
     fail "commands.txt holds the frictionalize command" "$(head -c 300 "$o/fig4/commands.txt")"
