@@ -5,6 +5,12 @@
 # the functional as packinfo measures it; make uninstall leaves no file behind (issue 18).
 . "$TOP/tests/tools/lib.sh"
 
+# the install is the optimised build's: make check builds the shared library there only (its
+# second, -fPIC, compile of the library would double the sanitizer build's time)
+if [ "${BIN#*build-san}" != "$BIN" ]; then
+	echo "SKIP install (left to the optimised build)"
+	exit 0
+fi
 B=$(dirname "$BIN")	# the build under test, up to date: nothing is rebuilt
 stage=$PWD/stage
 lib=$stage/usr/local/lib
@@ -23,7 +29,7 @@ else
 	fail "libqusgm.so -> libqusgm.so.0 -> libqusgm.so.0.1.0" "$(ls -l "$lib" | tr '\n' ' ')"
 fi
 if ! command -v readelf >/dev/null 2>&1; then
-	pass "soname (no readelf: not checked)"
+	echo "SKIP soname (no readelf)"
 elif readelf -d "$lib/libqusgm.so.0.1.0" | grep -q 'SONAME.*\[libqusgm\.so\.0\]'; then
 	pass "soname libqusgm.so.0"
 else
@@ -67,11 +73,8 @@ for h in "$inc"/*/*.h; do
 done
 if [ -z "$bad" ]; then pass "every installed header compiles alone"; else fail "every installed header compiles alone" "$bad: $(head -c 300 hdr.err)"; fi
 
-# A user's program, linked against the staged library.  The sanitizer build's library needs
-# the sanitizer runtime: link with the Makefile's SANFLAGS there.
-san=
-case $B in *build-san) san="-fsanitize=address,undefined -fno-omit-frame-pointer" ;; esac
-cc_ex() { ${CC:-cc} -std=c11 -Wall -Wextra -Werror $san -o "$1" "$TOP/tests/install/example.c" $cflags $2 >"$1.err" 2>&1; }
+# A user's program, linked against the staged library.
+cc_ex() { ${CC:-cc} -std=c11 -Wall -Wextra -Werror -o "$1" "$TOP/tests/install/example.c" $cflags $2 >"$1.err" 2>&1; }
 if cc_ex ex_shared "$libs"; then pass "example.c: cc \$(pkg-config --cflags --libs qusgm)"; else fail "example.c: cc \$(pkg-config --cflags --libs qusgm)" "$(head -c 400 ex_shared.err)"; fi
 if cc_ex ex_static "$slibs"; then pass "example.c linked with libqusgm.a ($slibs)"; else fail "example.c linked with libqusgm.a" "$(head -c 400 ex_static.err)"; fi
 if command -v readelf >/dev/null 2>&1; then
