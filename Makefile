@@ -55,7 +55,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates validate interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -233,6 +233,12 @@ validate: all plotdeps
 	  for s in $(VALIDATE_STUDIES); do echo; sed 's/^# /## /' pipelines/out/$$s/report.md; done; } >validate/studies.md.tmp && \
 	  mv validate/studies.md.tmp validate/studies.md && echo "wrote validate/studies.md"
 
+# A one-node Slurm cluster on this machine (installs slurm-wlm and munge as root; not part of
+# make check): a small study with every tool run a job step, compared byte for byte with
+# plain make -j (pipelines/README.md "On a Slurm cluster")
+cluster-check: all
+	@sh tests/cluster-check.sh build/bin
+
 interop: all
 	@sh tests/interop.sh build/bin
 
@@ -277,6 +283,7 @@ help:
 	@echo "make bench      benchmarks; results in bench/results.md and bench/plates.md"
 	@echo "make bench-plates  the spheroplate DEM's benchmarks alone (bench/plates.md)"
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
+	@echo "make cluster-check  a one-node Slurm cluster here (root: installs slurm-wlm, munge): a SMALL study through srun vs make -j"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
 	@echo "make fuzz       each libFuzzer harness (tests/fuzz/) for FUZZ_SECONDS=$(FUZZ_SECONDS) s, built with clang in build-fuzz/"
 	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs, the library (libqusgm.a, $(SOLIB),"

@@ -1,0 +1,187 @@
+#!/bin/sh
+# tests/cluster-check.sh BIN: make cluster-check.  Sets up Debian's slurm-wlm as a one-node
+# cluster on this machine (a private munged, slurmctld and slurmd, their configuration, keys,
+# sockets, state and logs in tests/out/cluster-check, on ports of their own), runs a small
+# study through it with every tool run a Slurm job step (make -C pipelines SLURM=1 inside
+# salloc), runs the same study with plain make -j, compares every file of the two byte for
+# byte, counts the job steps in slurmd's log, and stops the daemons it started.
+# As root it installs slurm-wlm and munge with apt-get when missing; otherwise it needs them.
+# Nothing outside this machine.  Ends "N passed, N failed".
+BIN=${1:-build/bin}
+case $BIN in /*) ;; *) BIN=$(pwd)/$BIN ;; esac
+STUDY=${CLUSTER_STUDY:-fig4}
+J=${CLUSTER_J:-2}
+D=$(pwd)/tests/out/cluster-check
+pass=0 fail=0
+ok() { echo "PASS: $1"; pass=$((pass + 1)); }
+ko() { echo "FAIL: $1"; fail=$((fail + 1)); }
+finish() { echo "$pass passed, $fail failed"; [ "$fail" -eq 0 ]; exit; }
+
+APT="DEBIAN_FRONTEND=noninteractive apt-get install -y -qq slurm-wlm munge"
+need() { command -v slurmctld >/dev/null 2>&1 && command -v slurmd >/dev/null 2>&1 &&
+	command -v srun >/dev/null 2>&1 && command -v munged >/dev/null 2>&1; }
+if ! need; then
+	if [ "$(id -u)" -ne 0 ]; then
+		echo "cluster-check: slurm-wlm and munge are not installed; as root: $APT" >&2
+		exit 1
+	fi
+	echo "cluster-check: installing slurm-wlm and munge: $APT"
+	env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq slurm-wlm munge >/dev/null ||
+		{ echo "cluster-check: apt-get failed" >&2; exit 1; }
+fi
+[ "$(id -u)" -eq 0 ] || { echo "cluster-check: run as root (slurmd starts job steps as their user)" >&2; exit 1; }
+t0=$(date +%s)
+
+# --- the cluster -------------------------------------------------------------------------
+rm -rf "$D"
+mkdir -p "$D/munge" "$D/spool" "$D/state" "$D/out"
+chmod 700 "$D/munge"
+pids=
+stop() {
+	for p in $pids; do kill "$p" 2>/dev/null; done
+	for p in $pids; do
+		i=0
+		while kill -0 "$p" 2>/dev/null && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+		kill -9 "$p" 2>/dev/null
+	done
+	pids=
+}
+trap 'stop' EXIT
+trap 'stop; exit 1' INT TERM HUP
+
+# a munge key of its own (the system's /etc/munge is not touched)
+dd if=/dev/urandom of="$D/munge/munge.key" bs=1024 count=1 2>/dev/null
+chmod 400 "$D/munge/munge.key"
+munged --force --foreground --key-file="$D/munge/munge.key" --socket="$D/munge/munge.socket" \
+	--pid-file="$D/munge/munged.pid" --log-file="$D/munge/munged.log" \
+	--seed-file="$D/munge/munged.seed" >"$D/munge/munged.out" 2>&1 &
+pids="$pids $!"
+
+host=$(hostname -s)
+cpus=$(nproc)
+mem=$(awk '/^MemTotal:/ { m = int($2 / 1024) - 1024; print (m < 1024 ? 1024 : m) }' /proc/meminfo)
+cat >"$D/slurm.conf" <<EOF
+# written by tests/cluster-check.sh: a one-node cluster for make cluster-check
+ClusterName=qusgm-check
+SlurmctldHost=$host
+SlurmctldPort=16817
+SlurmdPort=16818
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+AuthInfo=socket=$D/munge/munge.socket
+CredType=cred/munge
+SlurmctldPidFile=$D/slurmctld.pid
+SlurmdPidFile=$D/slurmd.pid
+SlurmctldLogFile=$D/slurmctld.log
+SlurmdLogFile=$D/slurmd.log
+SlurmdDebug=info
+SlurmctldDebug=info
+SlurmdSpoolDir=$D/spool
+StateSaveLocation=$D/state
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/none
+MpiDefault=none
+SwitchType=switch/none
+SchedulerType=sched/backfill
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU_Memory
+ReturnToService=2
+NodeName=$host CPUs=$cpus RealMemory=$mem State=UNKNOWN
+PartitionName=check Nodes=ALL Default=YES MaxTime=INFINITE State=UP
+EOF
+export SLURM_CONF="$D/slurm.conf"
+# the allocation's and the steps' memory (JOB_MEM, the steps run two at a time)
+unset SLURM_JOB_ID
+
+i=0
+while [ ! -S "$D/munge/munge.socket" ] && [ $i -lt 50 ]; do sleep 0.1; i=$((i + 1)); done
+if [ -S "$D/munge/munge.socket" ]; then ok "munged runs (its own key and socket)"
+else ko "munged did not start:"; cat "$D/munge/munged.out" "$D/munge/munged.log" 2>/dev/null | tail -n 5; finish; fi
+
+slurmctld -D -f "$D/slurm.conf" >"$D/slurmctld.out" 2>&1 &
+pids="$pids $!"
+slurmd -D -f "$D/slurm.conf" >"$D/slurmd.out" 2>&1 &
+pids="$pids $!"
+i=0 state=
+while [ $i -lt 60 ]; do
+	state=$(sinfo -h -N -n "$host" -o %t 2>/dev/null)
+	[ "$state" = idle ] && break
+	sleep 1; i=$((i + 1))
+done
+if [ "$state" = idle ]; then ok "slurmctld and slurmd run: node $host idle in partition check ($cpus CPUs, $mem MB)"
+else
+	ko "node $host not idle after 60 s (sinfo: '$state')"
+	tail -n 8 "$D/slurmctld.log" "$D/slurmd.log" "$D/slurmctld.out" "$D/slurmd.out" 2>/dev/null
+	finish
+fi
+
+# --- the study, through Slurm and here -----------------------------------------------------
+# both runs write to the same OUT, moved aside after each: the packs' history records their
+# commands, paths included, so only the same path gives the same bytes
+O=$D/out/run
+s0=$(date +%s)
+salloc --quiet -N1 -n"$J" --mem=$((J * 600))M -J qusgm-check \
+	make --no-print-directory -C pipelines SLURM=1 JOB_MEM=500M JOB_TIME=0:30:00 \
+	BIN="$BIN" SMALL=1 OUT="$O" -j"$J" "$STUDY" >"$D/slurm-make.log" 2>&1
+rc=$?
+mv "$O" "$D/out/slurm"
+s1=$(date +%s)
+if [ $rc -eq 0 ]; then ok "salloc make -C pipelines SLURM=1 SMALL=1 -j$J $STUDY ($((s1 - s0)) s)"
+else ko "salloc make -C pipelines SLURM=1 SMALL=1 -j$J $STUDY exited $rc:"; tail -n 15 "$D/slurm-make.log"; fi
+
+make --no-print-directory -C pipelines BIN="$BIN" SMALL=1 OUT="$O" -j"$J" "$STUDY" \
+	>"$D/local-make.log" 2>&1
+rc=$?
+mv "$O" "$D/out/local"
+s2=$(date +%s)
+if [ $rc -eq 0 ]; then ok "make -C pipelines SMALL=1 -j$J $STUDY ($((s2 - s1)) s)"
+else ko "make -C pipelines SMALL=1 -j$J $STUDY exited $rc:"; tail -n 15 "$D/local-make.log"; fi
+
+# every file of the two, byte for byte: times.tsv (seconds) aside, and report.md without its
+# Cost line (the seconds)
+(cd "$D/out/local" && find . -type f | sort) >"$D/files.local"
+(cd "$D/out/slurm" && find . -type f | sort) >"$D/files.slurm"
+if cmp -s "$D/files.local" "$D/files.slurm" && [ -s "$D/files.local" ]; then
+	ok "the same $(wc -l <"$D/files.local") files in both runs"
+else
+	ko "the two runs wrote different files:"; diff "$D/files.local" "$D/files.slurm" | head
+fi
+same=0 differ=0
+while read -r f; do
+	[ -f "$D/out/slurm/$f" ] || continue
+	case $f in
+	./times.tsv) continue ;;
+	*/report.md)
+		grep -v '^Cost:' "$D/out/local/$f" >"$D/a"
+		grep -v '^Cost:' "$D/out/slurm/$f" >"$D/b"
+		cmp -s "$D/a" "$D/b" ;;
+	*) cmp -s "$D/out/local/$f" "$D/out/slurm/$f" ;;
+	esac
+	if [ $? -eq 0 ]; then same=$((same + 1)); else differ=$((differ + 1)); echo "  differs: $f"; fi
+done <"$D/files.local"
+if [ $differ -eq 0 ] && [ $same -gt 0 ]; then ok "$same files byte for byte identical (times.tsv aside; report.md without its Cost line)"
+else ko "$differ files differ, $same identical"; fi
+
+# one job step per tool run: timed.sh logs one line per tool run to times.tsv, slurmd one
+# "launch task" per step it started (the allocation's own job has none: salloc runs make here)
+runs=$(wc -l <"$D/out/local/times.tsv")
+sruns=$(wc -l <"$D/out/slurm/times.tsv")
+steps=$(grep -c 'launch task' "$D/slurmd.log")
+if [ "$steps" -eq "$runs" ] && [ "$sruns" -eq "$runs" ] && [ "$runs" -gt 0 ]; then
+	ok "$steps Slurm job steps for $runs tool runs (slurmd.log)"
+else ko "$steps job steps in slurmd.log, $sruns tool runs through Slurm, $runs here"; fi
+grep 'launch task' "$D/slurmd.log" | sed 's/^/  /'
+
+stop
+sleep 0.5
+left=
+for f in "$D/slurmctld.pid" "$D/slurmd.pid" "$D/munge/munged.pid"; do
+	[ -s "$f" ] && kill -0 "$(cat "$f")" 2>/dev/null && left="$left $(cat "$f")"
+done
+if [ -z "$left" ]; then ok "daemons stopped"; else ko "still running:$left"; fi
+echo "cluster-check: $(($(date +%s) - t0)) s in all; logs and both runs in $D"
+finish
