@@ -176,6 +176,22 @@ if [ "$steps" -eq "$runs" ] && [ "$sruns" -eq "$runs" ] && [ "$runs" -gt 0 ]; th
 else ko "$steps job steps in slurmd.log, $sruns tool runs through Slurm, $runs here"; fi
 grep 'launch task' "$D/slurmd.log" | sed 's/^/  /'
 
+# outside an allocation each tool run is a job of its own (srun -p check -t ...): the stages
+# of the study's first pack, made again that way, the same bytes as make -j's
+first=$(sed -n 1p "$D/out/local/times.tsv" | cut -f1)
+case $first in "$O"/*) rel=${first#"$O"/} ;; *) rel= ;; esac
+jobs0=$(grep -c '_slurm_rpc_allocate_resources JobId=' "$D/slurmctld.log")
+if [ -n "$rel" ] && make --no-print-directory -C pipelines SLURM=1 JOB_PARTITION=check JOB_MEM=500M \
+	JOB_TIME=0:10:00 BIN="$BIN" SMALL=1 OUT="$O" "$first" >"$D/jobs-make.log" 2>&1; then
+	n=$(wc -l <"$O/times.tsv")
+	jobs=$(($(grep -c '_slurm_rpc_allocate_resources JobId=' "$D/slurmctld.log") - jobs0))
+	bad=0
+	for f in $(cut -f1 "$O/times.tsv"); do cmp -s "$f" "$D/out/local/${f#"$O"/}" || { bad=1; echo "  differs: $f"; }; done
+	if [ $bad -eq 0 ] && [ "$jobs" -eq "$n" ]; then ok "without salloc: $rel and what it needs as $jobs Slurm jobs of their own, the same bytes"
+	else ko "without salloc: $jobs jobs for $n tool runs, outputs differ: $bad"; fi
+else ko "without salloc: make $rel failed"; tail -n 10 "$D/jobs-make.log"; fi
+rm -rf "$O"
+
 stop
 sleep 0.5
 left=
