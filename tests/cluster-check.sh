@@ -124,13 +124,13 @@ fi
 # commands, paths included, so only the same path gives the same bytes
 O=$D/out/run
 s0=$(date +%s)
-salloc --quiet -N1 -n"$J" --mem=$((J * 600))M -J qusgm-check \
+salloc --quiet -N1 -c"$J" --mem=$((J * 600))M -J qusgm-check \
 	make --no-print-directory -C pipelines SLURM=1 JOB_MEM=500M JOB_TIME=0:30:00 \
 	BIN="$BIN" SMALL=1 OUT="$O" -j"$J" "$STUDY" >"$D/slurm-make.log" 2>&1
 rc=$?
 mv "$O" "$D/out/slurm"
 s1=$(date +%s)
-if [ $rc -eq 0 ]; then ok "salloc make -C pipelines SLURM=1 SMALL=1 -j$J $STUDY ($((s1 - s0)) s)"
+if [ $rc -eq 0 ]; then ok "salloc -N1 -c$J make -C pipelines SLURM=1 SMALL=1 -j$J $STUDY ($((s1 - s0)) s)"
 else ko "salloc make -C pipelines SLURM=1 SMALL=1 -j$J $STUDY exited $rc:"; tail -n 15 "$D/slurm-make.log"; fi
 
 make --no-print-directory -C pipelines BIN="$BIN" SMALL=1 OUT="$O" -j"$J" "$STUDY" \
@@ -175,6 +175,11 @@ if [ "$steps" -eq "$runs" ] && [ "$sruns" -eq "$runs" ] && [ "$runs" -gt 0 ]; th
 	ok "$steps Slurm job steps for $runs tool runs (slurmd.log)"
 else ko "$steps job steps in slurmd.log, $sruns tool runs through Slurm, $runs here"; fi
 grep 'launch task' "$D/slurmd.log" | sed 's/^/  /'
+
+# a failing tool run is a failing step, and make sees its status
+salloc --quiet -N1 -c1 --mem=600M -J qusgm-check-fail env QUSGM_JOB_MEM=500M sh pipelines/slurm.sh sh -c 'exit 3' >"$D/fail.log" 2>&1
+rc=$?
+if [ $rc -eq 3 ]; then ok "a step that exits 3 makes slurm.sh exit 3"; else ko "a step that exits 3: slurm.sh exited $rc"; cat "$D/fail.log"; fi
 
 # outside an allocation each tool run is a job of its own (srun -p check -t ...): the stages
 # of the study's first pack, made again that way, the same bytes as make -j's
