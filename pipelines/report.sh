@@ -103,7 +103,11 @@ echo "Figure: \`$study.png\`; exact commands: \`commands.txt\`; remake: \`make -
 echo "Cost: $(study_time) (the sum of its stages; run alone with -j1 it takes about that long)."
 if [ -n "${PIC:-}" ]; then
 	echo
+	if [ "$study" = platy ]; then
+	echo "The pack \`${PIC#$out/}\` after its shear: the plates centred within half a plate width of the middle plane z = z_c, seen along z (x the shear direction, y the gradient, up), each the trace of its mid-plane, coloured by |n_y| (1: face normal along the gradient; share/plot/packpic.sh):"
+	else
 	echo "The pack \`${PIC#$out/}\`: a slab one mean radius thick through its middle, seen along y (z up); discs coloured by $( [ "$study" = s-fig5 ] && echo "phase (1: hydrate)" || echo "each grain's number of contacts"), lines from centre to centre with a width that follows the normal force (share/plot/packpic.sh):"
+	fi
 	echo
 	echo "![pack](pack.png)"
 fi

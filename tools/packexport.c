@@ -177,7 +177,7 @@ main(int argc, char **argv)
 	/* what cannot hold a plate: the .vtm's contacts file (sphere contacts; plate contacts
 	 * are not in lib/ yet), atom_style sphere, and YADE's x y z r */
 	who = vtk ? (out && has_suffix(out, ".vtm") ? "the contacts file of --vtk -o NAME.vtm" : NULL) :
-	    lammps_data ? "--lammps-data" : xyzr ? "--xyzr" : tsv_grains ? "--tsv-grains" : "--tsv-contacts";
+	    lammps_data ? "--lammps-data" : xyzr ? "--xyzr" : tsv_contacts ? "--tsv-contacts" : NULL;
 	if (who && pack_require_spheres(&p, who))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	if (vtk && out && has_suffix(out, ".vtm")) {

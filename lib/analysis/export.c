@@ -310,25 +310,31 @@ int
 export_tsv_grains(const struct pack *p, FILE *fp)
 {
 	struct geo_contacts gc;
-	size_t i, k, *nc;
-	double v[7];
+	size_t i, k, *nc = NULL;
+	double v[7], R[9];
+	/* sphere contacts only: the plates' interactions are the plate engine's (not in lib/
+	 * for a pack at rest), so a pack with plates gets side and normal instead */
+	int plates = pack_first_plate(p) != (size_t)-1;
 
 	contacts_init(&gc);
-	if (contacts_find(p, &gc)) {
-		contacts_free(&gc);
-		return -1;
+	if (!plates) {
+		if (contacts_find(p, &gc)) {
+			contacts_free(&gc);
+			return -1;
+		}
+		if (!(nc = calloc(p->n ? p->n : 1, sizeof *nc))) {
+			contacts_free(&gc);
+			msg_seterr("out of memory");
+			return -1;
+		}
+		for (k = 0; k < gc.n; k++) {
+			nc[gc.c[k].i]++;
+			if (!PACK_IS_WALL(gc.c[k].j))
+				nc[gc.c[k].j]++;
+		}
 	}
-	if (!(nc = calloc(p->n ? p->n : 1, sizeof *nc))) {
-		contacts_free(&gc);
-		msg_seterr("out of memory");
-		return -1;
-	}
-	for (k = 0; k < gc.n; k++) {
-		nc[gc.c[k].i]++;
-		if (!PACK_IS_WALL(gc.c[k].j))
-			nc[gc.c[k].j]++;
-	}
-	fprintf(fp, "# id\tx[m]\ty[m]\tz[m]\tr[m]\tE[Pa]\tnu\trho[kg/m^3]%s\tcontacts\n", p->has_phase ? "\tphase" : "");
+	fprintf(fp, "# id\tx[m]\ty[m]\tz[m]\tr[m]\tE[Pa]\tnu\trho[kg/m^3]%s%s\n", p->has_phase ? "\tphase" : "",
+	    plates ? "\tside[m]\tnx\tny\tnz" : "\tcontacts");
 	for (i = 0; i < p->n; i++) {
 		fprintf(fp, "%ld\t", p->id[i]);
 		memcpy(v, p->x + 3 * i, 3 * sizeof *v);
@@ -337,7 +343,13 @@ export_tsv_grains(const struct pack *p, FILE *fp)
 			put_num(fp, v[k], '\t');
 		if (p->has_phase)
 			fprintf(fp, "%d\t", p->phase[i]);
-		fprintf(fp, "%zu\n", nc[i]);
+		if (plates) {	/* the face normal R(q) e3 */
+			grain_rotation(p, i, R);
+			v[0] = p->side[i], v[1] = R[2], v[2] = R[5], v[3] = R[8];
+			put_nums_sep(fp, v, 4, '\t');
+		} else {
+			fprintf(fp, "%zu\n", nc[i]);
+		}
 	}
 	free(nc);
 	contacts_free(&gc);

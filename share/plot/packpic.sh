@@ -14,6 +14,32 @@ bin=${BIN:+$BIN/}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "${bin}packexport" --tsv-grains "$pack" >"$tmp/g.tsv"
+if head -n 1 "$tmp/g.tsv" | grep -q 'side\[m\]'; then
+	# spheroplates (no force network: their interactions are the plate engine's): the plates
+	# centred within half a plate width of the middle plane z = z_c, seen along z (x across,
+	# y, the shear test's gradient, up), each the trace of its mid-plane, n x e_z, as wide as
+	# the plate (L + 2 r), coloured by COLOUR (a grain column; |ny| by default, a normal's
+	# component taken by its size)
+	[ "$colour" = contacts ] && colour=ny
+	set -- $(awk -F '\t' '!/^#/ { n++; s += $9 / 2 + $5; if (n == 1 || $4 < lo) lo = $4; if (n == 1 || $4 > hi) hi = $4 }
+		END { printf "%.17g %.17g", (lo + hi) / 2, s / n }' "$tmp/g.tsv")
+	awk -F '\t' -v zc="$1" -v w="$2" -v col="$colour" '
+		/^# / { sub(/^# /, ""); for (i = 1; i <= NF; i++) { c = $i; sub(/\[.*\]$/, "", c); idx[c] = i }
+			if (!(col in idx)) { print "packpic.sh: no grain column " col > "/dev/stderr"; exit 2 }; next }
+		{ d = $4 - zc; if (d < 0) d = -d; if (d >= w) next
+		  ux = $(idx["ny"]); uy = -$(idx["nx"]); u = sqrt(ux * ux + uy * uy); h = $9 / 2 + $5
+		  if (u < 1e-9) { ux = 1; uy = 0; u = 1 }
+		  ux *= h / u; uy *= h / u
+		  v = $(idx[col]); if (col ~ /^n[xyz]$/ && v < 0) v = -v	# n and -n: one orientation
+		  printf "%.9g\t%.9g\t%.9g\t%.9g\t%s\n", $2 - ux, $3 - uy, 2 * ux, 2 * uy, v }' "$tmp/g.tsv" >"$tmp/segs.tsv"
+	case $colour in n[xyz]) colour="|$colour|" ;; esac
+	set -- $(gzip -dcf "$pack" | awk '$1 == "box" { print $2, $3, $5, $6; exit }')
+	nseg=$(wc -l <"$tmp/segs.tsv")
+	gnuplot -e "segs='$tmp/segs.tsv'; out='$out'; colour='$colour'; x0=$1; z0=$2; x1=$3; z1=$4; \
+		ttl='${title:+$title: }plates centred within half a plate width of z_c ($nseg), seen along z'" \
+		"$(dirname "$0")/pack.gp"
+	exit 0
+fi
 "${bin}packexport" --tsv-contacts "$pack" >"$tmp/c.tsv"
 # the slab: centre and half-width, from the grains
 set -- $(awk -F '\t' '!/^#/ { n++; s += $5; if (n == 1 || $3 < lo) lo = $3; if (n == 1 || $3 > hi) hi = $3 }

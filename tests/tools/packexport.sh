@@ -350,3 +350,13 @@ if command -v gnuplot >/dev/null 2>&1; then
 		fail "packpic.sh draws a PNG" "$(head -c 300 pic.out)"
 	fi
 fi
+# spheroplates: --tsv-grains gives side and the unit face normal instead of sphere contacts,
+# --tsv-contacts is refused (the plates' interactions are the plate engine's)
+packgen --shape spheroplate --platyness 0.5 -n 27 --seed 1 -o pl.pack 2>/dev/null
+expect_ok "--tsv-grains of spheroplates" packexport --tsv-grains -o pl.tsv pl.pack
+expect_num "plates: unit face normals (|n| - 1 < 1e-12)" "$(sh "$TOP/pipelines/cols.sh" pl.tsv nx ny nz | awk '{ d = sqrt($1 * $1 + $2 * $2 + $3 * $3) - 1; if (d < 0) d = -d; if (d > m) m = d } END { printf "%.3g", m }')" "<" 1e-12
+expect_error "--tsv-contacts of spheroplates refused" 1 '^packexport: pl\.pack: grain 1 is a spheroplate \(side > 0\); --tsv-contacts handles spheres only' packexport --tsv-contacts pl.pack
+if command -v gnuplot >/dev/null 2>&1; then
+	BIN="$BIN" sh "$TOP/share/plot/packpic.sh" pl.pack plpic.png >plpic.out 2>&1 && head -c 8 plpic.png | od -c | grep -q 'P   N   G' &&
+	    pass "packpic.sh draws spheroplates" || fail "packpic.sh draws spheroplates" "$(head -c 300 plpic.out)"
+fi
