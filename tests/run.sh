@@ -4,81 +4,117 @@
 # print one PASS/FAIL line per check; a test program that exits nonzero without printing a
 # FAIL line (a crash, a sanitizer report) counts as one failure.
 #
-# The build directories run at the same time, one process each (the machines this runs on
-# have two cores and the tests are sequential within a build); each build's lines are shown
-# when it is done, in the order given.  TEST_SERIAL=1 runs them one after the other instead.
+# The tests of all builds form one queue that TEST_JOBS workers take from (default: the
+# cores online; TEST_SERIAL=1 means one).  Each test runs in its own directory under
+# tests/out, so they do not see each other.  The queue starts with the tests that took
+# longest last time (build/.test-times, written at the end of each run; on a fresh clone the
+# tool tests of the last build come first, the sanitizer build's being the slowest), so that
+# a long test does not start last and leave one core idle: with the old one-process-per-build
+# split the sanitizer build alone took 8 of make check's 9 minutes.  Every test's lines are
+# printed afterwards in a fixed order (build, then unit before tool tests), whatever the
+# order they ran in, with the wall seconds each took.
 set -u
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/tests/out"
-rm -rf "$out"
-mkdir -p "$out"
-passed=0
-failed=0
 
-run_one() {	# name, log, command...
-	name=$1 log=$2
-	shift 2
-	"$@" >"$log" 2>"$log.err"
+# One test: "run.sh --one BUILD unit|tools NAME".  Writes OUT/BUILD/KIND/NAME.{log,err,lines,res}.
+if [ "${1:-}" = --one ]; then
+	b=$2 kind=$3 n=$4
+	bdir="$top/$b"
+	w="$out/$b/$kind/$n.d"
+	log="$out/$b/$kind/$n.log"
+	mkdir -p "$w"
+	cd "$w" || exit 1
+	t0=$(cut -d' ' -f1 /proc/uptime 2>/dev/null || echo 0)
+	if [ "$kind" = unit ]; then
+		"$bdir/tests/$n" >"$log" 2>"$log.err"
+	else
+		env BIN="$bdir/bin" TOP="$top" sh "$top/tests/tools/$n.sh" >"$log" 2>"$log.err"
+	fi
 	rc=$?
+	t1=$(cut -d' ' -f1 /proc/uptime 2>/dev/null || echo 0)
+	name="$b/$kind/$n"
 	p=$(grep -c '^PASS ' "$log")
 	f=$(grep -c '^FAIL ' "$log")
-	if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
-		f=1
-		echo "FAIL $name: exited with status $rc and no FAIL line; stderr:" 
-		tail -n 15 "$log.err" | sed 's/^/    /'
-	fi
-	grep '^FAIL ' "$log" | sed "s|^FAIL |FAIL $name: |"
-	if [ "$f" -gt 0 ] && [ -s "$log.err" ]; then
-		tail -n 5 "$log.err" | sed 's/^/    stderr: /'
-	fi
-	printf '%-40s %4d passed %4d failed\n' "$name" "$p" "$f"
-	passed=$((passed + p))
-	failed=$((failed + f))
-}
+	{
+		if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+			f=1
+			echo "FAIL $name: exited with status $rc and no FAIL line; stderr:"
+			tail -n 15 "$log.err" | sed 's/^/    /'
+		fi
+		grep '^FAIL ' "$log" | sed "s|^FAIL |FAIL $name: |"
+		if [ "$f" -gt 0 ] && [ -s "$log.err" ]; then
+			tail -n 5 "$log.err" | sed 's/^/    stderr: /'
+		fi
+		# wall seconds per test, so that a slow one shows (make check has a 10-minute budget)
+		printf '%-40s %4d passed %4d failed %6.1f s\n' "$name" "$p" "$f" \
+			"$(echo "$t0 $t1" | awk '{print $2 - $1}')"
+	} >"$out/$b/$kind/$n.lines"
+	echo "$p $f $(echo "$t0 $t1" | awk '{print $2 - $1}') $name" >"$out/$b/$kind/$n.res"
+	exit 0
+fi
 
-run_build() {	# build directory name: its lines on stdout, "passed failed" last
-	b=$1
+rm -rf "$out"
+mkdir -p "$out"
+
+# The jobs in the fixed order their lines are printed in: "BUILD KIND NAME".
+for b in "$@"; do
 	bdir="$top/$b"
-	[ -d "$bdir" ] || { echo "FAIL tests/run.sh: no build directory $b"; echo "0 1"; return; }
+	if [ ! -d "$bdir" ]; then
+		echo "$b missing -"
+		continue
+	fi
 	for t in "$bdir"/tests/*; do
-		[ -x "$t" ] || continue
-		n=$(basename "$t")
-		mkdir -p "$out/$b/unit/$n.d"
-		cd "$out/$b/unit/$n.d" || exit 1
-		run_one "$b/unit/$n" "$out/$b/unit/$n.log" "$t"
-		cd "$top" || exit 1
+		[ -f "$t" ] && [ -x "$t" ] && echo "$b unit $(basename "$t")"
 	done
 	for t in "$top"/tests/tools/*.sh; do
 		[ -f "$t" ] || continue
 		n=$(basename "$t" .sh)
 		[ "$n" = lib ] && continue	# the helpers, not a test
-		w="$out/$b/tools/$n.d"
-		mkdir -p "$w"
-		cd "$w" || exit 1
-		run_one "$b/tools/$n" "$out/$b/tools/$n.log" env BIN="$bdir/bin" TOP="$top" sh "$t"
-		cd "$top" || exit 1
+		echo "$b tools $n"
 	done
-	echo "$passed $failed"
-}
+done >"$out/jobs"
 
-for b in "$@"; do
-	if [ "${TEST_SERIAL:-0}" = 1 ]; then
-		run_build "$b" >"$out/$b.lines"
-		sed '$d' "$out/$b.lines"
-	else
-		run_build "$b" >"$out/$b.lines" &
-	fi
-done
-wait
+jobs=${TEST_JOBS:-$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+[ "${TEST_SERIAL:-0}" = 1 ] && jobs=1
+times="$top/build/.test-times"
+
+# The order they run in: longest first by the last run's times; without them, tool tests
+# before unit tests and the last build given first.
+awk -v times="$times" '
+	BEGIN { while ((getline l < times) > 0) { split(l, a, " "); t[a[2]] = a[1] } }
+	$2 == "missing" { next }
+	$1 != last { last = $1; nb++ }
+	{
+		name = $1 "/" $2 "/" $3
+		w = (name in t) ? t[name] : ($2 == "tools" ? 2000 : 1000) + nb * 100
+		printf "%012.3f %s %s %s\n", w, $1, $2, $3
+	}' "$out/jobs" | sort -r | cut -d' ' -f2- >"$out/queue"
+xargs -P "$jobs" -L 1 sh "$top/tests/run.sh" --one <"$out/queue"
+
 passed=0
 failed=0
-for b in "$@"; do
-	[ "${TEST_SERIAL:-0}" = 1 ] || sed '$d' "$out/$b.lines"
-	read -r p f <<EOF
-$(tail -n 1 "$out/$b.lines")
-EOF
+while read -r b kind n; do
+	if [ "$kind" = missing ]; then
+		echo "FAIL tests/run.sh: no build directory $b"
+		failed=$((failed + 1))
+		continue
+	fi
+	if [ ! -f "$out/$b/$kind/$n.res" ]; then
+		echo "FAIL $b/$kind/$n: the test did not run to its end"
+		failed=$((failed + 1))
+		continue
+	fi
+	cat "$out/$b/$kind/$n.lines"
+	read -r p f s name <"$out/$b/$kind/$n.res"
 	passed=$((passed + p))
 	failed=$((failed + f))
-done
+	echo "$s $name" >>"$out/times"
+done <"$out/jobs"
+# keep the times of builds not run this time (make check-fast runs only build/)
+if [ -d "$top/build" ] && [ -f "$out/times" ]; then
+	{ [ -f "$times" ] && awk 'NR == FNR { seen[$2] = 1; next } !($2 in seen)' "$out/times" "$times"
+	  cat "$out/times"; } >"$times.new" && mv "$times.new" "$times"
+fi
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
