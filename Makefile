@@ -35,7 +35,10 @@ ifeq ($(strip $(PKG_LIBS)),)
 PKG_LIBS := -lgsl -lgslcblas -lccd -lz
 endif
 
-ALL_CFLAGS = $(STD) $(WARN) $(OPT) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAGS)
+# OpenMP: the evaluations and the vector algebra run on threads (lib/base/par.h); OMPFLAGS=
+# builds without them (one thread, the same results).
+OMPFLAGS ?= -fopenmp
+ALL_CFLAGS = $(STD) $(WARN) $(OPT) $(OMPFLAGS) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAGS)
 ALL_LIBS   = $(PKG_LIBS) -lm
 
 LIB_SRC   = $(wildcard lib/*/*.c)
@@ -262,7 +265,7 @@ install: all
 	done
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(patsubst $(PREFIX)%,$${prefix}%,$(LIBDIR))|' \
 	  -e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)%,$${prefix}%,$(INCLUDEDIR))|' -e 's|@VERSION@|$(VERSION)|' \
-	  -e 's|@PKGS@|$(PKGS)|' share/qusgm.pc.in >$(DESTDIR)$(PKGCONFIGDIR)/qusgm.pc
+	  -e 's|@PKGS@|$(PKGS)|' -e 's|@OMPFLAGS@|$(OMPFLAGS)|' share/qusgm.pc.in >$(DESTDIR)$(PKGCONFIGDIR)/qusgm.pc
 
 uninstall:
 	for t in $(TOOLS); do rm -f $(DESTDIR)$(BINDIR)/$$t; done

@@ -1,5 +1,6 @@
 /* cli: option tables, help, history line, progress (see cli.h). */
 #include "base/cli.h"
+#include "base/par.h"
 #include "base/msg.h"
 
 #include <errno.h>
@@ -22,10 +23,12 @@ free_argv_text(void)
 static int help_flag, version_flag;
 static const char *output_path;
 static int verbose_count, quiet_flag;
+static long threads_opt;
 
 static struct cli_opt common_opts[] = {
 	{"output", 'o', CLI_STRING, &output_path, "FILE", "write to FILE (atomically) instead of stdout; .gz compresses", NULL},
 	{"verbose", 'v', CLI_FLAG, &verbose_count, NULL, "report progress on stderr (twice: solver detail)", NULL},
+	{"threads", 0, CLI_LONG, &threads_opt, "N", "threads (0: OMP_NUM_THREADS, else the cores online); same results for any N", NULL},
 	{"quiet", 'q', CLI_FLAG, &quiet_flag, NULL, "no warnings or progress", NULL},
 	{"help", 'h', CLI_FLAG, &help_flag, NULL, "print this help and exit", NULL},
 	{"version", 'V', CLI_FLAG, &version_flag, NULL, "print the version and exit", NULL},
@@ -305,6 +308,10 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 		exit(0);
 	}
 	msg_verbosity = quiet_flag ? -1 : verbose_count;
+	if (threads_opt < 0 || threads_opt > 4096)
+		cli_usage_error("--threads: expected 0 (the default) to 4096, got %ld", threads_opt);
+	par_set_threads((int)threads_opt);
+	msg_info(1, "%d thread%s (--threads)", par_threads(), par_threads() == 1 ? "" : "s");
 	st->operands = argv + optind;
 	st->noperands = argc - optind;
 	if (st->noperands > t->max_operands)
@@ -347,7 +354,9 @@ cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 	s = malloc(len);
 	if (!s)
 		msg_die(EXIT_DATA, "out of memory");
-	snprintf(s, len, "%s %s: %s ; %s", t->name, QUSGM_VERSION, st->argv_text, res);
+	/* the thread count is provenance, not an input: it changes no result, but a run's
+	 * record says how it was made */
+	snprintf(s, len, "%s %s: %s ; %s --threads=%d", t->name, QUSGM_VERSION, st->argv_text, res, par_threads());
 	free(res);
 	/* one line, without a carriage return, that a pack reader gives back byte for byte */
 	for (c = s; *c; c++)

@@ -91,6 +91,7 @@ contact_enum_free(struct contact_enum *e)
 	nlist_free(&e->prev);
 	free(e->hpair[0]), free(e->hpair[1]), free(e->hwall);
 	free(e->full_first), free(e->full_nbr);
+	free(e->col_first), free(e->col_nbr);
 	memset(e, 0, sizeof *e);
 }
 
@@ -152,6 +153,7 @@ contact_enum_update(struct contact_enum *e, const double *x, int force)
 	if (nlist_build(&e->nl, x, e->r, e->n, e->lo, e->hi, e->rmax, e->skin, e->periodic))
 		return -1;
 	e->stale = 0;
+	e->rebuilds++;
 	return e->hsize ? carry_history(e) : 0;
 }
 
@@ -186,7 +188,40 @@ full_rows(struct contact_enum *e)
 			e->full_nbr[e->full_first[j] + fill[j]++] = i;
 		}
 	free(fill);
-	e->full_builds = nl->builds;
+	e->full_builds = e->rebuilds;
+	return 0;
+}
+
+int
+contact_enum_columns(struct contact_enum *e)
+{
+	const struct nlist *nl = &e->nl;
+	size_t i, k, n = e->n, *fill;
+
+	if (e->col_first && e->col_builds == e->rebuilds)
+		return 0;
+	free(e->col_first), free(e->col_nbr);
+	e->col_first = calloc(n + 1, sizeof *e->col_first);
+	e->col_nbr = malloc((nl->npairs + 1) * sizeof *e->col_nbr);
+	fill = calloc(n ? n : 1, sizeof *fill);
+	if (!e->col_first || !e->col_nbr || !fill) {
+		free(fill);
+		free(e->col_first), free(e->col_nbr);
+		e->col_first = e->col_nbr = NULL;
+		msg_seterr("out of memory");
+		return -1;
+	}
+	for (k = 0; k < nl->npairs; k++)
+		e->col_first[nl->nbr[k] + 1]++;
+	for (i = 0; i < n; i++)
+		e->col_first[i + 1] += e->col_first[i];
+	for (i = 0; i < n; i++)	/* rows in ascending i: each column fills ascending */
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			size_t j = nl->nbr[k];
+			e->col_nbr[e->col_first[j] + fill[j]++] = i;
+		}
+	free(fill);
+	e->col_builds = e->rebuilds;
 	return 0;
 }
 
@@ -225,7 +260,7 @@ contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mod
 	long calls = 0;
 	int w;
 
-	if ((!e->full_first || e->full_builds != e->nl.builds) && full_rows(e))
+	if ((!e->full_first || e->full_builds != e->rebuilds) && full_rows(e))
 		return -2;
 	for (k = e->full_first[i]; k < e->full_first[i + 1]; k++) {
 		size_t j = e->full_nbr[k];

@@ -73,7 +73,10 @@ struct contact_enum {
 	int hcur;
 	double *hwall;
 	size_t *full_first, *full_nbr;	/* both directions of the list, for contact_foreach_grain */
-	long full_builds;		/* nl.builds when the full rows were made */
+	size_t *col_first, *col_nbr;	/* per grain j, its listed lower neighbours m < j */
+	long col_builds;		/* rebuilds when col_* were made */
+	long rebuilds;			/* lists built so far (nl and prev swap: their own counts repeat) */
+	long full_builds;		/* rebuilds when the full rows were made */
 };
 
 /* r: n radii; lo, hi: the box corners (read at every update, so the caller may move them);
@@ -88,6 +91,12 @@ void contact_enum_free(struct contact_enum *e);
 int contact_enum_update(struct contact_enum *e, const double *x, int force);
 /* The radii changed (grains grew): the list is rebuilt at the next update. */
 void contact_enum_radii_changed(struct contact_enum *e);
+/* Make col_first and col_nbr current for the list: the columns of the half list, i.e. for
+ * each grain j its listed neighbours m < j, ascending, which is the order in which
+ * contact_foreach reaches the pairs (m, j).  They let a thread gather what the rows of other
+ * threads would have scattered into its grains, in contact_foreach's order (the
+ * functional's threads).  0 or -1 (out of memory). */
+int contact_enum_columns(struct contact_enum *e);
 
 /* Nearest image of a branch vector along the periodic axes. */
 CONTACT_INLINE void

@@ -4,6 +4,7 @@
 #include "contact/contacts.h"
 #include "contact/hertz.h"
 #include "base/msg.h"
+#include "base/par.h"
 #include "base/vec3.h"
 
 #include <math.h>
@@ -23,6 +24,7 @@ fr_free(struct qs_friction *f)
 {
 	free(f->c);
 	free(f->x0);
+	free(f->row_first), free(f->wall_first), free(f->col_first), free(f->col_k), free(f->blk);
 	memset(f, 0, sizeof *f);
 }
 
@@ -155,6 +157,49 @@ fr_check_history(const struct pack *p)
 static double friction_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax);
 static void friction_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k);
 
+/* The index of f->c over n grains (see struct qs_friction); the list is contacts_find's:
+ * the pairs by i then j, then the walls by grain.  0 or -1. */
+static int
+fr_index(struct qs_friction *f, size_t n)
+{
+	size_t k, i, *fill, np = 0, nb = (n + par_block(n) - 1) / par_block(n);
+
+	free(f->row_first), free(f->wall_first), free(f->col_first), free(f->col_k), free(f->blk);
+	f->row_first = calloc(n + 1, sizeof *f->row_first);
+	f->wall_first = calloc(n + 1, sizeof *f->wall_first);
+	f->col_first = calloc(n + 1, sizeof *f->col_first);
+	f->col_k = malloc((f->n ? f->n : 1) * sizeof *f->col_k);
+	f->blk = malloc((nb ? nb : 1) * sizeof *f->blk);
+	fill = calloc(n ? n : 1, sizeof *fill);
+	if (!f->row_first || !f->wall_first || !f->col_first || !f->col_k || !f->blk || !fill) {
+		free(fill);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	for (k = 0; k < f->n; k++) {
+		const struct fr_contact *c = &f->c[k];
+		if (PACK_IS_WALL(c->j)) {
+			f->wall_first[c->i + 1]++;
+		} else {
+			f->row_first[c->i + 1]++;
+			f->col_first[c->j + 1]++;
+			np++;
+		}
+	}
+	f->wall_first[0] = np;
+	for (i = 0; i < n; i++) {
+		f->row_first[i + 1] += f->row_first[i];
+		f->wall_first[i + 1] += f->wall_first[i];
+		f->col_first[i + 1] += f->col_first[i];
+	}
+	for (k = 0; k < np; k++) {
+		size_t j = (size_t)f->c[k].j;
+		f->col_k[f->col_first[j] + fill[j]++] = k;
+	}
+	free(fill);
+	return 0;
+}
+
 int
 fr_begin(struct qs_friction *f, struct qs_system *s)
 {
@@ -195,6 +240,8 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 	}
 	f->stale = p->nc - matched;
 	contacts_free(&gc);
+	if (fr_index(f, p->n))
+		return -1;
 	qs_remove_terms(s);
 	qs_set_rotations(s, 1);
 	return qs_add_term(s, &(struct qs_term){"friction", friction_energy, friction_stiffness, f});
@@ -208,85 +255,148 @@ clamp_potential(double s, double lim)
 	return s <= lim ? s * s : 2 * lim * s - lim * lim;
 }
 
-static double
-fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g)
+/* Contact c at x: its force Q on i, couple M on i about n and elastic trial |Q^p - k u_s|
+ * into Q, M, qtrial; returns its energy.  Reads only x and c's frozen data, so a thread may
+ * evaluate a contact that another owns (fr_energy's gathers). */
+static inline double
+fr_contact_eval(const struct qs_friction *f, const struct qs_system *s, const double *x, const struct fr_contact *c,
+    double Q[3], double *M, double *qtrial)
 {
 	const double *r = s->p->r, *x0 = f->x0;
 	const double *w = x + 3 * s->n;
-	double E = 0;
-	size_t k;
-	int a;
+	size_t i = c->i, j = c->j >= 0 ? (size_t)c->j : 0;
+	int wall = PACK_IS_WALL(c->j), a;
+	double du[3], Oi[3], Oj[3] = {0, 0, 0}, us[3], t[3], dn, Ot, q[3], qn, m, E;
 
-	for (k = 0; k < f->n; k++) {
-		struct fr_contact *c = &f->c[k];
-		size_t i = c->i, j = c->j >= 0 ? (size_t)c->j : 0;
-		int wall = PACK_IS_WALL(c->j);
-		double du[3], Oi[3], Oj[3] = {0, 0, 0}, us[3], t[3], dn, Ot, q[3], qn, m;
-
-		for (a = 0; a < 3; a++) {
-			du[a] = x[3 * i + a] - x0[3 * i + a];
-			Oi[a] = w[3 * i + a] / r[i];
-			if (!wall) {
-				du[a] -= x[3 * j + a] - x0[3 * j + a];
-				Oj[a] = w[3 * j + a] / r[j];
-			}
-		}
-		/* u_s = T du + Omega_i x R_ij - Omega_j x R_ji (walls translate along their normal) */
-		dn = vec3_dot(du, c->n);
-		vec3_cross(Oi, c->li, t);
-		for (a = 0; a < 3; a++)
-			us[a] = du[a] - dn * c->n[a] + t[a];
+	for (a = 0; a < 3; a++) {
+		du[a] = x[3 * i + a] - x0[3 * i + a];
+		Oi[a] = w[3 * i + a] / r[i];
 		if (!wall) {
-			vec3_cross(Oj, c->lj, t);
-			for (a = 0; a < 3; a++)
-				us[a] -= t[a];
-		}
-		for (a = 0; a < 3; a++)
-			q[a] = c->qp[a] - c->k * us[a];
-		qn = vec3_norm(q);
-		c->qtrial = qn;
-		if (qn <= c->qmax) {
-			memcpy(c->Q, q, sizeof q);
-			E += (qn * qn - vec3_dot(c->qp, c->qp)) / (2 * c->k);
-		} else if (f->rule == FR_RETURN_MAP) {
-			for (a = 0; a < 3; a++)
-				c->Q[a] = c->qmax * q[a] / qn;
-			E += (clamp_potential(qn, c->qmax) - vec3_dot(c->qp, c->qp)) / (2 * c->k);
-		} else {
-			/* F (6)-(7b): the stiffness reduced so that |Q^p - k u_s| = Q_max */
-			double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = vec3_dot(c->qp, c->qp);
-			double rad = cq * cq + c->qmax * c->qmax - pp, kr = rad > 0 ? (cq + sqrt(rad)) / un : 0;
-			for (a = 0; a < 3; a++)
-				c->Q[a] = c->qp[a] - kr * us[a];
-			qn = vec3_norm(c->Q);
-			if (qn > c->qmax)	/* only when |Q^p| > Q_max, which fr_begin rules out */
-				for (a = 0; a < 3; a++)
-					c->Q[a] *= c->qmax / qn;
-			E += -vec3_dot(c->qp, us) + 0.5 * kr * vec3_dot(us, us);
-		}
-		/* torsion: Omega_t = (Omega_i - Omega_j) . n, the same clamp in one dimension */
-		Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
-		m = c->mp - c->kt * Ot;
-		c->M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
-		E += (clamp_potential(fabs(m), c->mmax) - c->mp * c->mp) / (2 * c->kt);
-		if (g) {
-			double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i, mi[3];
-			/* dPi/du_i = -Q, dPi/dOmega_i = -(R_ij x Q) - M n, scaled by 1/R_i */
-			vec3_cross(c->li, c->Q, mi);
-			for (a = 0; a < 3; a++) {
-				gi[a] -= c->Q[a];
-				gwi[a] -= (mi[a] + c->M * c->n[a]) / r[i];
-			}
-			if (!wall) {
-				double *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j, mj[3];
-				vec3_cross(c->lj, c->Q, mj);
-				for (a = 0; a < 3; a++) {
-					gj[a] += c->Q[a];
-					gwj[a] += (mj[a] + c->M * c->n[a]) / r[j];
-				}
-			}
+			du[a] -= x[3 * j + a] - x0[3 * j + a];
+			Oj[a] = w[3 * j + a] / r[j];
 		}
 	}
+	/* u_s = T du + Omega_i x R_ij - Omega_j x R_ji (walls translate along their normal) */
+	dn = vec3_dot(du, c->n);
+	vec3_cross(Oi, c->li, t);
+	for (a = 0; a < 3; a++)
+		us[a] = du[a] - dn * c->n[a] + t[a];
+	if (!wall) {
+		vec3_cross(Oj, c->lj, t);
+		for (a = 0; a < 3; a++)
+			us[a] -= t[a];
+	}
+	for (a = 0; a < 3; a++)
+		q[a] = c->qp[a] - c->k * us[a];
+	qn = vec3_norm(q);
+	*qtrial = qn;
+	if (qn <= c->qmax) {
+		memcpy(Q, q, sizeof q);
+		E = (qn * qn - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+	} else if (f->rule == FR_RETURN_MAP) {
+		for (a = 0; a < 3; a++)
+			Q[a] = c->qmax * q[a] / qn;
+		E = (clamp_potential(qn, c->qmax) - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+	} else {
+		/* F (6)-(7b): the stiffness reduced so that |Q^p - k u_s| = Q_max */
+		double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = vec3_dot(c->qp, c->qp);
+		double rad = cq * cq + c->qmax * c->qmax - pp, kr = rad > 0 ? (cq + sqrt(rad)) / un : 0;
+		for (a = 0; a < 3; a++)
+			Q[a] = c->qp[a] - kr * us[a];
+		qn = vec3_norm(Q);
+		if (qn > c->qmax)	/* only when |Q^p| > Q_max, which fr_begin rules out */
+			for (a = 0; a < 3; a++)
+				Q[a] *= c->qmax / qn;
+		E = -vec3_dot(c->qp, us) + 0.5 * kr * vec3_dot(us, us);
+	}
+	/* torsion: Omega_t = (Omega_i - Omega_j) . n, the same clamp in one dimension */
+	Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
+	m = c->mp - c->kt * Ot;
+	*M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
+	E += (clamp_potential(fabs(m), c->mmax) - c->mp * c->mp) / (2 * c->kt);
+	return E;
+}
+
+/* The gradient of contact c with force Q and couple M: dPi/du_i = -Q, dPi/dOmega_i =
+ * -(R_ij x Q) - M n, scaled by 1/R_i; on j the opposite force and its own lever arm. */
+static inline void
+fr_add_i(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
+{
+	size_t i = c->i;
+	double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i, mi[3], ri = s->p->r[i];
+	int a;
+
+	vec3_cross(c->li, Q, mi);
+	for (a = 0; a < 3; a++) {
+		gi[a] -= Q[a];
+		gwi[a] -= (mi[a] + M * c->n[a]) / ri;
+	}
+}
+
+static inline void
+fr_add_j(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
+{
+	size_t j = (size_t)c->j;
+	double *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j, mj[3], rj = s->p->r[j];
+	int a;
+
+	vec3_cross(c->lj, Q, mj);
+	for (a = 0; a < 3; a++) {
+		gj[a] += Q[a];
+		gwj[a] += (mj[a] + M * c->n[a]) / rj;
+	}
+}
+
+/* The friction term on threads, with the same bytes for any number of them (base/par.h):
+ * the grains in blocks of par_block(n), each block's pairs (i in the block) then its walls,
+ * the block energies added in block order; a thread takes a run of blocks and first
+ * gathers into its grains the pairs (m, j) whose m belongs to an earlier thread, in
+ * ascending m, and never scatters into a later thread's grains.  Every grain's gradient is
+ * then the sum of the same terms in the same order as the serial walk of the list (the
+ * pairs (m < j, j), j's own pairs, j's walls), whatever the thread count. */
+static double
+fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, double *g)
+{
+	size_t n = s->n, bl = par_block(n), nb = n ? (n + bl - 1) / bl : 0, q;
+	double E = 0;
+
+#pragma omp parallel if (n >= PAR_MIN && par_threads() > 1)
+	{
+		size_t T = (size_t)par_team(), t = (size_t)par_tid(), b, j, k;
+		size_t b0 = nb * t / T, b1 = nb * (t + 1) / T;
+		size_t g0 = b0 * bl < n ? b0 * bl : n, g1 = b1 * bl < n ? b1 * bl : n;
+
+		if (g && g0 > 0)
+			for (j = g0; j < g1; j++)
+				for (k = f->col_first[j]; k < f->col_first[j + 1] && f->c[f->col_k[k]].i < g0; k++) {
+					const struct fr_contact *c = &f->c[f->col_k[k]];
+					double Q[3], M, qt;
+					fr_contact_eval(f, s, x, c, Q, &M, &qt);
+					fr_add_j(s, g, c, Q, M);
+				}
+		for (b = b0; b < b1; b++) {
+			size_t i0 = b * bl, i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
+			double Eb = 0;
+			for (k = f->row_first[i0]; k < f->row_first[i1]; k++) {
+				struct fr_contact *c = &f->c[k];
+				Eb += fr_contact_eval(f, s, x, c, c->Q, &c->M, &c->qtrial);
+				if (g) {
+					fr_add_i(s, g, c, c->Q, c->M);
+					if ((size_t)c->j < g1)
+						fr_add_j(s, g, c, c->Q, c->M);
+				}
+			}
+			for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
+				struct fr_contact *c = &f->c[k];
+				Eb += fr_contact_eval(f, s, x, c, c->Q, &c->M, &c->qtrial);
+				if (g)
+					fr_add_i(s, g, c, c->Q, c->M);
+			}
+			f->blk[b] = Eb;
+		}
+	}
+	for (q = 0; q < nb; q++)
+		E += f->blk[q];
 	return E;
 }
 

@@ -53,6 +53,12 @@ struct qs_friction {
 	size_t n, cap;
 	struct fr_contact *c;
 	double *x0;		/* reference centres (3N) */
+	/* the index of the contacts (fr_begin), for the threads: per grain i the range of the
+	 * pairs (i, j) and of its walls in c (CSR, n + 1 offsets each), and per grain j the
+	 * pairs (m < j, j) ascending (col_first, col_k) */
+	size_t *row_first, *wall_first, *col_first, *col_k;
+	double *blk;		/* energy per block of grains */
+	size_t blk_cap;
 	size_t ngrains;
 	enum fr_rule rule;
 	/* from fr_begin: history lines that matched no touching contact (dropped), and

@@ -1,6 +1,7 @@
 /* functional: Hertz energy and gradient over a pack (see functional.h). */
 #include "qs/functional.h"
 #include "base/msg.h"
+#include "base/par.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -43,6 +44,7 @@ void
 qs_free(struct qs_system *s)
 {
 	free(s->comp);
+	free(s->blk);
 	contact_enum_free(&s->ce);
 	memset(s, 0, sizeof *s);
 }
@@ -89,6 +91,8 @@ struct normal_acc {
 	double *g, *fmax, *k;
 	double E, sumf;
 	size_t nc;
+	double wf[NWALLS];	/* the wall forces */
+	size_t jend;		/* grains from here on belong to another thread: no scatter */
 };
 
 /* The normal force P of contact c on grain i (and j), with energy U: gradient, largest
@@ -143,32 +147,6 @@ normal_add(struct normal_acc *a, const struct contact *c, double P, double U)
 		normal_add_pair(a, c, P, U);
 }
 
-/* Hertz, inlined: the fast path of every evaluation (E* from the per-grain compliances,
- * U = 2/5 P h). */
-CONTACT_INLINE int
-on_hertz_pair(const struct contact *c, void *vacc)
-{
-	struct normal_acc *a = vacc;
-	const struct qs_system *s = a->s;
-	double Es = 1.0 / (s->comp[c->i] + s->comp[c->j]), sRs = sqrt(c->ri * c->rj / (c->ri + c->rj));
-	double P = 4.0 / 3.0 * Es * sRs * c->h * sqrt(c->h);
-
-	normal_add_pair(a, c, P, 0.4 * P * c->h);
-	return 0;
-}
-
-CONTACT_INLINE int
-on_hertz_wall(const struct contact *c, void *vacc)
-{
-	struct normal_acc *a = vacc;
-	const struct qs_system *s = a->s;
-	double Es = 1.0 / (s->comp[c->i] + s->wall_comp), sRs = sqrt(c->ri);
-	double P = 4.0 / 3.0 * Es * sRs * c->h * sqrt(c->h);
-
-	normal_add_wall(a, c, P, 0.4 * P * c->h);
-	return 0;
-}
-
 /* Any other law, through its interface. */
 static int
 on_law(const struct contact *c, void *vacc)
@@ -187,21 +165,177 @@ on_law(const struct contact *c, void *vacc)
 /* The sums of one evaluation by Hertz, and by any other law: two functions, each with its own
  * accumulator, so that the fast path's stays in registers (an accumulator whose address
  * also went to the non-inlined walk of the other law lived in memory: 1.6x slower). */
+/* The sums of one block of grains in the Hertz evaluation, added in block order. */
+struct qs_block_sums {
+	double E, sumf, wall_force[NWALLS];
+	size_t nc;
+};
+
+/* Hertz's normal force of a pair record (E* from the per-grain compliances): one function
+ * for the rows and for the threads' gathers, so that both compute the same bytes. */
+CONTACT_INLINE double
+hertz_pair_P(const struct qs_system *s, const struct contact *c)
+{
+	double Es = 1.0 / (s->comp[c->i] + s->comp[c->j]), sRs = sqrt(c->ri * c->rj / (c->ri + c->rj));
+
+	return 4.0 / 3.0 * Es * sRs * c->h * sqrt(c->h);
+}
+
+/* Hertz, inlined: the fast path of every evaluation (U = 2/5 P h).  The scatter into j
+ * stops at a->jend: a later thread gathers those (hertz_gather). */
+CONTACT_INLINE int
+on_hertz_pair(const struct contact *c, void *vacc)
+{
+	struct normal_acc *a = vacc;
+	size_t i = c->i, j = (size_t)c->j;
+	double P = hertz_pair_P(a->s, c);
+
+	a->E += 0.4 * P * c->h;
+	a->sumf += P;
+	a->nc++;
+	if (a->g) {
+		double f = P / c->d;
+		a->g[3 * i] -= f * c->dx[0];
+		a->g[3 * i + 1] -= f * c->dx[1];
+		a->g[3 * i + 2] -= f * c->dx[2];
+		if (j < a->jend) {
+			a->g[3 * j] += f * c->dx[0];
+			a->g[3 * j + 1] += f * c->dx[1];
+			a->g[3 * j + 2] += f * c->dx[2];
+		}
+	}
+	if (a->fmax) {
+		if (P > a->fmax[i])
+			a->fmax[i] = P;
+		if (j < a->jend && P > a->fmax[j])
+			a->fmax[j] = P;
+	}
+	return 0;
+}
+
+CONTACT_INLINE int
+on_hertz_wall(const struct contact *c, void *vacc)
+{
+	struct normal_acc *a = vacc;
+	const struct qs_system *s = a->s;
+	double Es = 1.0 / (s->comp[c->i] + s->wall_comp), sRs = sqrt(c->ri);
+	double P = 4.0 / 3.0 * Es * sRs * c->h * sqrt(c->h);
+	size_t i = c->i;
+	int w = PACK_WALL_INDEX(c->j);
+
+	a->E += 0.4 * P * c->h;
+	a->sumf += P;
+	a->nc++;
+	a->wf[w] += P;
+	if (a->g)
+		a->g[3 * i + w / 2] += w % 2 ? P : -P;
+	if (a->fmax && P > a->fmax[i])
+		a->fmax[i] = P;
+	return 0;
+}
+
+/* What the rows of grains below g0 (other threads') scatter into grains g0 <= j < g1: the
+ * pairs (m < g0, j) in ascending m, from the columns, computed as the rows compute them. */
+static void
+hertz_gather(const struct qs_system *s, const double *x, double *g, double *fmax, size_t g0, size_t g1)
+{
+	const struct contact_enum *e = &s->ce;
+	const double *r = e->r;
+	int per = e->any_periodic;
+	size_t j, k;
+
+	for (j = g0; j < g1; j++)
+		for (k = e->col_first[j]; k < e->col_first[j + 1] && e->col_nbr[k] < g0; k++) {
+			size_t m = e->col_nbr[k];
+			double sum = r[m] + r[j], dd, P, f;
+			struct contact c;
+
+			dd = contact_branch(e, &c, x[3 * m], x[3 * m + 1], x[3 * m + 2], x, j, per);
+			if (dd >= sum * sum)
+				continue;
+			c.i = m, c.j = (long)j, c.ri = r[m], c.rj = r[j];
+			c.d = sqrt(dd);
+			c.h = sum - c.d;
+			P = hertz_pair_P(s, &c);
+			if (g) {
+				f = P / c.d;
+				g[3 * j] += f * c.dx[0];
+				g[3 * j + 1] += f * c.dx[1];
+				g[3 * j + 2] += f * c.dx[2];
+			}
+			if (fmax && P > fmax[j])
+				fmax[j] = P;
+		}
+}
+
+/* The sums of one evaluation by Hertz, on threads, with results that do not depend on their
+ * number (base/par.h).  The grains are cut into blocks of par_block(n) (fixed by n), whose
+ * energy and sums are kept apart and added in block order; each thread takes a run of
+ * whole blocks and walks their rows as the serial walk does, scattering each pair's force
+ * into both grains, except into grains of later threads.  A thread first gathers what
+ * earlier threads' rows would have scattered into its grains (hertz_gather), so every
+ * grain's gradient is the same sum in the same order as contact_foreach's one-pass walk:
+ * the same bytes with one thread or many.  (A separate accumulator per law, so that the
+ * fast path's stays in registers: one whose address also went to the non-inlined walk of
+ * the other law lived in memory, 1.6x slower.) */
 static double
 normal_energy_hertz(struct qs_system *s, const double *x, double *g, double *fmax)
 {
-	struct normal_acc a = {s, x, g, fmax, NULL, 0, 0, 0};
+	const struct contact_enum *e = &s->ce;
+	size_t n = s->n, bl = par_block(n), nb = n ? (n + bl - 1) / bl : 0, q;
+	int threads = n >= PAR_MIN && par_threads() > 1;
+	double E = 0, sumf = 0;
 
-	contact_foreach_split(&s->ce, x, CONTACT_TOUCHING, on_hertz_pair, on_hertz_wall, &a);
-	s->ncontacts = a.nc;
-	s->sum_force = a.sumf;
-	return a.E;
+	if (nb > s->blk_cap) {
+		free(s->blk);
+		s->blk = malloc(nb * sizeof *s->blk);
+		s->blk_cap = s->blk ? nb : 0;
+	}
+	if (!s->blk || (threads && contact_enum_columns(&s->ce))) {
+		msg_seterr("out of memory");
+		return NAN;
+	}
+#pragma omp parallel if (threads)
+	{
+		size_t T = (size_t)par_team(), t = (size_t)par_tid(), b;
+		size_t b0 = nb * t / T, b1 = nb * (t + 1) / T;
+		size_t g0 = b0 * bl < n ? b0 * bl : n, g1 = b1 * bl < n ? b1 * bl : n;
+
+		if (g0 > 0 && (g || fmax))
+			hertz_gather(s, x, g, fmax, g0, g1);
+		for (b = b0; b < b1; b++) {
+			struct normal_acc a = {s, x, g, fmax, NULL, 0, 0, 0, {0}, g1};
+			size_t i, i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
+			long calls = 0;
+
+			for (i = b * bl; i < i1; i++)
+				if (e->any_periodic)
+					contact_foreach_row(e, x, i, CONTACT_TOUCHING, 1, 0, on_hertz_pair, on_hertz_wall, &a, &calls);
+				else
+					contact_foreach_row(e, x, i, CONTACT_TOUCHING, 0, 0, on_hertz_pair, on_hertz_wall, &a, &calls);
+			s->blk[b].E = a.E;
+			s->blk[b].sumf = a.sumf;
+			s->blk[b].nc = a.nc;
+			memcpy(s->blk[b].wall_force, a.wf, sizeof a.wf);
+		}
+	}
+	s->ncontacts = 0;
+	for (q = 0; q < nb; q++) {
+		int w;
+		E += s->blk[q].E;
+		sumf += s->blk[q].sumf;
+		s->ncontacts += s->blk[q].nc;
+		for (w = 0; w < NWALLS; w++)
+			s->wall_force[w] += s->blk[q].wall_force[w];
+	}
+	s->sum_force = sumf;
+	return E;
 }
 
 static double
 normal_energy_law(struct qs_system *s, const double *x, double *g, double *fmax)
 {
-	struct normal_acc a = {s, x, g, fmax, NULL, 0, 0, 0};
+	struct normal_acc a = {s, x, g, fmax, NULL, 0, 0, 0, {0}, s->n};
 
 	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_law, &a);
 	s->ncontacts = a.nc;
@@ -249,7 +383,7 @@ on_stiffness(const struct contact *c, void *vacc)
 static void
 normal_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k)
 {
-	struct normal_acc a = {s, x, NULL, NULL, k, 0, 0, 0};
+	struct normal_acc a = {s, x, NULL, NULL, k, 0, 0, 0, {0}, s->n};
 
 	(void)t;
 	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_stiffness, &a);

@@ -15,7 +15,9 @@
  * evaluation); qs_free releases what qs_init allocated, never the pack.  qs_energy reads x
  * (s->dim values, p->x itself for the stored centres) and writes g and fmax, arrays of the
  * caller.  Errors: qs_init returns -1 and qs_energy NAN with the error slot set (base/msg.h).
- * A system is not thread-safe (its neighbour list is updated by every evaluation). */
+ * A system is not thread-safe (its neighbour list is updated by every evaluation); an
+ * evaluation itself runs on par_threads() threads (base/par.h) and gives the same bytes for
+ * any count. */
 #ifndef QUSGM_FUNCTIONAL_H
 #define QUSGM_FUNCTIONAL_H
 
@@ -57,6 +59,9 @@ struct qs_system {
 	struct contact_enum ce;
 	long evals;		/* energy/gradient evaluations so far */
 	double force_floor;	/* N: see qs_residual */
+	/* the threaded Hertz evaluation's sums per block of grains (functional.c) */
+	struct qs_block_sums *blk;
+	size_t blk_cap;
 	/* from the last evaluation */
 	size_t ncontacts;
 	double sum_force;	/* sum of normal contact forces (N) */

@@ -1,5 +1,6 @@
 /* minimize: the papers' modified CG and FIRE (see minimize.h). */
 #include "qs/minimize.h"
+#include "base/par.h"
 #include "base/msg.h"
 
 #include <gsl/gsl_errno.h>
@@ -72,15 +73,11 @@ struct qs_minimizer {
 	int head, count;
 };
 
+/* Dot products by blocks fixed by n, on threads: the same bytes for any count (par.h). */
 static double
 dot(const double *a, const double *b, size_t n)
 {
-	double s = 0;
-	size_t k;
-
-	for (k = 0; k < n; k++)
-		s += a[k] * b[k];
-	return s;
+	return par_dot(a, b, n);
 }
 
 static double
@@ -126,6 +123,7 @@ dphi(double alpha, void *vctx)
 	struct work *w = c->w;
 	size_t k;
 
+#pragma omp parallel for schedule(static) if (w->n3 >= PAR_MIN)
 	for (k = 0; k < w->n3; k++)
 		w->xt[k] = c->x[k] + alpha * w->d[k];
 	c->last_e = w->et = qs_energy(w->s, w->xt, w->gt, w->ft);
@@ -404,13 +402,13 @@ lbfgs_direction(struct qs_minimizer *m)
 	size_t n3 = w->n3, k;
 	double gamma;
 
+#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN)
 	for (k = 0; k < n3; k++)
 		w->d[k] = -w->g[k];
 	for (q = 0; q < m->count; q++) {
 		int c = (m->head - 1 - q + mm) % mm;
 		m->al[c] = m->rho[c] * dot(m->S + (size_t)c * n3, w->d, n3);
-		for (k = 0; k < n3; k++)
-			w->d[k] -= m->al[c] * m->Y[(size_t)c * n3 + k];
+		par_axpy(w->d, -m->al[c], m->Y + (size_t)c * n3, n3);
 	}
 	if (m->count > 0) {
 		int c = (m->head - 1 + mm) % mm;
@@ -420,13 +418,11 @@ lbfgs_direction(struct qs_minimizer *m)
 		/* first step: as far as the cap allows along -g */
 		gamma = alpha_cap(w, w->g, m->mp.cap);
 	}
-	for (k = 0; k < n3; k++)
-		w->d[k] *= gamma;
+	par_scale(w->d, gamma, w->d, n3);
 	for (q = m->count - 1; q >= 0; q--) {
 		int c = (m->head - 1 - q + mm) % mm;
 		double b = m->rho[c] * dot(m->Y + (size_t)c * n3, w->d, n3);
-		for (k = 0; k < n3; k++)
-			w->d[k] += (m->al[c] - b) * m->S[(size_t)c * n3 + k];
+		par_axpy(w->d, m->al[c] - b, m->S + (size_t)c * n3, n3);
 	}
 	if (dot(w->d, w->g, n3) >= 0) {	/* not downhill: forget the history */
 		m->count = 0;
@@ -449,12 +445,15 @@ lbfgs_iterate(struct qs_minimizer *m)
 	if (alpha < 0)
 		return -1;
 	/* new pair s = alpha d, y = g_new - g */
-	for (k = 0; k < n3; k++) {
-		double sk = w->xt[k] - x[k], yk = w->gt[k] - w->g[k];
-		m->S[(size_t)m->head * n3 + k] = sk;
-		m->Y[(size_t)m->head * n3 + k] = yk;
-		sy += sk * yk;
-		yy += yk * yk;
+	{
+		double *S = m->S + (size_t)m->head * n3, *Y = m->Y + (size_t)m->head * n3;
+#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN)
+		for (k = 0; k < n3; k++) {
+			S[k] = w->xt[k] - x[k];
+			Y[k] = w->gt[k] - w->g[k];
+		}
+		sy = dot(S, Y, n3);
+		yy = dot(Y, Y, n3);
 	}
 	if (sy > 1e-300 && yy > 0) {
 		m->rho[m->head] = 1 / sy;

@@ -1,0 +1,119 @@
+/* par: threads and thread-count-independent sums (see par.h). */
+#include "base/par.h"
+
+#include <stdlib.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+void
+par_set_threads(int n)
+{
+#ifdef _OPENMP
+	static int dflt;
+
+	if (!dflt)
+		dflt = omp_get_max_threads();
+	omp_set_num_threads(n > 0 ? n : dflt);
+#else
+	(void)n;
+#endif
+}
+
+int
+par_threads(void)
+{
+#ifdef _OPENMP
+	return omp_get_max_threads();
+#else
+	return 1;
+#endif
+}
+
+int
+par_tid(void)
+{
+#ifdef _OPENMP
+	return omp_get_thread_num();
+#else
+	return 0;
+#endif
+}
+
+int
+par_team(void)
+{
+#ifdef _OPENMP
+	return omp_get_num_threads();
+#else
+	return 1;
+#endif
+}
+
+size_t
+par_block_min(void)
+{
+	static size_t bmin;
+
+	if (!bmin) {
+		const char *v = getenv("QUSGM_PAR_BLOCK");
+		long b = v ? strtol(v, NULL, 10) : 0;
+		bmin = b >= 1 && b <= 1 << 20 ? (size_t)b : 1024;
+	}
+	return bmin;
+}
+
+size_t
+par_min(void)
+{
+	return 4 * par_block_min();
+}
+
+size_t
+par_block(size_t n)
+{
+	size_t b = (n + PAR_MAXBLOCKS - 1) / PAR_MAXBLOCKS, bmin = par_block_min();
+
+	return b < bmin ? bmin : b;
+}
+
+double
+par_dot(const double *a, const double *b, size_t n)
+{
+	double part[PAR_MAXBLOCKS], s = 0;
+	size_t bl = par_block(n), nb = (n + bl - 1) / bl;
+	long q;
+
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+	for (q = 0; q < (long)nb; q++) {
+		size_t k, k0 = (size_t)q * bl, k1 = k0 + bl < n ? k0 + bl : n;
+		double t = 0;
+		for (k = k0; k < k1; k++)
+			t += a[k] * b[k];
+		part[q] = t;
+	}
+	for (size_t q2 = 0; q2 < nb; q2++)
+		s += part[q2];
+	return s;
+}
+
+void
+par_axpy(double *y, double f, const double *x, size_t n)
+{
+	long k;
+
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+	for (k = 0; k < (long)n; k++)
+		y[k] += f * x[k];
+}
+
+void
+par_scale(double *y, double f, const double *x, size_t n)
+{
+	long k;
+
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+	for (k = 0; k < (long)n; k++)
+		y[k] = f * x[k];
+}

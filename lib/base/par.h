@@ -1,0 +1,51 @@
+/* par: the library's threads, and sums whose value does not depend on how many there are.
+ *
+ * The evaluations of the functional, the minimisers' vector algebra and (later) the DEM run
+ * their loops on par_threads() threads (OpenMP; a build without it runs them on one).  Every
+ * result must be the same bytes for any thread count (the standards ask for same inputs,
+ * same output), so no floating-point sum is left to the threads' schedule: a sum over n
+ * terms is cut into blocks whose bounds depend on n alone (par_blocks), each block summed in
+ * order by whichever thread takes it, and the block sums added in block order.  Scatters
+ * (a contact's force into both of its grains) are turned into gathers in a fixed order by
+ * the callers (functional.c, friction.c), so no two threads write the same element.
+ *
+ * Thread count: par_set_threads(n) (the tools' --threads); 0 restores the default, which is
+ * OpenMP's: OMP_NUM_THREADS when set, else the cores online.  Loops shorter than PAR_MIN
+ * iterations run on the calling thread, where starting the others costs more than they save. */
+#ifndef QUSGM_PAR_H
+#define QUSGM_PAR_H
+
+#include <stddef.h>
+
+/* Loops below this many iterations are not split: par_min(), 4 par_block_min(). */
+#define PAR_MIN par_min()
+
+/* The most blocks a sum is cut into (par_dot's partial sums live on the stack). */
+#define PAR_MAXBLOCKS 1024
+
+void par_set_threads(int n);
+/* The threads a loop of the library uses (1 without OpenMP). */
+int par_threads(void);
+
+/* Inside a parallel region: this thread's index and the number in the team (0 and 1
+ * outside one, or without OpenMP). */
+int par_tid(void);
+int par_team(void);
+
+/* The block length for a sum of n terms: at least par_block_min() (1024), and at most
+ * PAR_MAXBLOCKS blocks; a function of n only.  The environment variable QUSGM_PAR_BLOCK
+ * sets the least block length instead (a test hook: the tests run the threads on packs of a
+ * few hundred grains with QUSGM_PAR_BLOCK=16; the bytes then differ from the default's but
+ * are again the same for any thread count). */
+size_t par_block(size_t n);
+size_t par_block_min(void);
+size_t par_min(void);
+
+/* sum a[k] b[k], by blocks of par_block(n) in order. */
+double par_dot(const double *a, const double *b, size_t n);
+/* y[k] += f x[k] (no sum: any split gives the same bytes). */
+void par_axpy(double *y, double f, const double *x, size_t n);
+/* y[k] = f x[k]. */
+void par_scale(double *y, double f, const double *x, size_t n);
+
+#endif

@@ -1,0 +1,58 @@
+# Threads (lib/base/par.h): every tool that minimises gives the same bytes on one thread and
+# on two.  The packs here have 300 grains, under the 4096 at which loops are split by default,
+# so QUSGM_PAR_BLOCK=16 cuts them into 19 blocks of 16 grains, and two threads take 9 and 10
+# blocks: every gather across the threads' boundary (functional.c's hertz_gather, the friction
+# term's columns) and every blocked dot product runs.  The packs may differ only in the
+# history line's --threads=N; the tables not at all.  Without OpenMP (OMPFLAGS=) both runs are
+# one thread and the comparisons hold trivially: the first check says which it is.
+. "$TOP/tests/tools/lib.sh"
+
+export QUSGM_PAR_BLOCK=16
+packgen -n 300 --seed 7 -o loose.pack 2>/dev/null
+if packinfo --threads 2 -v loose.pack 2>&1 >/dev/null | grep -q '^packinfo: 2 threads'; then
+	pass "--threads 2 runs two threads (-v says so)"
+else
+	fail "--threads 2 runs two threads (-v says so)" "$(packinfo --threads 2 -v loose.pack 2>&1 >/dev/null | head -1)"
+fi
+
+# same_pack NAME A B: the same bytes but for the history lines' --threads (as typed and as run)
+same_pack() {
+	sed 's/ --threads[= ][0-9]*//g' "$2" >"$2.cmp"
+	sed 's/ --threads[= ][0-9]*//g' "$3" >"$3.cmp"
+	if cmp -s "$2.cmp" "$3.cmp"; then pass "$1"; else fail "$1" "$(cmp "$2.cmp" "$3.cmp" 2>&1 | head -1)"; fi
+}
+
+for t in 1 2; do
+	densify --threads $t -o d$t.pack loose.pack 2>d$t.err
+	frictionalize --threads $t -o f$t.pack d1.pack >f$t.tsv 2>f$t.err
+	loadtest --threads $t -n 4 -o l$t.pack f1.pack >l$t.tsv 2>l$t.err
+	loadtest --threads $t -n 4 --mu 0 -p isotropic -o i$t.pack d1.pack >i$t.tsv 2>i$t.err
+	loadtest --threads $t -n 2 --method fire -o F$t.pack f1.pack >F$t.tsv 2>F$t.err
+	loadtest --threads $t -n 2 --method cg --mu 0 -o C$t.pack d1.pack >C$t.tsv 2>C$t.err
+	packinfo --threads $t --tsv f1.pack >p$t.tsv 2>p$t.err
+done
+same_pack "densify: 1 and 2 threads" d1.pack d2.pack
+same_pack "frictionalize: 1 and 2 threads" f1.pack f2.pack
+expect_same "frictionalize: table" f1.tsv f2.tsv
+same_pack "loadtest, frictional: 1 and 2 threads" l1.pack l2.pack
+expect_same "loadtest, frictional: table" l1.tsv l2.tsv
+same_pack "loadtest, frictionless isotropic: 1 and 2 threads" i1.pack i2.pack
+expect_same "loadtest, frictionless isotropic: table" i1.tsv i2.tsv
+same_pack "loadtest --method fire: 1 and 2 threads" F1.pack F2.pack
+expect_same "loadtest --method fire: table" F1.tsv F2.tsv
+same_pack "loadtest --method cg: 1 and 2 threads" C1.pack C2.pack
+expect_same "loadtest --method cg: table" C1.tsv C2.tsv
+expect_same "packinfo: 1 and 2 threads" p1.tsv p2.tsv
+# the runs did something: a table per increment, and the frictional test moved the stress
+[ "$(grep -c '^[0-9-]' l1.tsv)" -ge 4 ] && pass "loadtest wrote its increments" || fail "loadtest wrote its increments" "$(wc -l <l1.tsv) lines"
+if grep -q ' --threads=2$' d2.pack && grep -q ' --threads=1$' d1.pack; then
+	pass "the history records the thread count"
+else
+	fail "the history records the thread count" "$(grep '^history densify' d2.pack | tail -c 80)"
+fi
+# OMP_NUM_THREADS is honoured when --threads is not given
+OMP_NUM_THREADS=2 packinfo -v loose.pack >/dev/null 2>omp.err
+grep -q '^packinfo: 2 threads' omp.err && pass "OMP_NUM_THREADS=2 honoured" || fail "OMP_NUM_THREADS=2 honoured" "$(head -1 omp.err)"
+OMP_NUM_THREADS=1 packinfo -v loose.pack >/dev/null 2>omp1.err
+grep -q '^packinfo: 1 thread ' omp1.err && pass "OMP_NUM_THREADS=1 honoured" || fail "OMP_NUM_THREADS=1 honoured" "$(head -1 omp1.err)"
+expect_error "--threads -1 refused" 2 '^densify: --threads: expected 0' densify --threads -1 loose.pack
