@@ -59,7 +59,7 @@ par_block_min(void)
 	if (!bmin) {
 		const char *v = getenv("QUSGM_PAR_BLOCK");
 		long b = v ? strtol(v, NULL, 10) : 0;
-		bmin = b >= 1 && b <= 1 << 20 ? (size_t)b : 1024;
+		bmin = b >= 1 && b <= 1 << 20 ? (size_t)b : 256;
 	}
 	return bmin;
 }
@@ -85,7 +85,7 @@ par_dot(const double *a, const double *b, size_t n)
 	size_t bl = par_block(n), nb = (n + bl - 1) / bl;
 	long q;
 
-#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
 	for (q = 0; q < (long)nb; q++) {
 		size_t k, k0 = (size_t)q * bl, k1 = k0 + bl < n ? k0 + bl : n;
 		double t = 0;
@@ -103,7 +103,7 @@ par_axpy(double *y, double f, const double *x, size_t n)
 {
 	long k;
 
-#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
 	for (k = 0; k < (long)n; k++)
 		y[k] += f * x[k];
 }
@@ -113,7 +113,7 @@ par_scale(double *y, double f, const double *x, size_t n)
 {
 	long k;
 
-#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
 	for (k = 0; k < (long)n; k++)
 		y[k] = f * x[k];
 }

@@ -1,5 +1,6 @@
 /* nlist: Verlet lists over the cell grid (see nlist.h). */
 #include "contact/nlist.h"
+#include "base/par.h"
 #include "base/msg.h"
 
 #include <math.h>
@@ -111,11 +112,14 @@ nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const d
 		s[a] = (hi[a] - lo[a]) / (nl->bhi[a] - nl->blo[a]);
 		shrink = fmax(shrink, 1 - s[a]);
 	}
+	/* a largest value is exact in any order: threads (base/par.h) cannot change it */
+#pragma omp parallel for schedule(static) reduction(max : maxd2) if (nl->n >= PAR_MIN)
 	for (i = 0; i < nl->n; i++) {
 		double e2 = 0;
-		for (a = 0; a < 3; a++) {
-			double ref = lo[a] + (nl->xb[3 * i + a] - nl->blo[a]) * s[a];
-			double e = x[3 * i + a] - ref;
+		int b;
+		for (b = 0; b < 3; b++) {
+			double ref = lo[b] + (nl->xb[3 * i + b] - nl->blo[b]) * s[b];
+			double e = x[3 * i + b] - ref;
 			e2 += e * e;
 		}
 		if (e2 > maxd2)

@@ -123,7 +123,7 @@ dphi(double alpha, void *vctx)
 	struct work *w = c->w;
 	size_t k;
 
-#pragma omp parallel for schedule(static) if (w->n3 >= PAR_MIN)
+#pragma omp parallel for schedule(static) if (w->n3 >= PAR_MIN_VEC)
 	for (k = 0; k < w->n3; k++)
 		w->xt[k] = c->x[k] + alpha * w->d[k];
 	c->last_e = w->et = qs_energy(w->s, w->xt, w->gt, w->ft);
@@ -402,7 +402,7 @@ lbfgs_direction(struct qs_minimizer *m)
 	size_t n3 = w->n3, k;
 	double gamma;
 
-#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN)
+#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN_VEC)
 	for (k = 0; k < n3; k++)
 		w->d[k] = -w->g[k];
 	for (q = 0; q < m->count; q++) {
@@ -447,7 +447,7 @@ lbfgs_iterate(struct qs_minimizer *m)
 	/* new pair s = alpha d, y = g_new - g */
 	{
 		double *S = m->S + (size_t)m->head * n3, *Y = m->Y + (size_t)m->head * n3;
-#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN)
+#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN_VEC)
 		for (k = 0; k < n3; k++) {
 			S[k] = w->xt[k] - x[k];
 			Y[k] = w->gt[k] - w->g[k];
