@@ -56,6 +56,11 @@ fi
 
 rm -rf "$out"
 mkdir -p "$out"
+# one OpenMP thread per tool: the queue already keeps every core busy, and two tools of two
+# spinning threads each on two cores ran make check a third slower (tests/tools/threads.sh
+# asks for its threads with --threads)
+OMP_NUM_THREADS=${TEST_OMP_THREADS:-1}
+export OMP_NUM_THREADS
 
 # The jobs in the fixed order their lines are printed in: "BUILD KIND NAME".
 for b in "$@"; do

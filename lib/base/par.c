@@ -78,11 +78,21 @@ par_block(size_t n)
 	return b < bmin ? bmin : b;
 }
 
+/* A dot product's blocks are at least PAR_MIN_VEC long, so that vectors of packs under 1366
+ * grains are summed in one block, in order, as before threads. */
+static size_t
+vec_block(size_t n)
+{
+	size_t b = par_block(n);
+
+	return b < PAR_MIN_VEC ? PAR_MIN_VEC : b;
+}
+
 double
 par_dot(const double *a, const double *b, size_t n)
 {
 	double part[PAR_MAXBLOCKS], s = 0;
-	size_t bl = par_block(n), nb = (n + bl - 1) / bl;
+	size_t bl = vec_block(n), nb = (n + bl - 1) / bl;
 	long q;
 
 #pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)

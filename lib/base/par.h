@@ -46,7 +46,7 @@ size_t par_block(size_t n);
 size_t par_block_min(void);
 size_t par_min(void);
 
-/* sum a[k] b[k], by blocks of par_block(n) in order. */
+/* sum a[k] b[k], by blocks of max(par_block(n), PAR_MIN_VEC) in order. */
 double par_dot(const double *a, const double *b, size_t n);
 /* y[k] += f x[k] (no sum: any split gives the same bytes). */
 void par_axpy(double *y, double f, const double *x, size_t n);

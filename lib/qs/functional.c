@@ -126,14 +126,16 @@ normal_add_pair(struct normal_acc *a, const struct contact *c, double P, double 
 		a->g[3 * i] -= f * c->dx[0];
 		a->g[3 * i + 1] -= f * c->dx[1];
 		a->g[3 * i + 2] -= f * c->dx[2];
-		a->g[3 * j] += f * c->dx[0];
-		a->g[3 * j + 1] += f * c->dx[1];
-		a->g[3 * j + 2] += f * c->dx[2];
+		if (j < a->jend) {	/* a later thread's grain: it gathers this (hertz_gather) */
+			a->g[3 * j] += f * c->dx[0];
+			a->g[3 * j + 1] += f * c->dx[1];
+			a->g[3 * j + 2] += f * c->dx[2];
+		}
 	}
 	if (a->fmax) {
 		if (P > a->fmax[i])
 			a->fmax[i] = P;
-		if (P > a->fmax[j])
+		if (j < a->jend && P > a->fmax[j])
 			a->fmax[j] = P;
 	}
 }
@@ -187,29 +189,9 @@ CONTACT_INLINE int
 on_hertz_pair(const struct contact *c, void *vacc)
 {
 	struct normal_acc *a = vacc;
-	size_t i = c->i, j = (size_t)c->j;
 	double P = hertz_pair_P(a->s, c);
 
-	a->E += 0.4 * P * c->h;
-	a->sumf += P;
-	a->nc++;
-	if (a->g) {
-		double f = P / c->d;
-		a->g[3 * i] -= f * c->dx[0];
-		a->g[3 * i + 1] -= f * c->dx[1];
-		a->g[3 * i + 2] -= f * c->dx[2];
-		if (j < a->jend) {
-			a->g[3 * j] += f * c->dx[0];
-			a->g[3 * j + 1] += f * c->dx[1];
-			a->g[3 * j + 2] += f * c->dx[2];
-		}
-	}
-	if (a->fmax) {
-		if (P > a->fmax[i])
-			a->fmax[i] = P;
-		if (j < a->jend && P > a->fmax[j])
-			a->fmax[j] = P;
-	}
+	normal_add_pair(a, c, P, 0.4 * P * c->h);
 	return 0;
 }
 
