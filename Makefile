@@ -152,7 +152,7 @@ pydeps:
 # then one closing line "N passed, N failed".
 # The builds compile on every core (CHECK_JOBS, default the cores online): on CI's two cores a
 # fresh clone spends about a minute and a half compiling otherwise.
-CHECK_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
+CHECK_JOBS ?= $(shell getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)
 check: deps pydeps
 	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) B=build tools unit libs
 	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) B=build-san OPT="-O1 -g" EXTRA_CFLAGS="$(SANFLAGS)" tools unit

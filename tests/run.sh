@@ -80,7 +80,8 @@ for b in "$@"; do
 	done
 done >"$out/jobs"
 
-jobs=${TEST_JOBS:-$(nproc 2>/dev/null || getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+# getconf, not nproc: GNU nproc answers OMP_NUM_THREADS, which is 1 here (above)
+jobs=${TEST_JOBS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
 [ "${TEST_SERIAL:-0}" = 1 ] && jobs=1
 times="$top/build/.test-times"
 
