@@ -254,6 +254,15 @@ contact_foreach(const struct contact_enum *e, const double *x, int mode, contact
  * walk that way), -2 when out of memory (msg_seterr). */
 long contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mode, contact_fn fn, void *ctx);
 
+/* The list entry k of a grain pair visited by contact_foreach(_row) of an enumerator with
+ * history (its slot is hpair + hsize k): for callers that keep their own per-pair arrays
+ * beside the history (the DEM's threads). */
+CONTACT_INLINE size_t
+contact_pair_index(const struct contact_enum *e, const struct contact *c)
+{
+	return (size_t)(c->hist - e->hpair[e->hcur]) / e->hsize;
+}
+
 /* The unit normal on i, from j (or out of the wall) to i. */
 CONTACT_INLINE void
 contact_normal(const struct contact *c, double n[3])

@@ -1,5 +1,6 @@
 /* servo: the wall servo and the unbalanced force the DEM compactions share (see servo.h). */
 #include "dem/servo.h"
+#include "base/par.h"
 
 #include <math.h>
 
@@ -28,9 +29,12 @@ dem_servo(double lo[3], double hi[3], const double wallf[6], double ptarget, dou
 		lo[a] = c[a] + (lo[a] - c[a]) * (1 - de[a]);
 		hi[a] = c[a] + (hi[a] - c[a]) * (1 - de[a]);
 	}
-	for (i = 0; i < n; i++)
-		for (a = 0; a < 3; a++)
-			x[3 * i + a] = c[a] + (x[3 * i + a] - c[a]) * (1 - de[a]);
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+	for (i = 0; i < n; i++) {
+		int b;
+		for (b = 0; b < 3; b++)
+			x[3 * i + b] = c[b] + (x[3 * i + b] - c[b]) * (1 - de[b]);
+	}
 	return rs;
 }
 

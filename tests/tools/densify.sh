@@ -164,11 +164,13 @@ expect_fail "--release-after -1" 2 '^densify: --release-after' --release-after -
 expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
 expect_fail "unknown option" 2 '^densify: unknown option' --bogus loose.pack
 expect_fail "missing input file" 1 '^densify: ' no-such.pack
-expect_fail "iteration limit" 1 '^densify: .*iteration limit.*--allow-limit' --max-iter 3 --log lim.tsv loose.pack
+# a limit that every minimisation reaches yet lets phase (a) seat every grain: with 3 one grain
+# of this pack stayed under 4 contacts for the 1000 rounds (5 to 50 all end at the limit)
+expect_fail "iteration limit" 1 '^densify: .*iteration limit.*--allow-limit' --max-iter 10 --log lim.tsv loose.pack
 if [ ! -e lim.tsv ]; then pass "iteration limit: no log file"; else fail "iteration limit: no log file" "lim.tsv left"; fi
 
 # --allow-limit keeps the pack, exits 0 and warns in one line
-densify --max-iter 3 --allow-limit -o lim.pack loose.pack >lim.out 2>lim.err
+densify --max-iter 10 --allow-limit -o lim.pack loose.pack >lim.out 2>lim.err
 rc=$?
 if [ "$rc" -eq 0 ] && [ -s lim.pack ] && [ ! -s lim.out ] && [ "$(wc -l <lim.err)" -eq 1 ] && grep -q 'iteration limit' lim.err; then
 	pass "--allow-limit: exit 0, the pack, one warning"

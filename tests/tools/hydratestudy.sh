@@ -1,12 +1,15 @@
 # The hydrate study's small form end to end (make -C pipelines SMALL=1 s-fig5: 1000 grains of
 # quartz and hydrate densified to 21 MPa, dissociated along the paper's two series, a
 # three-axis probe after each), then the paper's finding from its summary table: K and G fall
-# with the dissociation.  Along dS (p_ex 1 MPa) each point is below the one before, for K over
-# the whole series and for G up to dS = -0.04 (at -0.05 the probe's G is negative there,
-# written nan: the pack has lost its shear rigidity); along p_ex (dS -0.01) the moduli at
-# 3 MPa are below those at 0 and every point is below the undissociated pack's.  Frictionless
-# G of a 1000-grain pack moves by 5 % between neighbouring points, so the p_ex series is not
-# required to fall point by point.  The run is seeded: these are fixed numbers of this code.
+# with the dissociation.  What a 1000-grain pack shows for every seed is checked, not one
+# seed's draw: runs with seeds 1, 2 and 3 (2026-12, with the DEM step of then and of before)
+# all have K falling point by point along dS (p_ex 1 MPa) where the probe gives a number, K
+# at p_ex 3 MPa below p_ex 0 and every K of the p_ex series below the undissociated pack's,
+# and G at dS -0.04 and -0.05 below the start of the series and at -0.05 below half the
+# undissociated pack's.  Frictionless G at small dS is not: it moved by up to 2.5x between
+# neighbouring points, rose above the undissociated pack's at dS -0.01 for seed 2 and fell
+# below its dS -0.02 value for seed 1.  A probe whose pack lost its rigidity writes nan (seed
+# 3 at dS -0.03); one such point in the dS series is allowed and skipped.
 # About 30 s in the optimised build with two cores; left out of the sanitizer build.
 . "$TOP/tests/tools/lib.sh"
 
@@ -29,20 +32,24 @@ S=$(val hyd-d0-p0 S)
 expect_num "the dense pack's S near the paper's 0.215 (0.18-0.25)" "$S" ">" 0.18
 expect_num "... below 0.25" "$S" "<" 0.25
 expect_num "the dense pack at about 21 MPa" "$(rel "$(val hyd-d0-p0 sigma_after)" 21e6)" "<" 0.02
-for m in K G; do
-	prev=$(val hyd-d0-p1 $m)
-	last=4
-	[ $m = K ] && last=5
-	for k in $(seq 1 $last); do
-		cur=$(val hyd-d$k-p1 $m)
-		expect_num "p_ex 1 MPa: $m at dS -0.0$k below dS -0.0$((k - 1))" "$cur" "<" "$prev"
-		prev=$cur
-	done
-	expect_num "dS -0.01: $m at p_ex 3 MPa below p_ex 0" "$(val hyd-d1-p3 $m)" "<" "$(val hyd-d1-p0 $m)"
-	for p in 0 0.5 1 2 3; do
-		expect_num "dS -0.01, p_ex $p MPa: $m below the undissociated pack's" "$(val hyd-d1-p$p $m)" "<" "$(val hyd-d0-p0 $m)"
-	done
+prev=$(val hyd-d0-p1 K)
+nans=0
+for k in 1 2 3 4 5; do
+	cur=$(val hyd-d$k-p1 K)
+	if [ "$cur" = nan ]; then nans=$((nans + 1)); continue; fi
+	expect_num "p_ex 1 MPa: K at dS -0.0$k below the last point before it" "$cur" "<" "$prev"
+	prev=$cur
 done
+expect_num "p_ex 1 MPa: at most one probe without a number along dS" "$nans" "<=" 1
+expect_num "dS -0.01: K at p_ex 3 MPa below p_ex 0" "$(val hyd-d1-p3 K)" "<" "$(val hyd-d1-p0 K)"
+for p in 0 0.5 1 2 3; do
+	expect_num "dS -0.01, p_ex $p MPa: K below the undissociated pack's" "$(val hyd-d1-p$p K)" "<" "$(val hyd-d0-p0 K)"
+done
+for k in 4 5; do
+	expect_num "p_ex 1 MPa: G at dS -0.0$k below dS 0" "$(val hyd-d$k-p1 G)" "<" "$(val hyd-d0-p1 G)"
+done
+expect_num "p_ex 1 MPa: G at dS -0.05 below half the undissociated pack's" "$(val hyd-d5-p1 G)" "<" \
+    "$(awk -v g="$(val hyd-d0-p0 G)" 'BEGIN { print g / 2 }')"
 expect_num "p_ex 1 MPa alone: K below the undissociated pack's" "$(val hyd-d0-p1 K)" "<" "$(val hyd-d0-p0 K)"
 grep -q '^| hyd-d5-p1 | ' "$o/s-fig5/report.md" && pass "report.md has the runs' rows" || fail "report.md has the runs' rows" "$(head -c 300 "$o/s-fig5/report.md")"
 grep -q 'per 0.01 of -dS | -[0-9]' "$o/s-fig5/report.md" && pass "report.md gives the fall per 0.01 of dS" ||

@@ -2,7 +2,7 @@
 # on two.  The packs here have 300 grains, under the 4096 at which loops are split by default,
 # so QUSGM_PAR_BLOCK=16 cuts them into 19 blocks of 16 grains, and two threads take 9 and 10
 # blocks: every gather across the threads' boundary (functional.c's hertz_gather, the friction
-# term's columns) and every blocked dot product runs.  The packs may differ only in the
+# term's columns, the DEM's crossing pairs in packgen) and every blocked dot product runs.  The packs may differ only in the
 # history line's --threads=N; the tables not at all.  Without OpenMP (OMPFLAGS=) both runs are
 # one thread and the comparisons hold trivially: the first check says which it is.
 . "$TOP/tests/tools/lib.sh"
@@ -23,6 +23,7 @@ same_pack() {
 }
 
 for t in 1 2; do
+	packgen --threads $t -n 300 --seed 7 -o g$t.pack 2>g$t.err
 	densify --threads $t -o d$t.pack loose.pack 2>d$t.err
 	frictionalize --threads $t -o f$t.pack d1.pack >f$t.tsv 2>f$t.err
 	loadtest --threads $t -n 4 -o l$t.pack f1.pack >l$t.tsv 2>l$t.err
@@ -31,6 +32,7 @@ for t in 1 2; do
 	loadtest --threads $t -n 2 --method cg --mu 0 -o C$t.pack d1.pack >C$t.tsv 2>C$t.err
 	packinfo --threads $t --tsv f1.pack >p$t.tsv 2>p$t.err
 done
+same_pack "packgen (the DEM's force loop): 1 and 2 threads" g1.pack g2.pack
 same_pack "densify: 1 and 2 threads" d1.pack d2.pack
 same_pack "frictionalize: 1 and 2 threads" f1.pack f2.pack
 expect_same "frictionalize: table" f1.tsv f2.tsv
