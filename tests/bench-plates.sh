@@ -8,6 +8,7 @@
 # Knobs: BENCH_PLATE_SIZES (default "1000 8000"), BENCH_PLATE_ETAS (default "0 0.5 0.8").
 # Results: bench/plates.md, with the machine and the commit.
 set -u
+export OMP_NUM_THREADS="${BENCH_THREADS:-1}"	# one core's figures unless asked
 bin=${1:-build/bin}
 case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
 step="$bin/../bench/platestep"
@@ -41,7 +42,7 @@ done
 	echo
 	echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
 	echo "- commit: $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-	echo "- machine: $(nproc) cores, $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//'); every program on one core"
+	echo "- machine: $(getconf _NPROCESSORS_ONLN) cores, $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//'); every program on $OMP_NUM_THREADS thread(s) (BENCH_THREADS)"
 	echo
 	echo "packgen --shape spheroplate --seed 1 (P's law and defaults: friction 0.58 between grains during compaction, frictionless walls, kappa 1e4,"
 	echo "rest at unbalanced force 1e-3); then 200 DEM steps of the static pack without local damping."

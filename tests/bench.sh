@@ -19,7 +19,10 @@
 # Each size's rows are kept too (bench/rows-N.*, with the date and commit of the run that
 # made them), and results.md gathers every size measured so far, so that sizes can be run
 # separately (BENCH_SIZES=100000 BENCH_METHODS=lbfgs on one core while the others run).
+# BENCH_THREADS (default 1): the OpenMP threads of every program, so that the tables stay
+# one core's figures unless asked otherwise.
 set -u
+export OMP_NUM_THREADS="${BENCH_THREADS:-1}"
 bin=${1:-build/bin}
 case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
 incr="$bin/../bench/increment"
@@ -168,8 +171,8 @@ rows() { for k in $all; do cat "$out/rows-$k.$1" 2>/dev/null; done; }
 	echo
 	echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
 	echo "- commit: $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-	echo "- machine: $(nproc) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//')"
-	echo "- every program runs on one core"
+	echo "- machine: $(getconf _NPROCESSORS_ONLN) cores, $(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo), $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//')"
+	echo "- every program runs on $OMP_NUM_THREADS thread(s) (BENCH_THREADS; OMP_NUM_THREADS)"
 	echo "- sizes measured (date and commit of the run that made the rows):"
 	for k in $all; do echo "  - $k grains: $(cat "$out/rows-$k.stamp")"; done
 	echo
