@@ -244,7 +244,7 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 		return -1;
 	qs_remove_terms(s);
 	qs_set_rotations(s, 1);
-	return qs_add_term(s, &(struct qs_term){"friction", friction_energy, friction_stiffness, f});
+	return qs_add_term(s, &(struct qs_term){"friction", friction_energy, friction_stiffness, f, NULL});
 }
 
 /* s^2 below the limit, its tangent 2 lim s - lim^2 above: the return map's potential,

@@ -1,5 +1,6 @@
 /* functional: Hertz energy and gradient over a pack (see functional.h). */
 #include "qs/functional.h"
+#include "qs/hessian.h"
 #include "base/msg.h"
 #include "base/par.h"
 
@@ -9,6 +10,7 @@
 
 static double normal_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax);
 static void normal_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k);
+static int normal_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H);
 
 int
 qs_init(struct qs_system *s, struct pack *p, double skin)
@@ -23,6 +25,7 @@ qs_init(struct qs_system *s, struct pack *p, double skin)
 	s->term[0].name = "normal";
 	s->term[0].energy = normal_energy;
 	s->term[0].stiffness = normal_stiffness;
+	s->term[0].hessian = normal_hessian;
 	s->nterms = 1;
 	s->comp = malloc((p->n ? p->n : 1) * sizeof *s->comp);
 	if (!s->comp) {
@@ -369,6 +372,51 @@ normal_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double
 
 	(void)t;
 	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_stiffness, &a);
+}
+
+/* The normal term's second derivatives (hessian.h), through the law's stiffness: assembled
+ * once per Newton step, so the law's interface serves every law. */
+struct hessian_acc {
+	struct qs_system *s;
+	struct qs_hessian *H;
+};
+
+static int
+on_hessian(const struct contact *c, void *vacc)
+{
+	struct hessian_acc *a = vacc;
+	const struct contact_law *law = a->s->law;
+	struct law_pair lp;
+	double P, k, n[3], B[9], g;
+	int u, v;
+
+	law->pair(law, a->s->p, c->i, c->j, &lp);
+	law->normal(law, &lp, c->h, &P, &k);
+	for (u = 0; u < 3; u++)
+		n[u] = c->dx[u] / c->d;
+	/* a wall is a plane: no geometric term */
+	g = PACK_IS_WALL(c->j) ? 0 : P / c->d;
+	for (u = 0; u < 3; u++)
+		for (v = 0; v < 3; v++)
+			B[3 * u + v] = (k + g) * n[u] * n[v] - (u == v ? g : 0);
+	for (u = 0; u < 9; u++)
+		a->H->diag[9 * c->i + u] += B[u];
+	if (PACK_IS_WALL(c->j))
+		return 0;
+	for (u = 0; u < 9; u++) {
+		a->H->diag[9 * (size_t)c->j + u] += B[u];
+		B[u] = -B[u];
+	}
+	return qs_hessian_add_pair(a->H, c->i, (size_t)c->j, B) ? 1 : 0;
+}
+
+static int
+normal_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H)
+{
+	struct hessian_acc a = {s, H};
+
+	(void)t;
+	return contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_hessian, &a) < 0 ? -1 : 0;
 }
 
 void

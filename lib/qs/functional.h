@@ -32,15 +32,19 @@
 #define QS_RESIDUAL_FLOOR MEASURE_RESIDUAL_FLOOR
 
 struct qs_system;
+struct qs_hessian;
 
 /* A term of Pi.  energy adds the term's energy at x (returned), its gradient into g (dim)
  * unless NULL and each grain's largest contact force into fmax (n) unless NULL; stiffness
- * adds each grain's stiffness bound (N/m per unit of the scaled unknowns) into k (n). */
+ * adds each grain's stiffness bound (N/m per unit of the scaled unknowns) into k (n);
+ * hessian, where the term has one (NULL otherwise), adds its second derivatives at x into H
+ * (hessian.h; 0 or -1 with the message set). */
 struct qs_term {
 	const char *name;
 	double (*energy)(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax);
 	void (*stiffness)(struct qs_term *t, struct qs_system *s, const double *x, double *k);
 	void *data;
+	int (*hessian)(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H);
 };
 
 #define QS_MAX_TERMS 4

@@ -1,0 +1,45 @@
+/* hessian: the sparse Hessian of Pi over the grain centres, for Newton's method (minimize.h).
+ *
+ * Block storage over the 3N centres: one 3x3 block per grain on the diagonal and one per
+ * grain pair in contact, H_ij with i < j (H_ji is its transpose), in the enumerator's order.
+ * Each term of Pi that has second derivatives adds its blocks (struct qs_term's hessian);
+ * qs_hessian fails when a term has none (today: friction, whose return map's consistent
+ * tangent is not written yet), so Newton's method is for frictionless systems.
+ *
+ * The normal term's contact at overlap h = r_i + r_j - d along n = (x_i - x_j) / d, with
+ * force P = U'(h) and stiffness k = U''(h) (the law's), gives
+ *     B = k n n^T - (P / d) (I - n n^T),   H_ii += B, H_jj += B, H_ij = -B;
+ * the second part is the geometric stiffness of a compressed pair (a chain that can buckle),
+ * so H is indefinite where grains are nearly free; a wall contact adds k e_a e_a^T to its
+ * grain.  Tested against finite differences of the gradient (tests/unit/test_hessian.c). */
+#ifndef QUSGM_HESSIAN_H
+#define QUSGM_HESSIAN_H
+
+#include <stddef.h>
+
+struct qs_system;
+
+struct qs_hessian {
+	size_t n;		/* grains: the matrix is 3n x 3n */
+	double *diag;		/* 9 n: block i row-major at 9 i */
+	size_t np, cap;		/* off-diagonal blocks */
+	size_t *pi, *pj;	/* their grains, i < j */
+	double *off;		/* 9 np: H_ij row-major */
+};
+
+/* 0 or -1 (out of memory, message set). */
+int qs_hessian_init(struct qs_hessian *H, size_t n);
+void qs_hessian_free(struct qs_hessian *H);
+/* No blocks, zero diagonal. */
+void qs_hessian_clear(struct qs_hessian *H);
+/* Append the pair block H_ij = B (9, row-major; i != j, stored with the smaller index first,
+ * transposed when i > j).  0 or -1 (out of memory). */
+int qs_hessian_add_pair(struct qs_hessian *H, size_t i, size_t j, const double B[9]);
+/* y = H v (3n each). */
+void qs_hessian_mul(const struct qs_hessian *H, const double *v, double *y);
+/* H of every term of s at x, where s was last evaluated (its neighbour list current).
+ * 0, or -1 with the message set (a term without second derivatives, rotations among the
+ * unknowns, out of memory). */
+int qs_hessian(struct qs_system *s, const double *x, struct qs_hessian *H);
+
+#endif
