@@ -1,8 +1,10 @@
 /* minimize: the papers' modified CG and FIRE (see minimize.h). */
 #include "qs/minimize.h"
+#include "qs/hessian.h"
 #include "base/par.h"
 #include "base/msg.h"
 
+#include <gsl/gsl_eigen.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 #include <math.h>
@@ -23,6 +25,8 @@ qs_min_params_default(struct qs_min_params *mp)
 	mp->ls_sigma = 0.1;
 	mp->fire_dt = 1.0;
 	mp->lbfgs_m = 8;
+	mp->newton_eta = 0.1;
+	mp->newton_cg_max = 1000;
 }
 
 int
@@ -34,6 +38,8 @@ qs_method_parse(const char *name, enum qs_method *m)
 		*m = QS_FIRE;
 	else if (strcmp(name, "lbfgs") == 0)
 		*m = QS_LBFGS;
+	else if (strcmp(name, "newton") == 0)
+		*m = QS_NEWTON;
 	else
 		return -1;
 	return 0;
@@ -42,7 +48,7 @@ qs_method_parse(const char *name, enum qs_method *m)
 const char *
 qs_method_name(enum qs_method m)
 {
-	return m == QS_FIRE ? "fire" : m == QS_LBFGS ? "lbfgs" : "cg";
+	return m == QS_FIRE ? "fire" : m == QS_LBFGS ? "lbfgs" : m == QS_NEWTON ? "newton" : "cg";
 }
 
 /* Workspace shared by both methods. */
@@ -71,6 +77,12 @@ struct qs_minimizer {
 	/* lbfgs */
 	double *S, *Y, *rho, *al;
 	int head, count;
+	/* newton */
+	struct qs_hessian H;
+	double *Minv, *r, *z, *q, *Hq;
+	gsl_eigen_symmv_workspace *eig;
+	double gnorm_prev, eta_prev;	/* the forcing term's memory */
+	double lambda;		/* Levenberg damping: a fraction of each grain's mean diagonal stiffness */
 };
 
 /* Dot products by blocks fixed by n, on threads: the same bytes for any count (par.h). */
@@ -465,6 +477,177 @@ lbfgs_iterate(struct qs_minimizer *m)
 	return 0;
 }
 
+
+/* --- Newton-Krylov ------------------------------------------------------------------ */
+
+static int
+newton_alloc(struct qs_minimizer *m)
+{
+	size_t n3 = m->w.n3, n = m->w.s->n;
+
+	m->Minv = malloc(9 * (n ? n : 1) * sizeof *m->Minv);
+	m->r = malloc(n3 * sizeof *m->r);
+	m->z = malloc(n3 * sizeof *m->z);
+	m->q = malloc(n3 * sizeof *m->q);
+	m->Hq = malloc(n3 * sizeof *m->Hq);
+	m->eig = gsl_eigen_symmv_alloc(3);
+	if (!m->Minv || !m->r || !m->z || !m->q || !m->Hq || !m->eig || qs_hessian_init(&m->H, n)) {
+		msg_seterr("out of memory for Newton's method");
+		return -1;
+	}
+	return 0;
+}
+
+/* The inverse of a symmetric 3x3 block by cofactors when it is clearly positive definite
+ * (leading minors above 1e-9 of their scale: most grains, held by four or more contacts);
+ * 0 otherwise. */
+static int
+spd_inverse3(const double *D, double *M)
+{
+	double c00 = D[4] * D[8] - D[5] * D[7], c01 = D[5] * D[6] - D[3] * D[8], c02 = D[3] * D[7] - D[4] * D[6];
+	double det = D[0] * c00 + D[1] * c01 + D[2] * c02, tr = D[0] + D[4] + D[8], m2 = D[0] * D[4] - D[1] * D[3];
+
+	if (!(D[0] > 1e-9 * tr && m2 > 1e-9 * tr * tr && det > 1e-9 * tr * tr * tr))
+		return 0;
+	M[0] = c00 / det;
+	M[1] = M[3] = c01 / det;
+	M[2] = M[6] = c02 / det;
+	M[4] = (D[0] * D[8] - D[2] * D[6]) / det;
+	M[5] = M[7] = (D[2] * D[3] - D[0] * D[5]) / det;
+	M[8] = m2 / det;
+	return 1;
+}
+
+/* The block-Jacobi preconditioner: each grain's diagonal block, made positive definite by
+ * taking its eigenvalues' magnitudes (a grain held by one or two contacts has the negative
+ * geometric stiffness P/d across them), floored at 1e-6 of its largest; a grain without
+ * contacts gets zero (it has no force and stays where it is). */
+static void
+newton_precond(struct qs_minimizer *m)
+{
+	size_t i, n = m->w.s->n;
+	double a[9], ev[3], vv[9];
+	gsl_matrix_view A = gsl_matrix_view_array(a, 3, 3), V = gsl_matrix_view_array(vv, 3, 3);
+	gsl_vector_view E = gsl_vector_view_array(ev, 3);
+
+	for (i = 0; i < n; i++) {
+		const double *D = m->H.diag + 9 * i;
+		double *M = m->Minv + 9 * i, big = 0, inv[3];
+		int u, v, c;
+
+		if (spd_inverse3(D, M))
+			continue;
+		memcpy(a, D, sizeof a);
+		gsl_eigen_symmv(&A.matrix, &E.vector, &V.matrix, m->eig);
+		for (c = 0; c < 3; c++)
+			big = fmax(big, fabs(ev[c]));
+		for (c = 0; c < 3; c++)
+			inv[c] = big > 0 ? 1 / fmax(fabs(ev[c]), 1e-6 * big) : 0;
+		for (u = 0; u < 3; u++)
+			for (v = 0; v < 3; v++)
+				M[3 * u + v] = vv[3 * u] * inv[0] * vv[3 * v] + vv[3 * u + 1] * inv[1] * vv[3 * v + 1] +
+				    vv[3 * u + 2] * inv[2] * vv[3 * v + 2];
+	}
+}
+
+static void
+precond_apply(const struct qs_minimizer *m, const double *r, double *z)
+{
+	size_t i;
+
+	for (i = 0; i < m->w.s->n; i++) {
+		const double *M = m->Minv + 9 * i, *ri = r + 3 * i;
+		double *zi = z + 3 * i;
+
+		zi[0] = M[0] * ri[0] + M[1] * ri[1] + M[2] * ri[2];
+		zi[1] = M[3] * ri[0] + M[4] * ri[1] + M[5] * ri[2];
+		zi[2] = M[6] * ri[0] + M[7] * ri[1] + M[8] * ri[2];
+	}
+}
+
+/* The Newton direction: H d = -g by preconditioned CG from d = 0, to |r| <= eta |g|, stopped
+ * at the first direction of negative curvature (Steihaug): the iterate so far, or at the
+ * first CG step the preconditioned steepest descent, is still downhill. */
+static void
+newton_direction(struct qs_minimizer *m)
+{
+	struct work *w = &m->w;
+	size_t n3 = w->n3, k;
+	double gg = dot(w->g, w->g, n3), eta = m->mp.newton_eta, tol2, rz, rr;
+	long it;
+
+	/* Eisenstat-Walker's second forcing term: loose while the gradient falls slowly, tight
+	 * once Newton converges, never looser than newton_eta */
+	if (m->gnorm_prev > 0 && eta > 0) {
+		double e = 0.9 * gg / (m->gnorm_prev * m->gnorm_prev), safe = 0.9 * m->eta_prev * m->eta_prev;
+		eta = fmin(eta, safe > 0.1 ? fmax(e, safe) : e);
+	}
+	m->eta_prev = eta;
+	m->gnorm_prev = sqrt(gg);
+	tol2 = eta * eta * gg;
+
+	memset(w->d, 0, n3 * sizeof *w->d);
+	for (k = 0; k < n3; k++)
+		m->r[k] = -w->g[k];
+	precond_apply(m, m->r, m->z);
+	memcpy(m->q, m->z, n3 * sizeof *m->q);
+	rz = dot(m->r, m->z, n3);
+	for (it = 0; it < m->mp.newton_cg_max; it++) {
+		double qHq, a, rz1;
+
+		qs_hessian_mul(&m->H, m->q, m->Hq);
+		qHq = dot(m->q, m->Hq, n3);
+		if (!(qHq > 0)) {
+			if (it == 0)
+				memcpy(w->d, m->q, n3 * sizeof *w->d);
+			break;
+		}
+		a = rz / qHq;
+		par_axpy(w->d, a, m->q, n3);
+		par_axpy(m->r, -a, m->Hq, n3);
+		rr = dot(m->r, m->r, n3);
+		if (rr <= tol2)
+			break;
+		precond_apply(m, m->r, m->z);
+		rz1 = dot(m->r, m->z, n3);
+		for (k = 0; k < n3; k++)
+			m->q[k] = m->z[k] + rz1 / rz * m->q[k];
+		rz = rz1;
+	}
+	if (dot(w->d, w->g, n3) >= 0)	/* no progress at all: along -g */
+		for (k = 0; k < n3; k++)
+			w->d[k] = -w->g[k] * alpha_cap(w, w->g, m->mp.cap);
+}
+
+static int
+newton_iterate(struct qs_minimizer *m)
+{
+	struct work *w = &m->w;
+	double amax, alpha;
+	size_t i;
+
+	if (qs_hessian(w->s, m->x, &m->H))
+		return -1;
+	if (m->lambda > 0)
+		for (i = 0; i < w->s->n; i++) {
+			double *D = m->H.diag + 9 * i, sh = m->lambda * fabs(D[0] + D[4] + D[8]) / 3;
+			D[0] += sh, D[4] += sh, D[8] += sh;
+		}
+	newton_precond(m);
+	newton_direction(m);
+	amax = alpha_cap(w, w->d, m->mp.cap);
+	alpha = line_search(w, m->x, 1.0, amax, 0.9, m->solver);
+	if (alpha < 0)
+		return -1;
+	/* Levenberg: the full step taken, trust the model more; a short one, less */
+	if (alpha >= 1)
+		m->lambda = m->lambda < 1e-6 ? 0 : 0.1 * m->lambda;
+	else if (alpha < 0.1 && alpha < amax)
+		m->lambda = fmax(10 * m->lambda, 1e-4);
+	m->eprev = accept_trial(w, m->x);
+	return 0;
+}
+
 /* --- the interface ------------------------------------------------------------------ */
 
 struct qs_minimizer *
@@ -492,7 +675,7 @@ qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp)
 	w->ft = malloc(s->n * sizeof *w->ft);
 	m->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
 	if (!w->g || !w->fmax || !w->d || !w->xt || !w->gt || !w->v || !w->ft || !m->solver ||
-	    (mp->method == QS_LBFGS && lbfgs_alloc(m))) {
+	    (mp->method == QS_LBFGS && lbfgs_alloc(m)) || (mp->method == QS_NEWTON && newton_alloc(m))) {
 		qs_minimizer_free(m);
 		msg_seterr("out of memory for the minimiser");
 		return NULL;
@@ -515,6 +698,10 @@ qs_minimizer_free(struct qs_minimizer *m)
 	w = &m->w;
 	free(w->g), free(w->fmax), free(w->d), free(w->xt), free(w->gt), free(w->v), free(w->ft);
 	free(m->S), free(m->Y), free(m->rho), free(m->al);
+	free(m->Minv), free(m->r), free(m->z), free(m->q), free(m->Hq);
+	qs_hessian_free(&m->H);
+	if (m->eig)
+		gsl_eigen_symmv_free(m->eig);
 	if (m->solver)
 		gsl_root_fsolver_free(m->solver);
 	free(m);
@@ -537,6 +724,8 @@ qs_minimizer_set(struct qs_minimizer *m, double *x)
 	m->evals0 = m->w.s->evals;
 	m->step = 0;
 	m->head = m->count = 0;
+	m->lambda = 0;
+	m->gnorm_prev = 0;
 	if (evaluate(m))
 		return -1;
 	if (m->mp.method == QS_CG)
@@ -574,7 +763,10 @@ qs_minimizer_test(struct qs_minimizer *m, struct qs_min_report *rep)
 int
 qs_minimizer_iterate(struct qs_minimizer *m)
 {
-	int st = m->mp.method == QS_FIRE ? fire_iterate(m) : m->mp.method == QS_LBFGS ? lbfgs_iterate(m) : cg_iterate(m);
+	int st = m->mp.method == QS_FIRE     ? fire_iterate(m)
+	    : m->mp.method == QS_LBFGS  ? lbfgs_iterate(m)
+	    : m->mp.method == QS_NEWTON ? newton_iterate(m)
+	                                : cg_iterate(m);
 
 	m->it++;
 	return st;

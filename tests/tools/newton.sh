@@ -1,0 +1,42 @@
+# Newton's method (--method newton) against L-BFGS on the same frictionless increments: six
+# uniaxial 1e-4 steps and three isotropic ones of the 200-grain dense pack with --mu 0, once
+# per method from the same start.  Both stop at the residual 1e-4 (each grain's unbalanced
+# force at most 1e-4 of its largest contact force); the wall stress sums the wall contacts'
+# forces, each of which moves by about that fraction of itself between two states that both
+# meet it, so the two methods' stresses may differ by a few 1e-4 relative and no more: the
+# check allows 5e-4 (measured: below 1e-5).  The contacts (coordination) must be the same.
+# Then the refusals with friction, before any row is written.  A few seconds in all.
+. "$TOP/tests/tools/lib.sh"
+
+# columns: 6-8 sig, 15 coordination, 18 iterations, 19 residual
+small_pack dense "densify makes the dense pack"
+
+for path in uniaxial isotropic; do
+	steps=6
+	[ "$path" = isotropic ] && steps=3
+	for m in lbfgs newton; do
+		loadtest --path "$path" --mu 0 --steps "$steps" --method "$m" -o "$m.$path.pack" dense.pack >"$m.$path.tsv" 2>"$m.$path.err"
+		rc=$?
+		if [ "$rc" -eq 0 ] && [ ! -s "$m.$path.err" ]; then pass "$path, --method $m: exit 0"; else fail "$path, --method $m: exit 0" "exit $rc: $(head -c 300 "$m.$path.err")"; fi
+	done
+	rows "newton.$path.tsv" >n.rows
+	rows "lbfgs.$path.tsv" >l.rows
+	expect_num "$path: newton wrote every row" "$(wc -l <n.rows)" "==" "$((steps + 1))"
+	paste n.rows l.rows | awk -F '\t' '
+	    { for (a = 6; a <= 8; a++) { d = $a - $(a + 22); if (d < 0) d = -d; r = d / $(a + 22); if (r > worst) worst = r }
+	      if ($15 != $(15 + 22)) bad = "row " NR ": coordination " $15 " (newton) vs " $(15 + 22) " (lbfgs)"
+	      if (NR > 1 && !($19 <= 1e-4 && $18 > 0)) bad = "row " NR ": newton residual " $19 " after " $18 " iterations" }
+	    END { printf "%.3g\n", worst; if (bad) { print bad > "/dev/stderr"; exit 1 } }' >worst 2>why &&
+	    pass "$path: newton converged to the residual with lbfgs's contacts" || fail "$path: newton converged to the residual with lbfgs's contacts" "$(cat why)"
+	expect_num "$path: newton's wall stresses are lbfgs's to 5e-4" "$(head -n 1 worst)" "<=" 5e-4
+	# fewer iterations is the point of the method, not a timing: a count
+	n_it=$(rows "newton.$path.tsv" | awk -F '\t' 'NR > 1 { s += $18 } END { print s }')
+	l_it=$(rows "lbfgs.$path.tsv" | awk -F '\t' 'NR > 1 { s += $18 } END { print s }')
+	expect_num "$path: newton takes fewer iterations than lbfgs" "$n_it" "<" "$l_it"
+done
+
+# friction: refused up front, nothing on stdout, no -o file
+frictionalize -o fr.pack dense.pack 2>/dev/null
+expect_error "loadtest --method newton with friction" 1 "^loadtest: newton is for frictionless loading" loadtest --steps 2 --method newton -o bad.pack fr.pack
+if [ -e bad.pack ]; then fail "no -o pack after the refusal" "bad.pack exists"; else pass "no -o pack after the refusal"; fi
+expect_error "frictionalize --method newton" 1 "^frictionalize: newton is for frictionless loading" frictionalize --method newton dense.pack
