@@ -316,9 +316,15 @@ sig0=$1
 q0sig=$(awk -F '\t' '$1 == 0 { print $4 }' q.rows)
 lrm=$(info "l$ti/s$K.pack" residual_mean)
 lrx=$(info "l$ti/s$K.pack" residual)
+lrd=$(info "l$ti/s$K.pack" residual_median)
+set -- $(awk -F '\t' '{ k = $1; s[FILENAME, k] = FILENAME == "p.rows" ? $4 : $7; l[FILENAME, k] = FILENAME == "p.rows" ? $5 : $8 }
+    END { for (f = 1; f <= 2; f++) { F = f == 1 ? "p.rows" : LAST; x = y = xx = xy = 0
+	for (k = 0; k <= K; k++) { e = 1 - l[F, k] / l[F, 0]; x += e; y += s[F, k]; xx += e * e; xy += e * s[F, k] }
+	printf "%.3g ", ((K + 1) * xy - x * y) / ((K + 1) * xx - x * x) / 1e9 } }' K="$K" LAST="l$ti/rows" p.rows "l$ti/rows")
+Mp=$1 Ml=$2
 awk -v dt="$dt" -v tr="$trayl" -v dtf="$dtf" -v g="$gamma" -v dampt="$dampt" -v nm="$nmove" -v nc="$nchk" -v vz="$vz" \
     -v dz="$dz" -v E="$E" -v nu="$nu" -v Ew="$Ew" -v nuw="$nuw" -v mu="$mu" -v muw="$muw" -v K="$K" -v tols="$tols" \
-    -v topK="$topK" -v avgK="$avgK" -v sig0="$sig0" -v q0="$q0sig" -v fm="$fmean" -v rmin="$rmin" -v rho="$rho" -v lrm="$lrm" -v lrx="$lrx" -v tlast="$tol" 'BEGIN {
+    -v topK="$topK" -v avgK="$avgK" -v sig0="$sig0" -v q0="$q0sig" -v fm="$fmean" -v rmin="$rmin" -v rho="$rho" -v lrm="$lrm" -v lrx="$lrx" -v lrd="$lrd" -v tlast="$tol" -v Mp="$Mp" -v Ml="$Ml" 'BEGIN {
 	H = dz / 1e-4; rate = 1e-4 / (nm * dt)
 	printf "\n## How\n\n"
 	printf "The pack: `packgen -n 2740 --seed 1 --material ./glass-uniform.mat | densify --stress 4e6 | frictionalize --mu 0.3` "
@@ -339,11 +345,11 @@ awk -v dt="$dt" -v tr="$trayl" -v dtf="$dtf" -v g="$gamma" -v dampt="$dampt" -v 
 	printf "The read-back: after each increment LIGGGHTS dumps the positions (`write_dump ... %%.17g`) and, from `compute pair/gran/local` and `wall/gran/local`, each contact'"'"'s normal and tangential force; tests/peers-readback.awk puts them into a copy of the qusgm pack "
 	printf "(same radii and moduli, the box at that increment, LIGGGHTS'"'"'s tangential forces as the contacts'"'"' Q0, no torsion) and packinfo judges it. "
 	printf "Its normal forces from the overlaps agree with LIGGGHTS'"'"'s to 1e-4 (largest relative difference over the contacts, checked when this was written). "
-	printf "The forces balance in qusgm'"'"'s reading too: after increment %d of the run stopped at %s, packinfo'"'"'s residual_mean (mean |F_i| over the mean contact force, forces only) is %.1e, yet the largest per-grain residual is %.1e, so what LIGGGHTS leaves are the moments |M_i|/R_i: ", K, tlast, lrm, lrx
+	printf "The forces balance in qusgm'"'"'s reading too: after increment %d of the run stopped at %s, packinfo'"'"'s residual_mean (mean |F_i| over the mean contact force, forces only) is %.1e, yet the per-grain residual (the larger of the force and moment ratios) has median %.1e and largest %.1e, so on most grains what LIGGGHTS leaves are the moments |M_i|/R_i: ", K, tlast, lrm, lrd, lrx
 	printf "qusgm puts a contact'"'"'s tangential force on the plane of the contact circle (a wall'"'"'s plane for a wall), LIGGGHTS at r - delta/2 from each centre (`cri = radi - 0.5*deltan` in the LIGGGHTS-PUBLIC sources), and the two lever arms differ by half the overlap at a wall and by less between grains of unequal radii. "
 	printf "Flipping the sign of the tangential forces gives a residual of 1.8, taking them out 0.9: the read-back'"'"'s convention is right.\n\n"
 	printf "## What differs, and what was left out\n\n"
-	printf "- The start: LIGGGHTS cannot be given the pack'"'"'s tangential history, so its contacts start with no tangential force; the settle at the start lets the pack relax from qusgm'"'"'s %.2f MPa to %.2f MPa, and its first increments load fresh, sticking contacts. The last columns start qusgm from LIGGGHTS'"'"'s settled state instead (its positions, and its tangential forces as the contacts'"'"' history), the same state for both.\n", q0 / 1e6, sig0 / 1e6
+	printf "- The start: LIGGGHTS cannot be given the pack'"'"'s tangential history, so its contacts start with no tangential force; the settle at the start lets the pack relax from qusgm'"'"'s %.2f MPa to %.2f MPa, and its first increments load fresh, sticking contacts. The last columns start qusgm from LIGGGHTS'"'"'s settled state instead (its positions, and its tangential forces as the contacts'"'"' history), the same state for both. From it qusgm is the stiffer (M %s against %s GPa over the %d increments): the tangential laws differ (qusgm'"'"'s stick stiffness and sliding return map frozen over an increment, with torsion, share/doc/friction.md; LIGGGHTS'"'"'s incremental spring 8 G* a, without), not separated here.\n", q0 / 1e6, sig0 / 1e6, Mp, Ml, K
 	printf "- sig_zz is the two z walls'"'"' average in both. The walls'"'"' friction makes the top wall carry more than the bottom: LIGGGHTS'"'"'s own top-wall reading (fix mesh/surface/stress) after increment %d is %.2f MPa against the average %.2f MPa.\n", K, topK / 1e6, avgK / 1e6
 	printf "- qusgm has torsional couples at the contacts (M0); LIGGGHTS'"'"'s Hertz-Mindlin has none. Neither has rolling resistance.\n"
 	printf "- Not run: YADE, several cores, larger packs, unloading, the per-grain scatter of the moduli.\n"
