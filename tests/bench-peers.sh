@@ -255,7 +255,7 @@ commit=$(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)
 {
 	echo "# qusgm and LIGGGHTS on the same oedometric increments"
 	echo
-	echo "\`make bench-peers\` (tests/bench-peers.sh), $(date -u '+%Y-%m-%d %H:%M UTC'), commit $commit; $cpu, $(getconf _NPROCESSORS_ONLN) cores, each program on one (qusgm OMP_NUM_THREADS=1, $ver serial, no mpirun), the other core busy with another job's tests (in three runs when this was written, qusgm's mean moved between 0.74 and 0.96 s, LIGGGHTS's by under 5 %)."
+	echo "\`make bench-peers\` (tests/bench-peers.sh), $(date -u '+%Y-%m-%d %H:%M UTC'), commit $commit; $cpu, $(getconf _NPROCESSORS_ONLN) cores, each program on one (qusgm OMP_NUM_THREADS=1, $ver serial, no mpirun), the other core busy with another job's tests (CPU times move between runs by tens of per cent on this shared machine; README.md, \"Measured\", gives the range over the runs made when this was written)."
 	echo "From the same frictional pack, $K uniaxial-strain (oedometric) compressions of 1e-4 along z; CPU seconds are user + system."
 	echo
 	awk -v tols="$tols" -v K="$K" -F '\t' '
