@@ -1,5 +1,5 @@
 # qusgm: quasi-static granular mechanics toolkit.
-# Targets: all check run bench validate install uninstall clean deps help (see `make help`).
+# Targets: all check run bench bench-peers validate install uninstall clean deps help (see `make help`).
 
 VERSION   = 0.1.0
 PREFIX   ?= /usr/local
@@ -24,6 +24,7 @@ SOLIB     = libqusgm.so.$(VERSION)
 DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config
 DEB_PLOT  = gnuplot-nox
 DEB_PY    = python3-numpy
+DEB_PEERS = liggghts
 
 # Build directories: build/ is the normal build, build-san/ the sanitizer build.
 B        ?= build
@@ -58,7 +59,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -225,6 +226,21 @@ bench-plates: all
 	@$(MAKE) --no-print-directory B=build build/bench/platestep
 	@sh tests/bench-plates.sh build/bin
 
+# qusgm against LIGGGHTS (Hertz-Mindlin DEM) on the same oedometric increments from the same
+# pack (bench/peers.md, tests/bench-peers.sh; about a minute): make bench-peers
+# [PEERS_INCREMENTS=10].  As root, installs LIGGGHTS if missing; otherwise stops with the
+# exact command to type.
+bench-peers: all
+	@command -v liggghts >/dev/null 2>&1 || \
+	if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	  echo "qusgm: installing LIGGGHTS ($(DEB_PEERS))"; \
+	  { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PEERS); } >/dev/null || \
+	    { echo "qusgm: apt-get install failed; run: apt-get install $(DEB_PEERS)" >&2; exit 1; }; \
+	else \
+	  echo "qusgm: make bench-peers needs LIGGGHTS; run: sudo apt-get install $(DEB_PEERS)" >&2; exit 1; \
+	fi
+	@sh tests/bench-peers.sh build/bin
+
 # Validation against the papers: densify's frictionless compaction (validate/results.md), the
 # simple shear of frictional spheres (validate/shear.md), then
 # the frictional and polyaxial studies at the papers' sizes, their reports gathered in
@@ -288,6 +304,7 @@ help:
 	@echo "make pipelines  the papers' studies (STUDY=name, SMALL=1 for small packs; pipelines/README.md)"
 	@echo "make bench      benchmarks; results in bench/results.md and bench/plates.md"
 	@echo "make bench-plates  the spheroplate DEM's benchmarks alone (bench/plates.md)"
+	@echo "make bench-peers   qusgm against LIGGGHTS on the same oedometric increments (bench/peers.md; installs liggghts as root)"
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make cluster-check  a one-node Slurm cluster here (root: installs slurm-wlm, munge): a SMALL study through srun vs make -j"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"

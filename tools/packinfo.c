@@ -103,6 +103,7 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "residual", NULL, m->has_forces ? m->residual_max : NAN);
 	add(r, "residual_mean", NULL, m->has_forces ? m->residual_mean : NAN);
 	add(r, "residual_strict", NULL, m->has_forces ? m->residual_strict : NAN);
+	add(r, "residual_median", NULL, m->has_forces ? m->residual_median : NAN);
 	{
 		/* the increment that wrote the pack recorded its own count (lib/loading.c); the
 		 * lines only bound it from below */

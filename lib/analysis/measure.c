@@ -295,6 +295,7 @@ measure_bulk(const struct pack *p, const struct geo_contacts *gc, double margin,
 /* The per-grain balance and the sums that measure_pack accumulates over the contacts. */
 struct balance {
 	double *F, *M, *fbig;	/* net force, net moment, largest contact force per grain */
+	double *res;		/* the grains' residuals, for their median */
 	const unsigned char *rat;
 	double Psum, fsum;
 	size_t cnr;		/* contact ends on non-rattlers */
@@ -459,10 +460,13 @@ measure_forces(const struct pack *p, size_t nct, const struct balance *b, struct
 		mr = vec3_norm(b->M + 3 * k) / p->r[k];
 		m->residual_strict = fmax(m->residual_strict, fmax(fr, mr) / b->fbig[k]);
 		m->residual_max = fmax(m->residual_max, fmax(fr, mr) / fmax(b->fbig[k], floor_));
+		b->res[nres] = fmax(fr, mr) / fmax(b->fbig[k], floor_);
 		Fsum += fr;
 		nres++;
 	}
 	m->residual_mean = nres ? (Fsum / nres) / (b->fsum / nct) : 0;
+	qsort(b->res, nres, sizeof *b->res, cmp_double);
+	m->residual_median = nres ? (nres % 2 ? b->res[nres / 2] : (b->res[nres / 2 - 1] + b->res[nres / 2]) / 2) : 0;
 }
 
 /* The sliding ratio of the history: lines at their limit mu P0, over the contacts. */
@@ -522,8 +526,9 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	b.F = calloc(3 * p->n, sizeof *b.F);
 	b.M = calloc(3 * p->n, sizeof *b.M);
 	b.fbig = calloc(p->n, sizeof *b.fbig);
-	if (!cnt || !rat || !b.F || !b.M || !b.fbig) {
-		free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig);
+	b.res = malloc(p->n * sizeof *b.res);
+	if (!cnt || !rat || !b.F || !b.M || !b.fbig || !b.res) {
+		free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig), free(b.res);
 		msg_seterr("out of memory");
 		return -1;
 	}
@@ -551,7 +556,7 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	if (m->has_forces)
 		measure_forces(p, gc->n, &b, m);
 	measure_sliding(p, gc, m);
-	free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig);
+	free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig), free(b.res);
 	return 0;
 }
 

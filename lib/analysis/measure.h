@@ -9,7 +9,8 @@
  * residual (largest per-grain |F_i| / largest contact force on i, that force floored at
  * MEASURE_RESIDUAL_FLOOR times the mean normal contact force as the minimisers do (functional.h;
  * residual_strict has no floor), with moments |M_i|/R_i
- * counted the same way, and the mean unbalanced-force ratio mean|F_i| / mean|f_c|), the
+ * counted the same way, its median over the grains, and the mean unbalanced-force ratio
+ * mean|F_i| / mean|f_c|), the
  * sliding ratio from the contact history, and the fabric tensor <n n> of grain-grain
  * contacts with its anisotropy a = 15/2 sqrt(3/2 d:d), d = <n n> - I/3.
  *
@@ -47,6 +48,7 @@ struct pack_measures {
 	double P_mean, P_max;
 	double residual_max, residual_mean;
 	double residual_strict;	/* residual_max without the floor */
+	double residual_median;	/* the median over the grains of residual_max's ratio */
 	double sliding_ratio;	/* NaN when no contact carries friction history */
 	double fabric[6], fabric_anisotropy;
 	unsigned rattler_min_contacts;	/* the rule of rattlers and coordination_nr: 4 or 2 */

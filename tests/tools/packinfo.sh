@@ -86,6 +86,19 @@ else
 fi
 expect_num "frictional pack: the bulk denser than the box too" "$(info_value fr.info bulk_porosity)" "<" "$(info_value fr.info porosity)"
 
+# --- residual_median: the median over the grains of the ratio that residual is the largest of
+# four grains in a row, each pressed 2e-6 into the next: the two inner ones balanced (0), the
+# two at the ends pushed out by their one contact (1), so the median is (0 + 1) / 2
+printf 'qusgm-pack 1\nunits SI\nbox 0 0 0 1e-3 1e-3 1e-3\nwalls 7e12 0.495 0.3\nfriction 0.3\ngrains 4\ncontacts 0\nend\n' >row.pack
+for g in 1 2 3 4; do
+	awk -v g="$g" 'BEGIN { printf "%d %.17g 5e-4 5e-4 1e-4 7e10 0.2 2420\n", g, 2e-4 + (g - 1) * 1.98e-4 }' >>row.pack
+done
+packinfo row.pack >row.info 2>/dev/null
+expect_num "a row of four grains: residual 1 (the end grains)" "$(rel "$(info_value row.info residual)" 1)" "<" 1e-9
+expect_num "... residual_median 0.5, half of them balanced" "$(rel "$(info_value row.info residual_median)" 0.5)" "<" 1e-9
+expect_num "frictional pack: residual_median at most residual" "$(info_value fr.info residual_median)" "<=" "$(info_value fr.info residual)"
+expect_num "... and above 0" "$(info_value fr.info residual_median)" ">" 0
+
 # --- hydrate (issue 20): the phase column's keys ---------------------------------------------
 # a dense pack whose smallest grains held 15 % of the grain volume as hydrate (densify grows
 # grains, the small hydrate ones among them, so the fraction is no longer 0.15)
