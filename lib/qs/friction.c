@@ -12,6 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* doubles per grain in f->gs: x - x0 (3), Omega (3) */
+#define FR_GS 6
+
 void
 fr_init(struct qs_friction *f, enum fr_rule rule)
 {
@@ -24,6 +27,7 @@ fr_free(struct qs_friction *f)
 {
 	free(f->c);
 	free(f->x0);
+	free(f->gs);
 	free(f->row_first), free(f->wall_first), free(f->col_first), free(f->col_k), free(f->blk);
 	memset(f, 0, sizeof *f);
 }
@@ -102,6 +106,8 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 			M0 = M0 > 0 ? c->mmax : -c->mmax;
 	}
 	c->mp = M0;
+	c->pp = vec3_dot(c->qp, c->qp);
+	c->mpp = c->mp * c->mp;
 	memcpy(c->Q, c->qp, sizeof c->Q);
 	c->M = c->mp;
 }
@@ -220,10 +226,12 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 		f->c = c;
 		f->cap = gc.n;
 	}
-	if (f->ngrains != p->n || !f->x0) {
+	if (f->ngrains != p->n || !f->x0 || !f->gs) {
 		free(f->x0);
+		free(f->gs);
 		f->x0 = malloc((p->n ? 3 * p->n : 1) * sizeof *f->x0);
-		if (!f->x0) {
+		f->gs = malloc((p->n ? FR_GS * p->n : 1) * sizeof *f->gs);
+		if (!f->x0 || !f->gs) {
 			contacts_free(&gc);
 			msg_seterr("out of memory");
 			return -1;
@@ -256,26 +264,20 @@ clamp_potential(double s, double lim)
 }
 
 /* Contact c at x: its force Q on i, couple M on i about n and elastic trial |Q^p - k u_s|
- * into Q, M, qtrial; returns its energy.  Reads only x and c's frozen data, so a thread may
- * evaluate a contact that another owns (fr_energy's gathers). */
+ * into Q, M, qtrial; returns its energy.  Reads only f->gs (x - x0 and Omega per grain, from
+ * fr_grains) and c's frozen data, so a thread may evaluate a contact that another owns
+ * (fr_energy's gathers). */
 static inline double
-fr_contact_eval(const struct qs_friction *f, const struct qs_system *s, const double *x, const struct fr_contact *c,
-    double Q[3], double *M, double *qtrial)
+fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double Q[3], double *M, double *qtrial)
 {
-	const double *r = s->p->r, *x0 = f->x0;
-	const double *w = x + 3 * s->n;
+	static const double zero[3] = {0, 0, 0};
 	size_t i = c->i, j = c->j >= 0 ? (size_t)c->j : 0;
 	int wall = PACK_IS_WALL(c->j), a;
-	double du[3], Oi[3], Oj[3] = {0, 0, 0}, us[3], t[3], dn, Ot, q[3], qn, m, E;
+	const double *gi = f->gs + FR_GS * i, *gj = f->gs + FR_GS * j, *Oi = gi + 3, *Oj = wall ? zero : gj + 3;
+	double du[3], us[3], t[3], dn, Ot, q[3], qn, m, E;
 
-	for (a = 0; a < 3; a++) {
-		du[a] = x[3 * i + a] - x0[3 * i + a];
-		Oi[a] = w[3 * i + a] / r[i];
-		if (!wall) {
-			du[a] -= x[3 * j + a] - x0[3 * j + a];
-			Oj[a] = w[3 * j + a] / r[j];
-		}
-	}
+	for (a = 0; a < 3; a++)
+		du[a] = wall ? gi[a] : gi[a] - gj[a];
 	/* u_s = T du + Omega_i x R_ij - Omega_j x R_ji (walls translate along their normal) */
 	dn = vec3_dot(du, c->n);
 	vec3_cross(Oi, c->li, t);
@@ -292,14 +294,14 @@ fr_contact_eval(const struct qs_friction *f, const struct qs_system *s, const do
 	*qtrial = qn;
 	if (qn <= c->qmax) {
 		memcpy(Q, q, sizeof q);
-		E = (qn * qn - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+		E = (qn * qn - c->pp) / (2 * c->k);
 	} else if (f->rule == FR_RETURN_MAP) {
 		for (a = 0; a < 3; a++)
 			Q[a] = c->qmax * q[a] / qn;
-		E = (clamp_potential(qn, c->qmax) - vec3_dot(c->qp, c->qp)) / (2 * c->k);
+		E = (clamp_potential(qn, c->qmax) - c->pp) / (2 * c->k);
 	} else {
 		/* F (6)-(7b): the stiffness reduced so that |Q^p - k u_s| = Q_max */
-		double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = vec3_dot(c->qp, c->qp);
+		double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = c->pp;
 		double rad = cq * cq + c->qmax * c->qmax - pp, kr = rad > 0 ? (cq + sqrt(rad)) / un : 0;
 		for (a = 0; a < 3; a++)
 			Q[a] = c->qp[a] - kr * us[a];
@@ -313,8 +315,26 @@ fr_contact_eval(const struct qs_friction *f, const struct qs_system *s, const do
 	Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
 	m = c->mp - c->kt * Ot;
 	*M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
-	E += (clamp_potential(fabs(m), c->mmax) - c->mp * c->mp) / (2 * c->kt);
+	E += (clamp_potential(fabs(m), c->mmax) - c->mpp) / (2 * c->kt);
 	return E;
+}
+
+/* Grains g0..g1 of f->gs at x: the translation x - x0 and Omega = (R Omega) / R, once a grain
+ * rather than once a contact (the same operations, so the same bytes). */
+static void
+fr_grains(struct qs_friction *f, const struct qs_system *s, const double *x, size_t g0, size_t g1)
+{
+	const double *r = s->p->r, *x0 = f->x0, *w = x + 3 * s->n;
+	size_t i;
+	int a;
+
+	for (i = g0; i < g1; i++) {
+		double *gi = f->gs + FR_GS * i;
+		for (a = 0; a < 3; a++) {
+			gi[a] = x[3 * i + a] - x0[3 * i + a];
+			gi[3 + a] = w[3 * i + a] / r[i];
+		}
+	}
 }
 
 /* The gradient of contact c with force Q and couple M: dPi/du_i = -Q, dPi/dOmega_i =
@@ -366,12 +386,14 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 		size_t b0 = nb * t / T, b1 = nb * (t + 1) / T;
 		size_t g0 = b0 * bl < n ? b0 * bl : n, g1 = b1 * bl < n ? b1 * bl : n;
 
+		fr_grains(f, s, x, g0, g1);
+#pragma omp barrier
 		if (g && g0 > 0)
 			for (j = g0; j < g1; j++)
 				for (k = f->col_first[j]; k < f->col_first[j + 1] && f->c[f->col_k[k]].i < g0; k++) {
 					const struct fr_contact *c = &f->c[f->col_k[k]];
 					double Q[3], M, qt;
-					fr_contact_eval(f, s, x, c, Q, &M, &qt);
+					fr_contact_eval(f, c, Q, &M, &qt);
 					fr_add_j(s, g, c, Q, M);
 				}
 		for (b = b0; b < b1; b++) {
@@ -379,7 +401,7 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 			double Eb = 0;
 			for (k = f->row_first[i0]; k < f->row_first[i1]; k++) {
 				struct fr_contact *c = &f->c[k];
-				Eb += fr_contact_eval(f, s, x, c, c->Q, &c->M, &c->qtrial);
+				Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial);
 				if (g) {
 					fr_add_i(s, g, c, c->Q, c->M);
 					if ((size_t)c->j < g1)
@@ -388,7 +410,7 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 			}
 			for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
 				struct fr_contact *c = &f->c[k];
-				Eb += fr_contact_eval(f, s, x, c, c->Q, &c->M, &c->qtrial);
+				Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial);
 				if (g)
 					fr_add_i(s, g, c, c->Q, c->M);
 			}
