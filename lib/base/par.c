@@ -127,3 +127,76 @@ par_scale(double *y, double f, const double *x, size_t n)
 	for (k = 0; k < (long)n; k++)
 		y[k] = f * x[k];
 }
+
+double
+par_neg_dot(double *y, const double *x, const double *z, size_t n)
+{
+	double part[PAR_MAXBLOCKS], s = 0;
+	size_t bl = vec_block(n), nb = (n + bl - 1) / bl;
+	long q;
+
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
+	for (q = 0; q < (long)nb; q++) {
+		size_t k, k0 = (size_t)q * bl, k1 = k0 + bl < n ? k0 + bl : n;
+		double t = 0;
+		for (k = k0; k < k1; k++) {
+			y[k] = -x[k];
+			t += z[k] * y[k];
+		}
+		part[q] = t;
+	}
+	for (size_t q2 = 0; q2 < nb; q2++)
+		s += part[q2];
+	return s;
+}
+
+double
+par_axpy_scale_dot(double *y, double f, const double *x, double c, const double *z, size_t n)
+{
+	double part[PAR_MAXBLOCKS], s = 0;
+	size_t bl = vec_block(n), nb = (n + bl - 1) / bl;
+	long q;
+
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
+	for (q = 0; q < (long)nb; q++) {
+		size_t k, k0 = (size_t)q * bl, k1 = k0 + bl < n ? k0 + bl : n;
+		double t = 0;
+		for (k = k0; k < k1; k++) {
+			y[k] = c * (y[k] + f * x[k]);
+			t += z[k] * y[k];
+		}
+		part[q] = t;
+	}
+	for (size_t q2 = 0; q2 < nb; q2++)
+		s += part[q2];
+	return s;
+}
+
+void
+par_diff_dots(double *s, const double *a, const double *b, double *y, const double *u, const double *v, size_t n,
+    double *sy, double *yy)
+{
+	double p1[PAR_MAXBLOCKS], p2[PAR_MAXBLOCKS], s1 = 0, s2 = 0;
+	size_t bl = vec_block(n), nb = (n + bl - 1) / bl;
+	long q;
+
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
+	for (q = 0; q < (long)nb; q++) {
+		size_t k, k0 = (size_t)q * bl, k1 = k0 + bl < n ? k0 + bl : n;
+		double t1 = 0, t2 = 0;
+		for (k = k0; k < k1; k++) {
+			s[k] = a[k] - b[k];
+			y[k] = u[k] - v[k];
+			t1 += s[k] * y[k];
+			t2 += y[k] * y[k];
+		}
+		p1[q] = t1;
+		p2[q] = t2;
+	}
+	for (size_t q2 = 0; q2 < nb; q2++) {
+		s1 += p1[q2];
+		s2 += p2[q2];
+	}
+	*sy = s1;
+	*yy = s2;
+}
