@@ -160,8 +160,14 @@ op_sum(const int op, size_t n, double *y, const double *x, const double *z, doub
 
 #pragma omp parallel if (n >= PAR_MIN_VEC && nb > 1)
 	{
-		size_t T = (size_t)par_team(), t = (size_t)par_tid();
-		op_blocks(op, n, bl, nb * t / T, nb * (t + 1) / T, part, y, x, z, f, c);
+		size_t T = (size_t)par_team(), t = (size_t)par_tid(), q0 = nb * t / T, q1 = nb * (t + 1) / T;
+		/* op as a constant in each call: OpenMP outlines the region before inlining */
+		if (op == OP_DOT)
+			op_blocks(OP_DOT, n, bl, q0, q1, part, y, x, z, f, c);
+		else if (op == OP_NEG_DOT)
+			op_blocks(OP_NEG_DOT, n, bl, q0, q1, part, y, x, z, f, c);
+		else
+			op_blocks(OP_AXPY_DOT, n, bl, q0, q1, part, y, x, z, f, c);
 	}
 	for (q = 0; q < nb; q++)
 		s += part[q];
