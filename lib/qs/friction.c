@@ -343,6 +343,67 @@ fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double 
 	return E + Et;
 }
 
+#if defined(__GNUC__)
+#define FR_V2_CROSS(a, b, c) do { \
+		(c)[0] = (a)[1] * (b)[2] - (a)[2] * (b)[1]; \
+		(c)[1] = (a)[2] * (b)[0] - (a)[0] * (b)[2]; \
+		(c)[2] = (a)[0] * (b)[1] - (a)[1] * (b)[0]; \
+	} while (0)
+
+/* fr_contact_eval of two pairs under the return map at once, contact c0 in lane 0 and c1 in
+ * lane 1: lane by lane the same operations in the same order (IEEE arithmetic on each
+ * lane, no contraction), so the same bytes; both branches of the clamp are computed and one
+ * chosen.  Their energies into E. */
+CONTACT_INLINE void
+fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *c1, double E[2])
+{
+	const double *g0i = f->gs + FR_GS * c0->i, *g0j = f->gs + FR_GS * (size_t)c0->j;
+	const double *g1i = f->gs + FR_GS * c1->i, *g1j = f->gs + FR_GS * (size_t)c1->j;
+	fr_v2 du[3], Oi[3], Oj[3], n[3], li[3], lj[3], us[3], t[3], q[3], sq[3], dn, qq, qn, Ot, m, es, et, e;
+	fr_v2 k = {c0->k, c1->k}, kt = {c0->kt, c1->kt}, qmax = {c0->qmax, c1->qmax}, mp = {c0->mp, c1->mp};
+	struct fr_contact *c;
+	int a, L;
+
+	for (a = 0; a < 3; a++) {
+		fr_v2 xi = {g0i[a], g1i[a]}, xj = {g0j[a], g1j[a]};
+		du[a] = xi - xj;
+		Oi[a] = (fr_v2){g0i[3 + a], g1i[3 + a]};
+		Oj[a] = (fr_v2){g0j[3 + a], g1j[3 + a]};
+		n[a] = (fr_v2){c0->n[a], c1->n[a]};
+		li[a] = (fr_v2){c0->li[a], c1->li[a]};
+		lj[a] = (fr_v2){c0->lj[a], c1->lj[a]};
+	}
+	dn = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
+	FR_V2_CROSS(Oi, li, t);
+	for (a = 0; a < 3; a++)
+		us[a] = du[a] - dn * n[a] + t[a];
+	FR_V2_CROSS(Oj, lj, t);
+	for (a = 0; a < 3; a++)
+		us[a] -= t[a];
+	for (a = 0; a < 3; a++)
+		q[a] = (fr_v2){c0->qp[a], c1->qp[a]} - k * us[a];
+	qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+	qn = (fr_v2){sqrt(qq[0]), sqrt(qq[1])};
+	for (a = 0; a < 3; a++)
+		sq[a] = qmax * q[a] / qn;
+	Ot = (Oi[0] * n[0] + Oi[1] * n[1] + Oi[2] * n[2]) - (Oj[0] * n[0] + Oj[1] * n[1] + Oj[2] * n[2]);
+	m = mp - kt * Ot;
+	for (L = 0; L < 2; L++) {
+		int stick = qn[L] <= qmax[L];
+		c = L ? c1 : c0;
+		c->qtrial = qn[L];
+		for (a = 0; a < 3; a++)
+			c->Q[a] = stick ? q[a][L] : sq[a][L];
+		es[L] = clamp_potential(qn[L], c->qmax) - c->pp;
+		c->M = fabs(m[L]) <= c->mmax ? m[L] : (m[L] > 0 ? c->mmax : -c->mmax);
+		et[L] = clamp_potential(fabs(m[L]), c->mmax) - c->mpp;
+	}
+	e = es / (2 * k) + et / (2 * kt);
+	E[0] = e[0];
+	E[1] = e[1];
+}
+#endif
+
 /* Grains g0..g1 of f->gs at x: the translation x - x0 and Omega = (R Omega) / R, once a grain
  * rather than once a contact (the same operations, so the same bytes). */
 static void
@@ -438,9 +499,29 @@ fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0,
     const enum fr_rule rule)
 {
 	double Eb = 0;
-	size_t k;
+	size_t k = f->row_first[i0];
 
-	for (k = f->row_first[i0]; k < f->row_first[i1]; k++) {
+#if defined(__GNUC__)
+	if (rule == FR_RETURN_MAP)
+		for (; k + 1 < f->row_first[i1]; k += 2) {
+			struct fr_contact *c = &f->c[k], *c1 = c + 1;
+			double E2[2];
+			fr_pair2(f, c, c1, E2);
+			Eb += E2[0];
+			Eb += E2[1];
+			if (g) {
+				if ((size_t)c->j < g1)
+					fr_add_ij(s, g, c, c->Q, c->M);
+				else
+					fr_add_i(s, g, c, c->Q, c->M);
+				if ((size_t)c1->j < g1)
+					fr_add_ij(s, g, c1, c1->Q, c1->M);
+				else
+					fr_add_i(s, g, c1, c1->Q, c1->M);
+			}
+		}
+#endif
+	for (; k < f->row_first[i1]; k++) {
 		struct fr_contact *c = &f->c[k];
 		Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 0, rule);
 		if (g) {
