@@ -53,4 +53,17 @@ void par_axpy(double *y, double f, const double *x, size_t n);
 /* y[k] = f x[k]. */
 void par_scale(double *y, double f, const double *x, size_t n);
 
+/* Fused passes for the minimisers, each the same bytes as the plain functions one after the
+ * other (the same operations on each element, the sums by par_dot's blocks in order):
+ *  - par_neg_dot: y[k] = -x[k], then par_dot(z, y, n);
+ *  - par_axpy_scale_dot: y[k] = c (y[k] + f x[k]) (par_axpy then par_scale; c = 1 multiplies
+ *    exactly), then par_dot(z, y, n);
+ *  - par_diff_dots: s[k] = a[k] - b[k], y[k] = u[k] - v[k], then *sy = par_dot(s, y, n) and
+ *    *yy = par_dot(y, y, n).
+ * z must not overlap y. */
+double par_neg_dot(double *y, const double *x, const double *z, size_t n);
+double par_axpy_scale_dot(double *y, double f, const double *x, double c, const double *z, size_t n);
+void par_diff_dots(double *s, const double *a, const double *b, double *y, const double *u, const double *v, size_t n,
+    double *sy, double *yy);
+
 #endif

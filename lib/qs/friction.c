@@ -12,6 +12,25 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* doubles per grain in f->gs: x - x0 (3), Omega (3) */
+#define FR_GS 6
+
+/* q0 = a0 / b0 and q1 = a1 / b1: with GCC and clang as one two-lane division (each lane the
+ * correctly rounded quotient, so the same bytes as two divisions, at the cost of one). */
+#if defined(__GNUC__)
+typedef double fr_v2 __attribute__((vector_size(16)));
+#define FR_DIV2(q0, q1, a0, a1, b0, b1) do { \
+		fr_v2 fr_n_ = {(a0), (a1)}, fr_d_ = {(b0), (b1)}, fr_q_ = fr_n_ / fr_d_; \
+		(q0) = fr_q_[0]; \
+		(q1) = fr_q_[1]; \
+	} while (0)
+#else
+#define FR_DIV2(q0, q1, a0, a1, b0, b1) do { \
+		(q0) = (a0) / (b0); \
+		(q1) = (a1) / (b1); \
+	} while (0)
+#endif
+
 void
 fr_init(struct qs_friction *f, enum fr_rule rule)
 {
@@ -24,6 +43,7 @@ fr_free(struct qs_friction *f)
 {
 	free(f->c);
 	free(f->x0);
+	free(f->gs);
 	free(f->row_first), free(f->wall_first), free(f->col_first), free(f->col_k), free(f->blk);
 	memset(f, 0, sizeof *f);
 }
@@ -102,6 +122,8 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 			M0 = M0 > 0 ? c->mmax : -c->mmax;
 	}
 	c->mp = M0;
+	c->pp = vec3_dot(c->qp, c->qp);
+	c->mpp = c->mp * c->mp;
 	memcpy(c->Q, c->qp, sizeof c->Q);
 	c->M = c->mp;
 }
@@ -220,10 +242,12 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 		f->c = c;
 		f->cap = gc.n;
 	}
-	if (f->ngrains != p->n || !f->x0) {
+	if (f->ngrains != p->n || !f->x0 || !f->gs) {
 		free(f->x0);
+		free(f->gs);
 		f->x0 = malloc((p->n ? 3 * p->n : 1) * sizeof *f->x0);
-		if (!f->x0) {
+		f->gs = malloc((p->n ? FR_GS * p->n : 1) * sizeof *f->gs);
+		if (!f->x0 || !f->gs) {
 			contacts_free(&gc);
 			msg_seterr("out of memory");
 			return -1;
@@ -256,26 +280,22 @@ clamp_potential(double s, double lim)
 }
 
 /* Contact c at x: its force Q on i, couple M on i about n and elastic trial |Q^p - k u_s|
- * into Q, M, qtrial; returns its energy.  Reads only x and c's frozen data, so a thread may
- * evaluate a contact that another owns (fr_energy's gathers). */
-static inline double
-fr_contact_eval(const struct qs_friction *f, const struct qs_system *s, const double *x, const struct fr_contact *c,
-    double Q[3], double *M, double *qtrial)
+ * into Q, M, qtrial; returns its energy.  Reads only f->gs (x - x0 and Omega per grain, from
+ * fr_grains) and c's frozen data, so a thread may evaluate a contact that another owns
+ * (fr_energy's gathers).  wall (c is a wall contact) and rule (f->rule) are constants at
+ * each call, so that each kind compiles without the others' branches. */
+CONTACT_INLINE double
+fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double Q[3], double *M, double *qtrial,
+    const int wall, const enum fr_rule rule)
 {
-	const double *r = s->p->r, *x0 = f->x0;
-	const double *w = x + 3 * s->n;
-	size_t i = c->i, j = c->j >= 0 ? (size_t)c->j : 0;
-	int wall = PACK_IS_WALL(c->j), a;
-	double du[3], Oi[3], Oj[3] = {0, 0, 0}, us[3], t[3], dn, Ot, q[3], qn, m, E;
+	static const double zero[3] = {0, 0, 0};
+	size_t i = c->i, j = wall ? 0 : (size_t)c->j;
+	int a;
+	const double *gi = f->gs + FR_GS * i, *gj = f->gs + FR_GS * j, *Oi = gi + 3, *Oj = wall ? zero : gj + 3;
+	double du[3], us[3], t[3], dn, Ot, q[3], qn, m, E, Et, es, et;
 
-	for (a = 0; a < 3; a++) {
-		du[a] = x[3 * i + a] - x0[3 * i + a];
-		Oi[a] = w[3 * i + a] / r[i];
-		if (!wall) {
-			du[a] -= x[3 * j + a] - x0[3 * j + a];
-			Oj[a] = w[3 * j + a] / r[j];
-		}
-	}
+	for (a = 0; a < 3; a++)
+		du[a] = wall ? gi[a] : gi[a] - gj[a];
 	/* u_s = T du + Omega_i x R_ij - Omega_j x R_ji (walls translate along their normal) */
 	dn = vec3_dot(du, c->n);
 	vec3_cross(Oi, c->li, t);
@@ -290,16 +310,14 @@ fr_contact_eval(const struct qs_friction *f, const struct qs_system *s, const do
 		q[a] = c->qp[a] - c->k * us[a];
 	qn = vec3_norm(q);
 	*qtrial = qn;
-	if (qn <= c->qmax) {
-		memcpy(Q, q, sizeof q);
-		E = (qn * qn - vec3_dot(c->qp, c->qp)) / (2 * c->k);
-	} else if (f->rule == FR_RETURN_MAP) {
-		for (a = 0; a < 3; a++)
-			Q[a] = c->qmax * q[a] / qn;
-		E = (clamp_potential(qn, c->qmax) - vec3_dot(c->qp, c->qp)) / (2 * c->k);
-	} else {
+	/* torsion: Omega_t = (Omega_i - Omega_j) . n, the same clamp in one dimension */
+	Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
+	m = c->mp - c->kt * Ot;
+	*M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
+	et = clamp_potential(fabs(m), c->mmax) - c->mpp;
+	if (rule == FR_PAPER && qn > c->qmax) {
 		/* F (6)-(7b): the stiffness reduced so that |Q^p - k u_s| = Q_max */
-		double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = vec3_dot(c->qp, c->qp);
+		double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = c->pp;
 		double rad = cq * cq + c->qmax * c->qmax - pp, kr = rad > 0 ? (cq + sqrt(rad)) / un : 0;
 		for (a = 0; a < 3; a++)
 			Q[a] = c->qp[a] - kr * us[a];
@@ -308,18 +326,105 @@ fr_contact_eval(const struct qs_friction *f, const struct qs_system *s, const do
 			for (a = 0; a < 3; a++)
 				Q[a] *= c->qmax / qn;
 		E = -vec3_dot(c->qp, us) + 0.5 * kr * vec3_dot(us, us);
+		E += et / (2 * c->kt);
+		return E;
 	}
-	/* torsion: Omega_t = (Omega_i - Omega_j) . n, the same clamp in one dimension */
-	Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
-	m = c->mp - c->kt * Ot;
-	*M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
-	E += (clamp_potential(fabs(m), c->mmax) - c->mp * c->mp) / (2 * c->kt);
-	return E;
+	if (qn <= c->qmax) {
+		memcpy(Q, q, sizeof q);
+		es = qn * qn - c->pp;
+	} else {
+		/* the return map: Q = Q_max q / |q| */
+		FR_DIV2(Q[0], Q[1], c->qmax * q[0], c->qmax * q[1], qn, qn);
+		Q[2] = c->qmax * q[2] / qn;
+		es = clamp_potential(qn, c->qmax) - c->pp;
+	}
+	/* E = es / (2 k*) + et / (2 k*_t), in that order */
+	FR_DIV2(E, Et, es, et, 2 * c->k, 2 * c->kt);
+	return E + Et;
+}
+
+#if defined(__GNUC__)
+#define FR_V2_CROSS(a, b, c) do { \
+		(c)[0] = (a)[1] * (b)[2] - (a)[2] * (b)[1]; \
+		(c)[1] = (a)[2] * (b)[0] - (a)[0] * (b)[2]; \
+		(c)[2] = (a)[0] * (b)[1] - (a)[1] * (b)[0]; \
+	} while (0)
+
+/* fr_contact_eval of two pairs under the return map at once, contact c0 in lane 0 and c1 in
+ * lane 1: lane by lane the same operations in the same order (IEEE arithmetic on each
+ * lane, no contraction), so the same bytes; both branches of the clamp are computed and one
+ * chosen.  Their energies into E. */
+CONTACT_INLINE void
+fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *c1, double E[2])
+{
+	const double *g0i = f->gs + FR_GS * c0->i, *g0j = f->gs + FR_GS * (size_t)c0->j;
+	const double *g1i = f->gs + FR_GS * c1->i, *g1j = f->gs + FR_GS * (size_t)c1->j;
+	fr_v2 du[3], Oi[3], Oj[3], n[3], li[3], lj[3], us[3], t[3], q[3], sq[3], dn, qq, qn, Ot, m, es, et, e;
+	fr_v2 k = {c0->k, c1->k}, kt = {c0->kt, c1->kt}, qmax = {c0->qmax, c1->qmax}, mp = {c0->mp, c1->mp};
+	struct fr_contact *c;
+	int a, L;
+
+	for (a = 0; a < 3; a++) {
+		fr_v2 xi = {g0i[a], g1i[a]}, xj = {g0j[a], g1j[a]};
+		du[a] = xi - xj;
+		Oi[a] = (fr_v2){g0i[3 + a], g1i[3 + a]};
+		Oj[a] = (fr_v2){g0j[3 + a], g1j[3 + a]};
+		n[a] = (fr_v2){c0->n[a], c1->n[a]};
+		li[a] = (fr_v2){c0->li[a], c1->li[a]};
+		lj[a] = (fr_v2){c0->lj[a], c1->lj[a]};
+	}
+	dn = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
+	FR_V2_CROSS(Oi, li, t);
+	for (a = 0; a < 3; a++)
+		us[a] = du[a] - dn * n[a] + t[a];
+	FR_V2_CROSS(Oj, lj, t);
+	for (a = 0; a < 3; a++)
+		us[a] -= t[a];
+	for (a = 0; a < 3; a++)
+		q[a] = (fr_v2){c0->qp[a], c1->qp[a]} - k * us[a];
+	qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+	qn = (fr_v2){sqrt(qq[0]), sqrt(qq[1])};
+	for (a = 0; a < 3; a++)
+		sq[a] = qmax * q[a] / qn;
+	Ot = (Oi[0] * n[0] + Oi[1] * n[1] + Oi[2] * n[2]) - (Oj[0] * n[0] + Oj[1] * n[1] + Oj[2] * n[2]);
+	m = mp - kt * Ot;
+	for (L = 0; L < 2; L++) {
+		int stick = qn[L] <= qmax[L];
+		c = L ? c1 : c0;
+		c->qtrial = qn[L];
+		for (a = 0; a < 3; a++)
+			c->Q[a] = stick ? q[a][L] : sq[a][L];
+		es[L] = clamp_potential(qn[L], c->qmax) - c->pp;
+		c->M = fabs(m[L]) <= c->mmax ? m[L] : (m[L] > 0 ? c->mmax : -c->mmax);
+		et[L] = clamp_potential(fabs(m[L]), c->mmax) - c->mpp;
+	}
+	e = es / (2 * k) + et / (2 * kt);
+	E[0] = e[0];
+	E[1] = e[1];
+}
+#endif
+
+/* Grains g0..g1 of f->gs at x: the translation x - x0 and Omega = (R Omega) / R, once a grain
+ * rather than once a contact (the same operations, so the same bytes). */
+static void
+fr_grains(struct qs_friction *f, const struct qs_system *s, const double *x, size_t g0, size_t g1)
+{
+	const double *r = s->p->r, *x0 = f->x0, *w = x + 3 * s->n;
+	size_t i;
+	int a;
+
+	for (i = g0; i < g1; i++) {
+		double *gi = f->gs + FR_GS * i;
+		for (a = 0; a < 3; a++) {
+			gi[a] = x[3 * i + a] - x0[3 * i + a];
+			gi[3 + a] = w[3 * i + a] / r[i];
+		}
+	}
 }
 
 /* The gradient of contact c with force Q and couple M: dPi/du_i = -Q, dPi/dOmega_i =
  * -(R_ij x Q) - M n, scaled by 1/R_i; on j the opposite force and its own lever arm. */
-static inline void
+CONTACT_INLINE void
 fr_add_i(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
 {
 	size_t i = c->i;
@@ -333,7 +438,7 @@ fr_add_i(const struct qs_system *s, double *g, const struct fr_contact *c, const
 	}
 }
 
-static inline void
+CONTACT_INLINE void
 fr_add_j(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
 {
 	size_t j = (size_t)c->j;
@@ -345,6 +450,95 @@ fr_add_j(const struct qs_system *s, double *g, const struct fr_contact *c, const
 		gj[a] += Q[a];
 		gwj[a] += (mj[a] + M * c->n[a]) / rj;
 	}
+}
+
+/* fr_add_i and fr_add_j of a pair in one (the same operations, the six divisions two by two). */
+CONTACT_INLINE void
+fr_add_ij(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
+{
+	size_t i = c->i, j = (size_t)c->j;
+	double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i, *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j;
+	double mi[3], mj[3], ri = s->p->r[i], rj = s->p->r[j], u[6];
+	int a;
+
+	vec3_cross(c->li, Q, mi);
+	vec3_cross(c->lj, Q, mj);
+	FR_DIV2(u[0], u[1], mi[0] + M * c->n[0], mi[1] + M * c->n[1], ri, ri);
+	FR_DIV2(u[2], u[3], mi[2] + M * c->n[2], mj[0] + M * c->n[0], ri, rj);
+	FR_DIV2(u[4], u[5], mj[1] + M * c->n[1], mj[2] + M * c->n[2], rj, rj);
+	for (a = 0; a < 3; a++) {
+		gi[a] -= Q[a];
+		gwi[a] -= u[a];
+	}
+	for (a = 0; a < 3; a++) {
+		gj[a] += Q[a];
+		gwj[a] += u[3 + a];
+	}
+}
+
+/* What the rows of grains below g0 (other threads') scatter into grains g0 <= j < g1: the
+ * pairs (m < g0, j) in ascending m, computed as the rows compute them. */
+CONTACT_INLINE void
+fr_gather(const struct qs_friction *f, const struct qs_system *s, double *g, size_t g0, size_t g1,
+    const enum fr_rule rule)
+{
+	size_t j, k;
+
+	for (j = g0; j < g1; j++)
+		for (k = f->col_first[j]; k < f->col_first[j + 1] && f->c[f->col_k[k]].i < g0; k++) {
+			const struct fr_contact *c = &f->c[f->col_k[k]];
+			double Q[3], M, qt;
+			fr_contact_eval(f, c, Q, &M, &qt, 0, rule);
+			fr_add_j(s, g, c, Q, M);
+		}
+}
+
+/* Block b's contacts (grains i0 <= i < i1): its pairs, then its walls; returns their energy. */
+CONTACT_INLINE double
+fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0, size_t i1, size_t g1,
+    const enum fr_rule rule)
+{
+	double Eb = 0;
+	size_t k = f->row_first[i0];
+
+#if defined(__GNUC__)
+	if (rule == FR_RETURN_MAP)
+		for (; k + 1 < f->row_first[i1]; k += 2) {
+			struct fr_contact *c = &f->c[k], *c1 = c + 1;
+			double E2[2];
+			fr_pair2(f, c, c1, E2);
+			Eb += E2[0];
+			Eb += E2[1];
+			if (g) {
+				if ((size_t)c->j < g1)
+					fr_add_ij(s, g, c, c->Q, c->M);
+				else
+					fr_add_i(s, g, c, c->Q, c->M);
+				if ((size_t)c1->j < g1)
+					fr_add_ij(s, g, c1, c1->Q, c1->M);
+				else
+					fr_add_i(s, g, c1, c1->Q, c1->M);
+			}
+		}
+#endif
+	for (; k < f->row_first[i1]; k++) {
+		struct fr_contact *c = &f->c[k];
+		Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 0, rule);
+		if (g) {
+			if ((size_t)c->j < g1) {
+				fr_add_ij(s, g, c, c->Q, c->M);
+			} else {
+				fr_add_i(s, g, c, c->Q, c->M);
+			}
+		}
+	}
+	for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
+		struct fr_contact *c = &f->c[k];
+		Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 1, rule);
+		if (g)
+			fr_add_i(s, g, c, c->Q, c->M);
+	}
+	return Eb;
 }
 
 /* The friction term on threads, with the same bytes for any number of them (base/par.h):
@@ -362,37 +556,22 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 
 #pragma omp parallel if (n >= PAR_MIN && par_threads() > 1)
 	{
-		size_t T = (size_t)par_team(), t = (size_t)par_tid(), b, j, k;
+		size_t T = (size_t)par_team(), t = (size_t)par_tid(), b;
 		size_t b0 = nb * t / T, b1 = nb * (t + 1) / T;
 		size_t g0 = b0 * bl < n ? b0 * bl : n, g1 = b1 * bl < n ? b1 * bl : n;
 
-		if (g && g0 > 0)
-			for (j = g0; j < g1; j++)
-				for (k = f->col_first[j]; k < f->col_first[j + 1] && f->c[f->col_k[k]].i < g0; k++) {
-					const struct fr_contact *c = &f->c[f->col_k[k]];
-					double Q[3], M, qt;
-					fr_contact_eval(f, s, x, c, Q, &M, &qt);
-					fr_add_j(s, g, c, Q, M);
-				}
+		fr_grains(f, s, x, g0, g1);
+#pragma omp barrier
+		if (g && g0 > 0) {
+			if (f->rule == FR_RETURN_MAP)
+				fr_gather(f, s, g, g0, g1, FR_RETURN_MAP);
+			else
+				fr_gather(f, s, g, g0, g1, FR_PAPER);
+		}
 		for (b = b0; b < b1; b++) {
 			size_t i0 = b * bl, i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
-			double Eb = 0;
-			for (k = f->row_first[i0]; k < f->row_first[i1]; k++) {
-				struct fr_contact *c = &f->c[k];
-				Eb += fr_contact_eval(f, s, x, c, c->Q, &c->M, &c->qtrial);
-				if (g) {
-					fr_add_i(s, g, c, c->Q, c->M);
-					if ((size_t)c->j < g1)
-						fr_add_j(s, g, c, c->Q, c->M);
-				}
-			}
-			for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
-				struct fr_contact *c = &f->c[k];
-				Eb += fr_contact_eval(f, s, x, c, c->Q, &c->M, &c->qtrial);
-				if (g)
-					fr_add_i(s, g, c, c->Q, c->M);
-			}
-			f->blk[b] = Eb;
+			f->blk[b] = f->rule == FR_RETURN_MAP ? fr_block(f, s, g, i0, i1, g1, FR_RETURN_MAP) :
+			                                       fr_block(f, s, g, i0, i1, g1, FR_PAPER);
 		}
 	}
 	for (q = 0; q < nb; q++)

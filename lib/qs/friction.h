@@ -44,6 +44,7 @@ struct fr_contact {
 	double li[3], lj[3];	/* lever arms centre -> contact of i and of j (R_ij, R_ji) */
 	double k, qmax, qp[3];	/* stick stiffness, sliding limit, reference force on i */
 	double kt, mmax, mp;	/* torsion: stiffness, limit, reference couple on i about n */
+	double pp, mpp;		/* |Q^p|^2 and (M^p)^2, for the energy */
 	double Q[3], M;		/* force and couple on i at the last evaluation */
 	double qtrial;		/* |Q^p - k* u_s| at the last evaluation (the elastic trial) */
 	double Es, Rs;		/* Hertz E* and R* of the pair (for its normal force at the commit) */
@@ -53,6 +54,7 @@ struct qs_friction {
 	size_t n, cap;
 	struct fr_contact *c;
 	double *x0;		/* reference centres (3N) */
+	double *gs;		/* per grain at an evaluation, FR_GS apart: x - x0, then Omega */
 	/* the index of the contacts (fr_begin), for the threads: per grain i the range of the
 	 * pairs (i, j) and of its walls in c (CSR, n + 1 offsets each), and per grain j the
 	 * pairs (m < j, j) ascending (col_first, col_k) */

@@ -76,6 +76,8 @@ struct qs_minimizer {
 	long npos;
 	/* lbfgs */
 	double *S, *Y, *rho, *al;
+	double *sy, *yy;	/* s.y and y.y of what each slot of S, Y holds */
+	double dg;		/* d.g of the direction lbfgs_direction made */
 	int head, count;
 	/* newton */
 	struct qs_hessian H;
@@ -145,17 +147,20 @@ dphi(double alpha, void *vctx)
 	return dot(w->gt, w->d, w->n3);
 }
 
-/* One-dimensional minimisation along w->d from x: bracket the root of dPi/dalpha (doubling
+/* One-dimensional minimisation along w->d from x (d0: g.d there, or NAN to compute it): bracket the root of dPi/dalpha (doubling
  * from the previous step, never beyond the cap), then Brent.  On return xt/gt hold the
  * accepted point.  Returns alpha, or -1 on error. */
 static double
-line_search(struct work *w, const double *x, double guess, double amax, double sigma, gsl_root_fsolver *solver)
+line_search(struct work *w, const double *x, double guess, double amax, double sigma, gsl_root_fsolver *solver,
+    double d0)
 {
 	struct ls_ctx c = {w, x, 0, 0, 0};
 	gsl_function F = {dphi, &c};
-	double d0 = dot(w->g, w->d, w->n3), lo = 0, hi, dhi;
+	double lo = 0, hi, dhi;
 	int it;
 
+	if (isnan(d0))
+		d0 = dot(w->g, w->d, w->n3);
 	hi = fmin(guess, amax);
 	for (;;) {
 		dhi = dphi(hi, &c);
@@ -281,7 +286,7 @@ cg_iterate(struct qs_minimizer *m)
 	size_t k;
 
 	amax = alpha_cap(w, w->d, mp->cap);
-	alpha = line_search(w, m->x, m->step > 0 ? 2 * m->step : amax, amax, mp->ls_sigma, m->solver);
+	alpha = line_search(w, m->x, m->step > 0 ? 2 * m->step : amax, amax, mp->ls_sigma, m->solver, NAN);
 	if (alpha < 0)
 		return -1;
 	m->step = alpha;
@@ -398,48 +403,71 @@ lbfgs_alloc(struct qs_minimizer *m)
 	m->Y = malloc(mm * n3 * sizeof *m->Y);
 	m->rho = malloc(mm * sizeof *m->rho);
 	m->al = malloc(mm * sizeof *m->al);
-	if (!m->S || !m->Y || !m->rho || !m->al) {
+	m->sy = malloc(mm * sizeof *m->sy);
+	m->yy = malloc(mm * sizeof *m->yy);
+	if (!m->S || !m->Y || !m->rho || !m->al || !m->sy || !m->yy) {
 		msg_seterr("out of memory for L-BFGS");
 		return -1;
 	}
 	return 0;
 }
 
-/* d = -H g by the two-loop recursion over the stored pairs. */
+/* d = -H g by the two-loop recursion over the stored pairs, each axpy fused with the dot
+ * product that follows it (par.h: the same bytes as the plain passes), H0's gamma from the
+ * dot products of the newest pair taken when it was stored; leaves d.g in m->dg. */
 static void
 lbfgs_direction(struct qs_minimizer *m)
 {
 	struct work *w = &m->w;
-	int mm = (int)m->mp.lbfgs_m, q;
+	int mm = (int)m->mp.lbfgs_m, q, c, cn;
 	size_t n3 = w->n3, k;
-	double gamma;
+	double gamma, t;
 
-#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN_VEC)
-	for (k = 0; k < n3; k++)
-		w->d[k] = -w->g[k];
-	for (q = 0; q < m->count; q++) {
-		int c = (m->head - 1 - q + mm) % mm;
-		m->al[c] = m->rho[c] * dot(m->S + (size_t)c * n3, w->d, n3);
-		par_axpy(w->d, -m->al[c], m->Y + (size_t)c * n3, n3);
-	}
-	if (m->count > 0) {
-		int c = (m->head - 1 + mm) % mm;
-		gamma = dot(m->S + (size_t)c * n3, m->Y + (size_t)c * n3, n3) /
-		    dot(m->Y + (size_t)c * n3, m->Y + (size_t)c * n3, n3);
-	} else {
+	if (m->count == 0) {
 		/* first step: as far as the cap allows along -g */
 		gamma = alpha_cap(w, w->g, m->mp.cap);
+#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN_VEC)
+		for (k = 0; k < n3; k++)
+			w->d[k] = -w->g[k];
+		par_scale(w->d, gamma, w->d, n3);
+		m->dg = dot(w->d, w->g, n3);
+	} else {
+		c = (m->head - 1 + mm) % mm;
+		gamma = m->sy[c] / m->yy[c];
+		/* first loop, newest to oldest: al_c = rho_c s_c.d, d -= al_c y_c; the last axpy
+		 * with the scaling by gamma and the second loop's first dot */
+		t = par_neg_dot(w->d, w->g, m->S + (size_t)c * n3, n3);
+		for (q = 0; q < m->count; q++) {
+			c = (m->head - 1 - q + mm) % mm;
+			m->al[c] = m->rho[c] * t;
+			if (q + 1 < m->count) {
+				cn = (m->head - 2 - q + mm) % mm;
+				t = par_axpy_scale_dot(w->d, -m->al[c], m->Y + (size_t)c * n3, 1, m->S + (size_t)cn * n3, n3);
+			} else {
+				cn = (m->head - m->count + mm) % mm;	/* the oldest */
+				t = par_axpy_scale_dot(w->d, -m->al[c], m->Y + (size_t)c * n3, gamma, m->Y + (size_t)cn * n3, n3);
+			}
+		}
+		/* second loop, oldest to newest: b = rho_c y_c.d, d += (al_c - b) s_c; the last
+		 * axpy with d.g */
+		for (q = m->count - 1; q >= 0; q--) {
+			double b;
+			c = (m->head - 1 - q + mm) % mm;
+			b = m->rho[c] * t;
+			if (q > 0) {
+				cn = (m->head - q + mm) % mm;
+				t = par_axpy_scale_dot(w->d, m->al[c] - b, m->S + (size_t)c * n3, 1, m->Y + (size_t)cn * n3, n3);
+			} else {
+				t = par_axpy_scale_dot(w->d, m->al[c] - b, m->S + (size_t)c * n3, 1, w->g, n3);
+			}
+		}
+		m->dg = t;
 	}
-	par_scale(w->d, gamma, w->d, n3);
-	for (q = m->count - 1; q >= 0; q--) {
-		int c = (m->head - 1 - q + mm) % mm;
-		double b = m->rho[c] * dot(m->Y + (size_t)c * n3, w->d, n3);
-		par_axpy(w->d, m->al[c] - b, m->S + (size_t)c * n3, n3);
-	}
-	if (dot(w->d, w->g, n3) >= 0) {	/* not downhill: forget the history */
+	if (m->dg >= 0) {	/* not downhill: forget the history */
 		m->count = 0;
 		for (k = 0; k < n3; k++)
 			w->d[k] = -w->g[k] * alpha_cap(w, w->g, m->mp.cap);
+		m->dg = NAN;	/* line_search takes d.g itself */
 	}
 }
 
@@ -448,24 +476,21 @@ lbfgs_iterate(struct qs_minimizer *m)
 {
 	struct work *w = &m->w;
 	int mm = (int)m->mp.lbfgs_m;
-	size_t n3 = w->n3, k;
+	size_t n3 = w->n3;
 	double amax, alpha, sy = 0, yy = 0, *x = m->x;
 
 	lbfgs_direction(m);
 	amax = alpha_cap(w, w->d, m->mp.cap);
-	alpha = line_search(w, x, 1.0, amax, 0.9, m->solver);
+	alpha = line_search(w, x, 1.0, amax, 0.9, m->solver, m->dg);
 	if (alpha < 0)
 		return -1;
-	/* new pair s = alpha d, y = g_new - g */
+	/* new pair s = alpha d, y = g_new - g, and their s.y, y.y in the same pass */
 	{
 		double *S = m->S + (size_t)m->head * n3, *Y = m->Y + (size_t)m->head * n3;
-#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN_VEC)
-		for (k = 0; k < n3; k++) {
-			S[k] = w->xt[k] - x[k];
-			Y[k] = w->gt[k] - w->g[k];
-		}
-		sy = dot(S, Y, n3);
-		yy = dot(Y, Y, n3);
+		par_diff_dots(S, w->xt, x, Y, w->gt, w->g, n3, &sy, &yy);
+		/* the slot holds the new pair even when it is not kept (below) */
+		m->sy[m->head] = sy;
+		m->yy[m->head] = yy;
 	}
 	if (sy > 1e-300 && yy > 0) {
 		m->rho[m->head] = 1 / sy;
@@ -636,7 +661,7 @@ newton_iterate(struct qs_minimizer *m)
 	newton_precond(m);
 	newton_direction(m);
 	amax = alpha_cap(w, w->d, m->mp.cap);
-	alpha = line_search(w, m->x, 1.0, amax, 0.9, m->solver);
+	alpha = line_search(w, m->x, 1.0, amax, 0.9, m->solver, NAN);
 	if (alpha < 0)
 		return -1;
 	/* Levenberg: the full step taken, trust the model more; a short one, less */
@@ -697,7 +722,7 @@ qs_minimizer_free(struct qs_minimizer *m)
 		return;
 	w = &m->w;
 	free(w->g), free(w->fmax), free(w->d), free(w->xt), free(w->gt), free(w->v), free(w->ft);
-	free(m->S), free(m->Y), free(m->rho), free(m->al);
+	free(m->S), free(m->Y), free(m->rho), free(m->al), free(m->sy), free(m->yy);
 	free(m->Minv), free(m->r), free(m->z), free(m->q), free(m->Hq);
 	qs_hessian_free(&m->H);
 	if (m->eig)
