@@ -7,6 +7,11 @@
 # force network of a slab of the final pack when gnuplot is installed.
 set -e
 bin=${1:-build/bin}
+# OpenMP threads that wait at a barrier spin for a while before they sleep: GNU OpenMP's
+# default spin makes two threads beside one other busy process 4x slower than alone (packgen
+# 2740: 7.5 s alone, 32.7 s beside a busy loop; 13.6 s on one thread).  A short spin keeps
+# the time alone (7.2 s) and bounds the loss (18.6 s); the bytes do not depend on it.
+export GOMP_SPINCOUNT="${GOMP_SPINCOUNT:-1000}"
 mkdir -p out
 printf '# stage\tseconds\n' >out/times.tsv
 stage() {
