@@ -22,6 +22,7 @@
 #include "pack/pack.h"
 #include "unit.h"
 #include "unit_pack.h"
+#include "unit_min.h"
 
 #include <gsl/gsl_rng.h>
 #include <math.h>
@@ -75,25 +76,6 @@ zero_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, 
 	return 0;
 }
 
-static double
-minimize_from(struct pack *p, const double *x0, enum qs_method m, double tol, double *x, struct qs_min_report *rep,
-    unsigned *cnt)
-{
-	struct qs_system s;
-	struct qs_min_params mp;
-
-	memcpy(x, x0, 3 * p->n * sizeof *x);
-	qs_init(&s, p, 0.3);
-	qs_min_params_default(&mp);
-	mp.method = m;
-	mp.tol = tol;
-	qs_minimize(&s, x, &mp, rep);
-	qs_energy(&s, x, NULL, NULL);
-	qs_coordination(&s, x, cnt);
-	qs_free(&s);
-	return rep->energy;
-}
-
 int
 main(void)
 {
@@ -135,7 +117,7 @@ main(void)
 	random_pack(&p, rng, n, 1e-4, 0.66, 0.04);
 	for (i = 0; i < n; i++)
 		rmean += p.r[i] / n;
-	minimize_from(&p, p.x, QS_CG, 1e-6, x0, &rep, cl);
+	energy_from(&p, p.x, QS_CG, 200000, 1e-6, 0, x0, &rep, cl);
 	for (i = 0, k = 0; i < n; i++)
 		k += cl[i] >= 4;
 	CHECK(rep.status == 0 && k >= 8 * n / 10, "setup: jammed (%zu of %zu grains with >= 4 contacts, Pi = %.3g J)", k, n,
@@ -143,22 +125,14 @@ main(void)
 	load_strain_box(p.box, x0, n, de);
 	for (k = 0; k < n3; k++)
 		x0[k] += 1e-5 * rmean * (2 * gsl_rng_uniform(rng) - 1);
-	El = minimize_from(&p, x0, QS_LBFGS, tol, xl, &rl, cl);
-	En = minimize_from(&p, x0, QS_NEWTON, tol, xn, &rn, cn);
+	El = energy_from(&p, x0, QS_LBFGS, 200000, tol, 0, xl, &rl, cl);
+	En = energy_from(&p, x0, QS_NEWTON, 200000, tol, 0, xn, &rn, cn);
 	CHECK(rn.status == 0 && rn.res_max <= tol && strcmp(rn.stopped_by, "residual") == 0,
 	    "newton converges (status %d, %ld iterations, %ld evaluations, residual %.3g <= %g; lbfgs %ld iterations)",
 	    rn.status, rn.iter, rn.evals, rn.res_max, tol, rl.iter);
 	CHECK(rl.status == 0, "lbfgs converges from the same start (residual %.3g)", rl.res_max);
 	CHECK_CLOSE(En, El, 1e-8, "newton and lbfgs reach the same energy");
-	for (i = 0; i < n; i++) {
-		int a;
-		if (cl[i] == 0 || cn[i] == 0) {
-			rattlers++;
-			continue;
-		}
-		for (a = 0; a < 3; a++)
-			dpos = fmax(dpos, fabs(xl[3 * i + a] - xn[3 * i + a]) / p.r[i]);
-	}
+	dpos = equilibria_apart(&p, xl, xn, cl, cn, &rattlers);
 	CHECK(dpos <= 1e-6, "newton and lbfgs reach the same positions: %.3g R apart (%u rattlers left out)", dpos,
 	    rattlers);
 	pack_free(&p);

@@ -18,6 +18,7 @@
 #include "pack/pack.h"
 #include "unit.h"
 #include "unit_pack.h"
+#include "unit_min.h"
 
 #include <float.h>
 #include <gsl/gsl_randist.h>
@@ -25,30 +26,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static double
-energy_from(struct pack *p, const double *x0, enum qs_method m, long max_iter, double tol, double cap, double *x,
-    struct qs_min_report *rep, unsigned *cnt)
-{
-	struct qs_system s;
-	struct qs_min_params mp;
-
-	memcpy(x, x0, 3 * p->n * sizeof *x);
-	qs_init(&s, p, 0.3);
-	qs_min_params_default(&mp);
-	mp.method = m;
-	mp.max_iter = max_iter;
-	mp.tol = tol;
-	if (cap > 0)
-		mp.cap = cap;
-	qs_minimize(&s, x, &mp, rep);
-	if (cnt) {
-		qs_energy(&s, x, NULL, NULL);
-		qs_coordination(&s, x, cnt);
-	}
-	qs_free(&s);
-	return rep->energy;
-}
 
 /* Largest displacement between two configurations, in units of each grain's radius. */
 static double
@@ -124,15 +101,7 @@ main(void)
 	/* at a residual of 1e-9 the energy sits within about (1e-9)^2 of the minimum, relative; two
 	 * runs into the same minimum agree far below 1e-8 */
 	CHECK_CLOSE(Ec, Ef, 1e-8, "cg and fire reach the same energy");
-	for (i = 0; i < n; i++) {
-		int a;
-		if (cc[i] == 0 || cf[i] == 0) {
-			rattlers++;
-			continue;
-		}
-		for (a = 0; a < 3; a++)
-			dpos = fmax(dpos, fabs(xc[3 * i + a] - xf[3 * i + a]) / p.r[i]);
-	}
+	dpos = equilibria_apart(&p, xc, xf, cc, cf, &rattlers);
 	/* forces off by 1e-9 of the largest contact force move a grain by about 1e-9 h / 1.5 through
 	 * its stiffest contacts and more along soft collective modes; 1e-6 R is 1e-4 of a typical
 	 * overlap, far below the distance between two distinct minima */
