@@ -65,7 +65,7 @@ frictionalize_run(struct pack *p, const struct fric_params *fp, fric_row_fn fn, 
 		return -1;
 	}
 	if (loader_open(&L, p, &fp->lp) || loader_measure(&L, &prev)) {
-		free(ratio);
+		free(ratio), free(shear);
 		loader_close(&L);
 		return -1;
 	}

@@ -419,6 +419,29 @@ normal_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct q
 	return contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_hessian, &a) < 0 ? -1 : 0;
 }
 
+int
+qs_hessian(struct qs_system *s, const double *x, struct qs_hessian *H)
+{
+	int q;
+
+	for (q = 0; q < s->nterms; q++)
+		if (!s->term[q].hessian) {
+			msg_seterr("the term '%s' of the functional has no Hessian: Newton's method is for "
+			    "frictionless systems (--mu 0), or choose another --method", s->term[q].name);
+			return -1;
+		}
+	if (s->layout.rotations) {
+		msg_seterr("the Hessian covers the centres only, and the unknowns include rotations: "
+		    "Newton's method is for frictionless systems (--mu 0)");
+		return -1;
+	}
+	qs_hessian_clear(H);
+	for (q = 0; q < s->nterms; q++)
+		if (s->term[q].hessian(&s->term[q], s, x, H))
+			return -1;
+	return 0;
+}
+
 void
 qs_stiffness(struct qs_system *s, const double *x, double *k)
 {

@@ -112,6 +112,11 @@ void qs_residual(const struct qs_system *s, const double *g, const double *fmax,
  * number of grains moved, 0 with friction, -1 on error (message set). */
 long qs_release_unbraced(struct qs_system *s, double *x);
 
+/* H of every term of s at x, where s was last evaluated (its neighbour list current).
+ * 0, or -1 with the message set (a term without second derivatives, rotations among the
+ * unknowns, out of memory). */
+int qs_hessian(struct qs_system *s, const double *x, struct qs_hessian *H);
+
 /* Wall stresses of the last evaluation: normal force on the two walls of each axis,
  * averaged, over the current wall area (Pa, compression positive). */
 void qs_wall_stress(const struct qs_system *s, double sig[3]);

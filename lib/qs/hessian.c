@@ -1,6 +1,5 @@
 /* hessian: the block-sparse Hessian of Pi over the centres (see hessian.h). */
 #include "qs/hessian.h"
-#include "qs/functional.h"
 #include "base/msg.h"
 
 #include <stdlib.h>
@@ -97,27 +96,4 @@ qs_hessian_mul(const struct qs_hessian *H, const double *v, double *y)
 		yj[1] += A[1] * vi[0] + A[4] * vi[1] + A[7] * vi[2];
 		yj[2] += A[2] * vi[0] + A[5] * vi[1] + A[8] * vi[2];
 	}
-}
-
-int
-qs_hessian(struct qs_system *s, const double *x, struct qs_hessian *H)
-{
-	int q;
-
-	for (q = 0; q < s->nterms; q++)
-		if (!s->term[q].hessian) {
-			msg_seterr("the term '%s' of the functional has no Hessian: Newton's method is for "
-			    "frictionless systems (--mu 0), or choose another --method", s->term[q].name);
-			return -1;
-		}
-	if (s->layout.rotations) {
-		msg_seterr("the Hessian covers the centres only, and the unknowns include rotations: "
-		    "Newton's method is for frictionless systems (--mu 0)");
-		return -1;
-	}
-	qs_hessian_clear(H);
-	for (q = 0; q < s->nterms; q++)
-		if (s->term[q].hessian(&s->term[q], s, x, H))
-			return -1;
-	return 0;
 }

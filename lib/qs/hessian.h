@@ -3,7 +3,7 @@
  * Block storage over the 3N centres: one 3x3 block per grain on the diagonal and one per
  * grain pair in contact, H_ij with i < j (H_ji is its transpose), in the enumerator's order.
  * Each term of Pi that has second derivatives adds its blocks (struct qs_term's hessian);
- * qs_hessian fails when a term has none (today: friction, whose return map's consistent
+ * qs_hessian (functional.h) fails when a term has none (today: friction, whose return map's consistent
  * tangent is not written yet), so Newton's method is for frictionless systems.
  *
  * The normal term's contact at overlap h = r_i + r_j - d along n = (x_i - x_j) / d, with
@@ -16,8 +16,6 @@
 #define QUSGM_HESSIAN_H
 
 #include <stddef.h>
-
-struct qs_system;
 
 struct qs_hessian {
 	size_t n;		/* grains: the matrix is 3n x 3n */
@@ -37,9 +35,5 @@ void qs_hessian_clear(struct qs_hessian *H);
 int qs_hessian_add_pair(struct qs_hessian *H, size_t i, size_t j, const double B[9]);
 /* y = H v (3n each). */
 void qs_hessian_mul(const struct qs_hessian *H, const double *v, double *y);
-/* H of every term of s at x, where s was last evaluated (its neighbour list current).
- * 0, or -1 with the message set (a term without second derivatives, rotations among the
- * unknowns, out of memory). */
-int qs_hessian(struct qs_system *s, const double *x, struct qs_hessian *H);
 
 #endif

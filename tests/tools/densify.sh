@@ -158,7 +158,7 @@ expect_fail "--stress 1e12 (beyond E/100)" 2 '^densify: --stress .*small-strain'
 expect_fail "--stress 1e-300 (below 1e-12 E)" 2 "^densify: --stress 1e-300 Pa is below 1e-12 E of the grains \\(1e-12 E = [0-9.e+-]+ Pa\\)$" --stress 1e-300 loose.pack
 expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --onset 1e4 --stress 5e3 loose.pack
 expect_fail "--tol 2" 2 '^densify: --tol' --tol 2 loose.pack
-expect_fail "--method newton" 2 "^densify: --method: 'newton'" --method newton loose.pack
+expect_fail "--method bfgs" 2 "^densify: --method: 'bfgs'" --method bfgs loose.pack
 expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
 expect_fail "--release-after -1" 2 '^densify: --release-after' --release-after -1 loose.pack
 expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
