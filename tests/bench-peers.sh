@@ -255,7 +255,7 @@ commit=$(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)
 {
 	echo "# qusgm and LIGGGHTS on the same oedometric increments"
 	echo
-	echo "\`make bench-peers\` (tests/bench-peers.sh), $(date -u '+%Y-%m-%d %H:%M UTC'), commit $commit; $cpu, $(getconf _NPROCESSORS_ONLN) cores, each program on one (qusgm OMP_NUM_THREADS=1, $ver serial, no mpirun), the other core busy with another job's tests (CPU times move between runs by tens of per cent on this shared machine; README.md, \"Measured\", gives the range over the runs made when this was written)."
+	echo "\`make bench-peers\` (tests/bench-peers.sh), $(date -u '+%Y-%m-%d %H:%M UTC'), commit $commit; $cpu, $(getconf _NPROCESSORS_ONLN) cores, each program on one (qusgm OMP_NUM_THREADS=1, $ver serial, no mpirun), load average $(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo unknown) at the start (on a shared machine CPU times move between runs by tens of per cent)."
 	echo "From the same frictional pack, $K uniaxial-strain (oedometric) compressions of 1e-4 along z; CPU seconds are user + system."
 	echo
 	awk -v tols="$tols" -v K="$K" -F '\t' '
