@@ -122,6 +122,20 @@ alpha_cap(const struct work *w, const double *d, double cap)
 	return amax;
 }
 
+/* d = -a g with a the largest step the cap allows along -g (one pass for the cap): the
+ * first step of lbfgs, and where a method's own direction is not downhill. */
+static void
+capped_descent(struct work *w, double cap)
+{
+	double a = alpha_cap(w, w->g, cap);
+	size_t k;
+
+#pragma omp parallel for schedule(static) if (w->n3 >= PAR_MIN_VEC)
+	for (k = 0; k < w->n3; k++)
+		w->d[k] = -w->g[k];
+	par_scale(w->d, a, w->d, w->n3);
+}
+
 struct ls_ctx {
 	struct work *w;
 	const double *x;
@@ -420,16 +434,12 @@ lbfgs_direction(struct qs_minimizer *m)
 {
 	struct work *w = &m->w;
 	int mm = (int)m->mp.lbfgs_m, q, c, cn;
-	size_t n3 = w->n3, k;
+	size_t n3 = w->n3;
 	double gamma, t;
 
 	if (m->count == 0) {
 		/* first step: as far as the cap allows along -g */
-		gamma = alpha_cap(w, w->g, m->mp.cap);
-#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN_VEC)
-		for (k = 0; k < n3; k++)
-			w->d[k] = -w->g[k];
-		par_scale(w->d, gamma, w->d, n3);
+		capped_descent(w, m->mp.cap);
 		m->dg = dot(w->d, w->g, n3);
 	} else {
 		c = (m->head - 1 + mm) % mm;
@@ -465,8 +475,7 @@ lbfgs_direction(struct qs_minimizer *m)
 	}
 	if (m->dg >= 0) {	/* not downhill: forget the history */
 		m->count = 0;
-		for (k = 0; k < n3; k++)
-			w->d[k] = -w->g[k] * alpha_cap(w, w->g, m->mp.cap);
+		capped_descent(w, m->mp.cap);
 		m->dg = NAN;	/* line_search takes d.g itself */
 	}
 }
@@ -640,8 +649,7 @@ newton_direction(struct qs_minimizer *m)
 		rz = rz1;
 	}
 	if (dot(w->d, w->g, n3) >= 0)	/* no progress at all: along -g */
-		for (k = 0; k < n3; k++)
-			w->d[k] = -w->g[k] * alpha_cap(w, w->g, m->mp.cap);
+		capped_descent(w, m->mp.cap);
 }
 
 static int
