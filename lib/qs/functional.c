@@ -396,9 +396,10 @@ on_hessian(const struct contact *c, void *vacc)
 		n[u] = c->dx[u] / c->d;
 	/* a wall is a plane: no geometric term */
 	g = PACK_IS_WALL(c->j) ? 0 : P / c->d;
+	/* the upper triangle mirrored, so that H is symmetric to the bit (CG assumes it) */
 	for (u = 0; u < 3; u++)
-		for (v = 0; v < 3; v++)
-			B[3 * u + v] = (k + g) * n[u] * n[v] - (u == v ? g : 0);
+		for (v = u; v < 3; v++)
+			B[3 * u + v] = B[3 * v + u] = (k + g) * n[u] * n[v] - (u == v ? g : 0);
 	for (u = 0; u < 9; u++)
 		a->H->diag[9 * c->i + u] += B[u];
 	if (PACK_IS_WALL(c->j))

@@ -97,6 +97,13 @@ main(void)
 		rmean += p.r[i] / n;
 	qs_init(&s, &p, 0.3);
 	memcpy(x0, p.x, n3 * sizeof *x0);
+	/* the wall blocks are tested too: the pack has grains in contact with its walls */
+	for (i = 0, k = 0; i < n; i++) {
+		int a;
+		for (a = 0; a < 3; a++)
+			k += (x0[3 * i + a] - p.box[a] < p.r[i]) + (p.box[3 + a] - x0[3 * i + a] < p.r[i]);
+	}
+	CHECK(k >= 10, "the random pack has wall contacts (%zu)", k);
 	fd_check(&s, x0, rng, "random pack");
 	for (k = 0; k < n3; k++)
 		x0[k] += 1e-3 * rmean * (2 * gsl_rng_uniform(rng) - 1);
