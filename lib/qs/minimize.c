@@ -638,8 +638,7 @@ newton_direction(struct qs_minimizer *m)
 		}
 		a = rz / qHq;
 		par_axpy(w->d, a, m->q, n3);
-		par_axpy(m->r, -a, m->Hq, n3);
-		rr = dot(m->r, m->r, n3);
+		rr = par_axpy_scale_dot(m->r, -a, m->Hq, 1, m->r, n3);	/* r -= a Hq, then r.r: one pass */
 		if (rr <= tol2)
 			break;
 		precond_apply(m, m->r, m->z);
