@@ -22,7 +22,7 @@
 int
 main(int argc, char **argv)
 {
-	static const enum qs_method methods[] = {QS_CG, QS_FIRE, QS_LBFGS};
+	static const enum qs_method methods[] = {QS_CG, QS_FIRE, QS_LBFGS, QS_NEWTON};
 	struct pack p;
 	double box0[6], *x, strain = 1e-4;
 	size_t m;
