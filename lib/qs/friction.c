@@ -1,6 +1,7 @@
 /* friction: Mindlin-Deresiewicz tangential force and torsion over a frozen increment
  * (see friction.h). */
 #include "qs/friction.h"
+#include "qs/hessian.h"
 #include "contact/contacts.h"
 #include "contact/hertz.h"
 #include "base/msg.h"
@@ -178,6 +179,7 @@ fr_check_history(const struct pack *p)
 
 static double friction_energy(struct qs_term *t, struct qs_system *s, const double *x, double *g, double *fmax);
 static void friction_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k);
+static int friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H);
 
 /* The index of f->c over n grains (see struct qs_friction); the list is contacts_find's:
  * the pairs by i then j, then the walls by grain.  0 or -1. */
@@ -268,7 +270,9 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 		return -1;
 	qs_remove_terms(s);
 	qs_set_rotations(s, 1);
-	return qs_add_term(s, &(struct qs_term){"friction", friction_energy, friction_stiffness, f, NULL});
+	/* the paper's rule has no potential, so no Hessian: Newton's method refuses it */
+	return qs_add_term(s, &(struct qs_term){"friction", friction_energy, friction_stiffness, f,
+	    f->rule == FR_RETURN_MAP ? friction_hessian : NULL});
 }
 
 /* s^2 below the limit, its tangent 2 lim s - lim^2 above: the return map's potential,
@@ -610,6 +614,137 @@ friction_stiffness(struct qs_term *t, struct qs_system *s, const double *x, doub
 		if (c->j >= 0)
 			k[c->j] += c->k + c->kt / (s->p->r[c->j] * s->p->r[c->j]);
 	}
+}
+
+/* C = [l]x s: the matrix of v -> s (l x v). */
+static void
+cross_matrix(const double l[3], double s, double C[9])
+{
+	C[0] = 0, C[1] = -l[2] * s, C[2] = l[1] * s;
+	C[3] = l[2] * s, C[4] = 0, C[5] = -l[0] * s;
+	C[6] = -l[1] * s, C[7] = l[0] * s, C[8] = 0;
+}
+
+/* AB = A B (3x3, row-major); with ta, A^T B. */
+static void
+mat3_mul(const double *A, const double *B, double *AB, int ta)
+{
+	int u, v, w;
+
+	for (u = 0; u < 3; u++)
+		for (v = 0; v < 3; v++) {
+			double sum = 0;
+			for (w = 0; w < 3; w++)
+				sum += (ta ? A[3 * w + u] : A[3 * u + w]) * B[3 * w + v];
+			AB[3 * u + v] = sum;
+		}
+}
+
+/* D += sign S, and with sym S's upper triangle mirrored (S symmetric in exact arithmetic:
+ * H then is symmetric to the bit, as CG assumes). */
+static void
+mat3_add(double *D, const double *S, double sign, int sym)
+{
+	int u, v;
+
+	for (u = 0; u < 3; u++)
+		for (v = 0; v < 3; v++)
+			D[3 * u + v] += sign * (sym && v < u ? S[3 * v + u] : S[3 * u + v]);
+}
+
+/* The return map's consistent tangent (hessian.h): Pi's tangential part is phi_s(q) with
+ * q = Q^p - k* u_s and u_s linear in the unknowns, u_s = T dx_i + C_i w_i - T dx_j + C_j w_j
+ * where w = R Omega, C_i = -[R_ij]x / R_i and C_j = [R_ji]x / R_j (the frozen lever arms).
+ * Its second derivative in u_s is K = k* T while the contact sticks and
+ * K = k* (Q_max / |q|) (T - qh qh^T), qh = q / |q|, while it slides (the disc's boundary:
+ * no stiffness along the slip, the rest scaled down); K lies in the tangent plane, so
+ * T K = K.  The unknowns' blocks are J_a^T K J_b with J = (T, C_i, -T, C_j), and torsion
+ * adds k*_t n n^T / (R_a R_b) (signed) to the rotations while it sticks, nothing while it
+ * slides.  The stick/slip state is x's: the Hessian of a piecewise smooth potential, exact
+ * away from the switches (tests/unit/test_hessian.c checks it by differences of the
+ * gradient).  The unknowns are 2N nodes of three: the centres, then the rotations at N + i;
+ * the blocks coupling a grain's own centre and rotation are summed per grain first, one
+ * block each. */
+static int
+friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H)
+{
+	struct qs_friction *f = t->data;
+	size_t n = s->n, q, i;
+	const double *r = s->p->r;
+	double *cpl = calloc(9 * (n ? n : 1), sizeof *cpl);
+	int st = 0;
+
+	if (!cpl) {
+		msg_seterr("out of memory for the Hessian");
+		return -1;
+	}
+	fr_grains(f, s, x, 0, n);
+	for (q = 0; q < f->n && !st; q++) {
+		const struct fr_contact *c = &f->c[q];
+		int wall = PACK_IS_WALL(c->j), u, v;
+		size_t ci = c->i, cj = wall ? 0 : (size_t)c->j;
+		double Q[3], M, qt, K[9], Ci[9], Cj[9], KC[9], CKC[9], B[9], kt, ri = r[ci], rj = wall ? 1 : r[cj];
+
+		fr_contact_eval(f, c, Q, &M, &qt, wall, FR_RETURN_MAP);
+		if (!(c->qmax > 0)) {
+			memset(K, 0, sizeof K);	/* no limit, no tangential force */
+		} else if (qt <= c->qmax) {
+			for (u = 0; u < 3; u++)
+				for (v = 0; v < 3; v++)
+					K[3 * u + v] = c->k * ((u == v) - c->n[u] * c->n[v]);
+		} else {
+			/* qh = Q / Q_max: the trial's direction */
+			double sc = c->k * c->qmax / qt;
+			for (u = 0; u < 3; u++)
+				for (v = 0; v < 3; v++)
+					K[3 * u + v] = sc * ((u == v) - c->n[u] * c->n[v] -
+					    Q[u] / c->qmax * Q[v] / c->qmax);
+		}
+		kt = fabs(M) < c->mmax ? c->kt : 0;
+		cross_matrix(c->li, -1 / ri, Ci);
+		/* (i, i) += K; (i, N+i) += K C_i; (N+i, N+i) += C_i^T K C_i + kt n n^T / R_i^2 */
+		mat3_add(H->diag + 9 * ci, K, 1, 1);
+		mat3_mul(K, Ci, KC, 0);
+		mat3_add(cpl + 9 * ci, KC, 1, 0);
+		mat3_mul(Ci, KC, CKC, 1);
+		for (u = 0; u < 9; u++)
+			CKC[u] += kt * c->n[u / 3] * c->n[u % 3] / (ri * ri);
+		mat3_add(H->diag + 9 * (n + ci), CKC, 1, 1);
+		if (wall)
+			continue;
+		cross_matrix(c->lj, 1 / rj, Cj);
+		/* (j, j) += K; (j, N+j) -= K C_j; (N+j, N+j) += C_j^T K C_j + kt n n^T / R_j^2 */
+		mat3_add(H->diag + 9 * cj, K, 1, 1);
+		mat3_mul(K, Cj, KC, 0);
+		mat3_add(cpl + 9 * cj, KC, -1, 0);
+		mat3_mul(Cj, KC, CKC, 1);
+		for (u = 0; u < 9; u++)
+			CKC[u] += kt * c->n[u / 3] * c->n[u % 3] / (rj * rj);
+		mat3_add(H->diag + 9 * (n + cj), CKC, 1, 1);
+		/* the pair: (i, j) = -K, (i, N+j) = K C_j, (N+i, j) = -C_i^T K,
+		 * (N+i, N+j) = C_i^T K C_j - kt n n^T / (R_i R_j) */
+		for (u = 0; u < 9; u++)
+			B[u] = -K[u];
+		st |= qs_hessian_add_pair(H, ci, cj, B);
+		st |= qs_hessian_add_pair(H, ci, n + cj, KC);
+		mat3_mul(Ci, K, B, 1);
+		for (u = 0; u < 9; u++)
+			B[u] = -B[u];
+		st |= qs_hessian_add_pair(H, n + ci, cj, B);
+		mat3_mul(Ci, KC, B, 1);
+		for (u = 0; u < 9; u++)
+			B[u] -= kt * c->n[u / 3] * c->n[u % 3] / (ri * rj);
+		st |= qs_hessian_add_pair(H, n + ci, n + cj, B);
+	}
+	for (i = 0; i < n && !st; i++) {
+		int u, nz = 0;
+		for (u = 0; u < 9; u++)
+			nz |= cpl[9 * i + u] != 0;
+		if (nz)
+			st = qs_hessian_add_pair(H, i, n + i, cpl + 9 * i);
+	}
+	free(cpl);
+	return st ? -1 : 0;
 }
 
 /* Hertz normal force of contact c at the pack's current positions (0 when it has opened). */

@@ -427,13 +427,12 @@ qs_hessian(struct qs_system *s, const double *x, struct qs_hessian *H)
 
 	for (q = 0; q < s->nterms; q++)
 		if (!s->term[q].hessian) {
-			msg_seterr("the term '%s' of the functional has no Hessian: Newton's method is for "
-			    "frictionless systems (--mu 0), or choose another --method", s->term[q].name);
+			msg_seterr("the term '%s' of the functional has no Hessian: Newton's method needs "
+			    "every term's (with friction, --rule return-map), or choose another --method", s->term[q].name);
 			return -1;
 		}
-	if (s->layout.rotations) {
-		msg_seterr("the Hessian covers the centres only, and the unknowns include rotations: "
-		    "Newton's method is for frictionless systems (--mu 0)");
+	if (H->n != s->dim / 3) {
+		msg_seterr("the Hessian has %zu nodes of three unknowns, the system %zu unknowns", H->n, s->dim);
 		return -1;
 	}
 	qs_hessian_clear(H);

@@ -1,10 +1,14 @@
-/* hessian: the sparse Hessian of Pi over the grain centres, for Newton's method (minimize.h).
+/* hessian: the sparse Hessian of Pi over the unknowns, for Newton's method (minimize.h).
  *
- * Block storage over the 3N centres: one 3x3 block per grain on the diagonal and one per
- * grain pair in contact, H_ij with i < j (H_ji is its transpose), in the enumerator's order.
- * Each term of Pi that has second derivatives adds its blocks (struct qs_term's hessian);
- * qs_hessian (functional.h) fails when a term has none (today: friction, whose return map's consistent
- * tangent is not written yet), so Newton's method is for frictionless systems.
+ * Block storage over nodes of three unknowns: the N centres (node i), and with friction the N
+ * scaled rotations R Omega after them (node N + i, layout.h), so that the matrix is 3n x 3n
+ * with n = N or 2N nodes.  One 3x3 block per node on the diagonal and a list of off-diagonal
+ * blocks H_ab with a < b (H_ba is its transpose), in the order the terms add them; a node
+ * pair may appear more than once (the normal and the frictional part of a contact), the
+ * product sums them.  Each term of Pi that has second derivatives adds its blocks (struct
+ * qs_term's hessian); qs_hessian (functional.h) fails when a term has none (the paper's
+ * sliding rule, which has no potential).  The friction term's blocks, the return map's
+ * consistent tangent, are described at friction_hessian (friction.c).
  *
  * The normal term's contact at overlap h = r_i + r_j - d along n = (x_i - x_j) / d, with
  * force P = U'(h) and stiffness k = U''(h) (the law's), gives
@@ -18,10 +22,10 @@
 #include <stddef.h>
 
 struct qs_hessian {
-	size_t n;		/* grains: the matrix is 3n x 3n */
+	size_t n;		/* nodes: the matrix is 3n x 3n */
 	double *diag;		/* 9 n: block i row-major at 9 i */
 	size_t np, cap;		/* off-diagonal blocks */
-	size_t *pi, *pj;	/* their grains, i < j */
+	size_t *pi, *pj;	/* their nodes, i < j */
 	double *off;		/* 9 np: H_ij row-major */
 };
 

@@ -93,9 +93,9 @@ loader_open(struct loader *L, struct pack *p, const struct load_params *lp)
 		msg_seterr("the pack has no reference box (run densify first)");
 		return -1;
 	}
-	if (lp->friction && lp->min.method == QS_NEWTON) {
-		msg_seterr("newton is for frictionless loading (the friction term has no Hessian yet): "
-		    "--mu 0, or another --method");
+	if (lp->friction && lp->min.method == QS_NEWTON && lp->rule != FR_RETURN_MAP) {
+		msg_seterr("newton needs the return map's Hessian (the paper's rule has no potential): "
+		    "--rule return-map, or another --method");
 		return -1;
 	}
 	if (qs_init(&L->s, p, lp->skin))

@@ -12,10 +12,12 @@
  *    per-grain displacement cap.
  *  - lbfgs: limited-memory BFGS (m stored steps) with the same capped derivative line
  *    search, trying the quasi-Newton step first and accepting |dPi/dalpha| <= 0.9 |dPi/dalpha(0)|.
- *  - newton: Newton-Krylov on the exact sparse Hessian (hessian.h; frictionless systems
- *    only): each iteration assembles H, solves H d = -g by CG preconditioned with the grains'
- *    3x3 diagonal blocks to |H d + g| <= newton_eta |g|, stopping at negative curvature, and
- *    takes the same capped line search from the full step.
+ *  - newton: Newton-Krylov on the exact sparse Hessian (hessian.h; with friction the return
+ *    map's consistent tangent, not with the paper's rule): each iteration assembles H, adds
+ *    Levenberg damping after short steps, solves H d = -g by CG preconditioned with the
+ *    nodes' 3x3 diagonal blocks to |H d + g| <= newton_eta |g| (Eisenstat-Walker), stopping
+ *    at negative curvature, cuts each grain's part of d to the step cap, and takes the same
+ *    line search from the full step.
  *
  * The default is lbfgs: make bench found it the fastest to the same residual (one 1e-4
  * increment of a 2740-grain pack: 3927 evaluations, fire 11813, cg 37866).

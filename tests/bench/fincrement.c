@@ -58,8 +58,6 @@ main(int argc, char **argv)
 			size_t nc;
 			int st = 0;
 
-			if (fr && methods[m] == QS_NEWTON)
-				continue;	/* the friction term has no Hessian yet (hessian.h) */
 			if (argc == 5 && methods[m] != only)
 				continue;
 			/* a fresh copy of the start: read it again */

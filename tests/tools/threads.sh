@@ -35,6 +35,7 @@ for t in 1 2; do
 	loadtest --threads $t -n 2 --method fire -o F$t.pack f1.pack >F$t.tsv 2>F$t.err
 	loadtest --threads $t -n 2 --method cg --mu 0 -o C$t.pack d1.pack >C$t.tsv 2>C$t.err
 	loadtest --threads $t -n 2 --method newton --mu 0 -o N$t.pack d1.pack >N$t.tsv 2>N$t.err
+	loadtest --threads $t -n 2 --method newton -o M$t.pack f1.pack >M$t.tsv 2>M$t.err
 	packinfo --threads $t --tsv f1.pack >p$t.tsv 2>p$t.err
 done
 same_pack "packgen (the DEM's force loop): 1 and 2 threads" g1.pack g2.pack
@@ -51,6 +52,8 @@ same_pack "loadtest --method cg: 1 and 2 threads" C1.pack C2.pack
 expect_same "loadtest --method cg: table" C1.tsv C2.tsv
 same_pack "loadtest --method newton: 1 and 2 threads" N1.pack N2.pack
 expect_same "loadtest --method newton: table" N1.tsv N2.tsv
+same_pack "loadtest --method newton, frictional: 1 and 2 threads" M1.pack M2.pack
+expect_same "loadtest --method newton, frictional: table" M1.tsv M2.tsv
 expect_same "packinfo: 1 and 2 threads" p1.tsv p2.tsv
 # the runs did something: a table per increment, and the frictional test moved the stress
 [ "$(grep -c '^[0-9-]' l1.tsv)" -ge 4 ] && pass "loadtest wrote its increments" || fail "loadtest wrote its increments" "$(wc -l <l1.tsv) lines"
