@@ -12,7 +12,7 @@
 extern const char *qs_method_arg;
 
 #define QS_MIN_OPTS(mp)                                                                                      \
-	{"method", 0, CLI_STRING, &qs_method_arg, "NAME", "minimiser: cg (the papers' modified CG), fire, lbfgs or newton (not with --rule paper)", NULL}, \
+	{"method", 0, CLI_STRING, &qs_method_arg, "NAME", "minimiser: cg (the papers' modified CG), fire, lbfgs or newton (Newton-Krylov, exact Hessian)", NULL}, \
 	{"tol", 0, CLI_DOUBLE, &(mp).tol, "RATIO", "equilibrium: largest per-grain |F_i| / largest contact force on i", NULL}, \
 	{"tol-floor", 0, CLI_DOUBLE, &(mp).tol_floor, "RATIO", "--tol judges a grain against at least RATIO x the mean contact force", NULL}, \
 	{"max-iter", 0, CLI_LONG, &(mp).max_iter, "N", "iteration limit of one minimisation", NULL},                 \
