@@ -705,7 +705,8 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 		/* (i, i) += K; (i, N+i) += K C_i; (N+i, N+i) += C_i^T K C_i + kt n n^T / R_i^2 */
 		mat3_add(H->diag + 9 * ci, K, 1, 1);
 		mat3_mul(K, Ci, KC, 0);
-		mat3_add(cpl + 9 * ci, KC, 1, 0);
+		if (!H->diag_only)
+			mat3_add(cpl + 9 * ci, KC, 1, 0);
 		mat3_mul(Ci, KC, CKC, 1);
 		for (u = 0; u < 9; u++)
 			CKC[u] += kt * c->n[u / 3] * c->n[u % 3] / (ri * ri);
@@ -716,11 +717,14 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 		/* (j, j) += K; (j, N+j) -= K C_j; (N+j, N+j) += C_j^T K C_j + kt n n^T / R_j^2 */
 		mat3_add(H->diag + 9 * cj, K, 1, 1);
 		mat3_mul(K, Cj, KC, 0);
-		mat3_add(cpl + 9 * cj, KC, -1, 0);
+		if (!H->diag_only)
+			mat3_add(cpl + 9 * cj, KC, -1, 0);
 		mat3_mul(Cj, KC, CKC, 1);
 		for (u = 0; u < 9; u++)
 			CKC[u] += kt * c->n[u / 3] * c->n[u % 3] / (rj * rj);
 		mat3_add(H->diag + 9 * (n + cj), CKC, 1, 1);
+		if (H->diag_only)
+			continue;
 		/* the pair: (i, j) = -K, (i, N+j) = K C_j, (N+i, j) = -C_i^T K,
 		 * (N+i, N+j) = C_i^T K C_j - kt n n^T / (R_i R_j) */
 		for (u = 0; u < 9; u++)

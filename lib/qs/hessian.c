@@ -38,6 +38,8 @@ qs_hessian_add_pair(struct qs_hessian *H, size_t i, size_t j, const double B[9])
 	double *o;
 	int u, v;
 
+	if (H->diag_only)
+		return 0;
 	if (H->np == H->cap) {
 		size_t cap = H->cap ? 2 * H->cap : 4 * H->n + 16;
 		size_t *pi = realloc(H->pi, cap * sizeof *pi), *pj;

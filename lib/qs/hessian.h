@@ -27,6 +27,7 @@ struct qs_hessian {
 	size_t np, cap;		/* off-diagonal blocks */
 	size_t *pi, *pj;	/* their nodes, i < j */
 	double *off;		/* 9 np: H_ij row-major */
+	int diag_only;		/* keep the diagonal blocks only (add_pair adds nothing) */
 };
 
 /* 0 or -1 (out of memory, message set). */

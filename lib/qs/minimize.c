@@ -25,6 +25,7 @@ qs_min_params_default(struct qs_min_params *mp)
 	mp->ls_sigma = 0.1;
 	mp->fire_dt = 1.0;
 	mp->lbfgs_m = 8;
+	mp->lbfgs_precond = 0.1;
 	mp->newton_eta = 0.1;
 	mp->newton_cg_max = 1000;
 }
@@ -79,6 +80,8 @@ struct qs_minimizer {
 	double *sy, *yy;	/* s.y and y.y of what each slot of S, Y holds */
 	double dg;		/* d.g of the direction lbfgs_direction made */
 	int head, count;
+	int precond;		/* H0 from the diagonal blocks (lbfgs_precond) */
+	long precond_age;	/* iterations since they were assembled; -1: not yet */
 	/* newton */
 	struct qs_hessian H;
 	double *Minv, *r, *z, *q, *Hq;
@@ -408,6 +411,10 @@ fire_iterate(struct qs_minimizer *m)
 /* L-BFGS: the two-loop recursion over the last m steps, H0 = (s.y / y.y) I, the same capped
  * derivative line search as CG but first trying alpha = 1 and accepting a weak Wolfe point
  * (|dPi/dalpha| <= 0.9 |dPi/dalpha(0)|), as quasi-Newton methods want. */
+static int newton_alloc(struct qs_minimizer *m);
+static void newton_precond(struct qs_minimizer *m);
+static void precond_apply(const struct qs_minimizer *m, const double *r, double *z);
+
 static int
 lbfgs_alloc(struct qs_minimizer *m)
 {
@@ -422,6 +429,18 @@ lbfgs_alloc(struct qs_minimizer *m)
 	if (!m->S || !m->Y || !m->rho || !m->al || !m->sy || !m->yy) {
 		msg_seterr("out of memory for L-BFGS");
 		return -1;
+	}
+	if (m->mp.lbfgs_precond > 0) {
+		size_t nodes = n3 / 3;
+		m->Minv = malloc(9 * (nodes ? nodes : 1) * sizeof *m->Minv);
+		m->z = malloc(n3 * sizeof *m->z);
+		m->eig = gsl_eigen_symmv_alloc(3);
+		if (!m->Minv || !m->z || !m->eig || qs_hessian_init(&m->H, nodes)) {
+			msg_seterr("out of memory for L-BFGS");
+			return -1;
+		}
+		m->H.diag_only = 1;
+		m->precond = 1;
 	}
 	return 0;
 }
@@ -480,6 +499,90 @@ lbfgs_direction(struct qs_minimizer *m)
 	}
 }
 
+/* L-BFGS's H0 from the nodes' diagonal blocks of the Hessian (hessian.h): each block
+ * shifted by lbfgs_precond times the mean diagonal stiffness of its kind (centres, or
+ * rotations), so that a grain with almost no stiffness of its own gets the inverse of a
+ * typical one rather than a huge one, then inverted as Newton's block-Jacobi
+ * preconditioner (newton_precond).  It scales each grain's step by its own stiffness: with
+ * friction the centres and the rotations R Omega, and grains held by stiff and by soft
+ * contacts, differ by orders of magnitude, which the one scalar of plain L-BFGS cannot
+ * follow.  Assembled at the start and every LBFGS_PRECOND_EVERY iterations (only the diagonal
+ * blocks); a functional with a term without second derivatives (friction under the paper's
+ * rule) keeps the scalar H0. */
+#define LBFGS_PRECOND_EVERY 50
+
+static void
+lbfgs_precond(struct qs_minimizer *m)
+{
+	size_t i, n = m->w.s->n;
+	double kc = 0, kr = 0;
+
+	if (qs_hessian(m->w.s, m->x, &m->H)) {
+		m->precond = 0;
+		return;
+	}
+	for (i = 0; i < m->H.n; i++) {
+		const double *D = m->H.diag + 9 * i, k = fabs(D[0] + D[4] + D[8]) / (3 * (double)n);
+		if (i < n)
+			kc += k;
+		else
+			kr += k;
+	}
+	for (i = 0; i < m->H.n; i++) {
+		double *D = m->H.diag + 9 * i, a = m->mp.lbfgs_precond * (i < n ? kc : kr);
+		D[0] += a, D[4] += a, D[8] += a;
+	}
+	newton_precond(m);
+	m->precond_age = 0;
+}
+
+/* The two-loop recursion with H0 = gamma P^-1 (lbfgs_precond), gamma = s.y / y.P^-1 y of the
+ * newest pair; the first step is -P^-1 g, whose length is already a displacement. */
+static void
+lbfgs_direction_precond(struct qs_minimizer *m)
+{
+	struct work *w = &m->w;
+	int mm = (int)m->mp.lbfgs_m, q, c, cn;
+	size_t n3 = w->n3;
+	double gamma = 1, t;
+
+	if (m->precond_age < 0 || m->precond_age >= LBFGS_PRECOND_EVERY)
+		lbfgs_precond(m);
+	m->precond_age++;
+	if (!m->precond) {
+		lbfgs_direction(m);
+		return;
+	}
+	par_neg_dot(m->z, w->g, w->g, n3);	/* z = -g */
+	for (q = 0; q < m->count; q++) {
+		c = (m->head - 1 - q + mm) % mm;
+		m->al[c] = m->rho[c] * par_dot(m->S + (size_t)c * n3, m->z, n3);
+		par_axpy(m->z, -m->al[c], m->Y + (size_t)c * n3, n3);
+	}
+	if (m->count > 0) {
+		c = (m->head - 1 + mm) % mm;
+		precond_apply(m, m->Y + (size_t)c * n3, w->d);
+		gamma = m->sy[c] / par_dot(m->Y + (size_t)c * n3, w->d, n3);
+	}
+	precond_apply(m, m->z, w->d);
+	/* second loop, oldest to newest, the scaling by gamma in its first dot's pass */
+	cn = (m->head - m->count + mm) % mm;
+	t = par_axpy_scale_dot(w->d, 0, w->d, gamma, m->count ? m->Y + (size_t)cn * n3 : w->g, n3);
+	for (q = m->count - 1; q >= 0; q--) {
+		double b;
+		c = (m->head - 1 - q + mm) % mm;
+		b = m->rho[c] * t;
+		cn = (m->head - q + mm) % mm;
+		t = par_axpy_scale_dot(w->d, m->al[c] - b, m->S + (size_t)c * n3, 1, q > 0 ? m->Y + (size_t)cn * n3 : w->g, n3);
+	}
+	m->dg = t;
+	if (!(m->dg < 0)) {	/* not downhill (or no stiffness at all): forget the history */
+		m->count = 0;
+		capped_descent(w, m->mp.cap);
+		m->dg = NAN;
+	}
+}
+
 static int
 lbfgs_iterate(struct qs_minimizer *m)
 {
@@ -488,7 +591,10 @@ lbfgs_iterate(struct qs_minimizer *m)
 	size_t n3 = w->n3;
 	double amax, alpha, sy = 0, yy = 0, *x = m->x;
 
-	lbfgs_direction(m);
+	if (m->precond)
+		lbfgs_direction_precond(m);
+	else
+		lbfgs_direction(m);
 	amax = alpha_cap(w, w->d, m->mp.cap);
 	alpha = line_search(w, x, 1.0, amax, 0.9, m->solver, m->dg);
 	if (alpha < 0)
@@ -803,6 +909,7 @@ qs_minimizer_set(struct qs_minimizer *m, double *x)
 	m->evals0 = m->w.s->evals;
 	m->step = 0;
 	m->head = m->count = 0;
+	m->precond_age = -1;
 	m->lambda = 0;
 	m->gnorm_prev = 0;
 	if (evaluate(m))
@@ -820,6 +927,7 @@ qs_minimizer_moved(struct qs_minimizer *m)
 	if (evaluate(m))
 		return -1;
 	m->eprev = INFINITY;	/* Pi jumped: no energy criterion across the move */
+	m->precond_age = -1;	/* the grains that moved have new contacts */
 	if (m->mp.method == QS_CG)
 		cg_restart(m);
 	else if (m->mp.method == QS_FIRE)

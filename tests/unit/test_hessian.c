@@ -13,7 +13,12 @@
  *  - A term without second derivatives makes qs_hessian fail with its name in the message.
  *  - Newton from the strained, perturbed equilibrium converges to the residual 1e-9 and
  *    reaches the same energy (1e-8 relative) and positions (1e-6 R, rattlers left out) as
- *    L-BFGS from the same start; the margins are test_minimize's, argued there. */
+ *    L-BFGS from the same start; the margins are test_minimize's, argued there.
+ *  - With friction (friction_fd, friction_newton): the return map's consistent tangent
+ *    against differences of the gradient with contacts sticking, sliding and twisting;
+ *    the paper's rule refused; Newton and preconditioned L-BFGS against plain L-BFGS on a
+ *    frictional increment: the same energy, centres and rotations, wall stresses and
+ *    contacts at the sliding limit. */
 #include "qs/friction.h"
 #include "qs/functional.h"
 #include "qs/hessian.h"
@@ -163,11 +168,12 @@ friction_fd(gsl_rng *rng)
 	free(x);
 }
 
-/* Minimise a frictional increment from x0 (6N, copied into x) by method m to tol; the wall
+/* Minimise a frictional increment from x0 (6N, copied into x) by method m (L-BFGS's H0
+ * preconditioned as lbfgs_precond says, 0: plain) to tol; the wall
  * stresses, each grain's contacts and each reference contact's |Q| / Q_max at the end. */
 static void
-friction_min(struct qs_system *s, struct qs_friction *f, const double *x0, enum qs_method m, double tol, double *x,
-    struct qs_min_report *rep, double sig[3], unsigned *cnt, double *ratio)
+friction_min(struct qs_system *s, struct qs_friction *f, const double *x0, enum qs_method m, double precond, double tol,
+    double *x, struct qs_min_report *rep, double sig[3], unsigned *cnt, double *ratio)
 {
 	struct qs_min_params mp;
 	size_t k;
@@ -175,6 +181,7 @@ friction_min(struct qs_system *s, struct qs_friction *f, const double *x0, enum 
 	memcpy(x, x0, s->dim * sizeof *x);
 	qs_min_params_default(&mp);
 	mp.method = m;
+	mp.lbfgs_precond = precond;
 	mp.tol = tol;
 	qs_minimize(s, x, &mp, rep);
 	qs_energy(s, x, NULL, NULL);
@@ -201,7 +208,7 @@ friction_newton(struct pack *p, const double *xeq)
 	double *x0 = calloc(6 * n, sizeof *x0), *xl = malloc(6 * n * sizeof *xl), *xn = malloc(6 * n * sizeof *xn);
 	double de[3] = {0, 0, 1e-4}, sl[3], sn[3], dpos = 0, dsig = 0, *ql, *qn;
 	unsigned *cl = malloc(n * sizeof *cl), *cn = malloc(n * sizeof *cn);
-	int a;
+	int a, pass;
 
 	memcpy(p->x, xeq, 3 * n * sizeof *xeq);
 	p->mu = p->wall_mu = 0.3;
@@ -212,31 +219,44 @@ friction_newton(struct pack *p, const double *xeq)
 	ql = malloc(f.n * sizeof *ql), qn = malloc(f.n * sizeof *qn);
 	memcpy(x0, p->x, 3 * n * sizeof *x0);
 	load_strain_box(p->box, x0, n, de);
-	friction_min(&s, &f, x0, QS_LBFGS, 1e-9, xl, &rl, sl, cl, ql);
-	friction_min(&s, &f, x0, QS_NEWTON, 1e-9, xn, &rn, sn, cn, qn);
-	CHECK(rn.status == 0 && rn.res_max <= 1e-9 && rl.status == 0,
-	    "friction: newton converges (%ld iterations, residual %.3g; lbfgs %ld iterations, residual %.3g)", rn.iter,
-	    rn.res_max, rl.iter, rl.res_max);
-	CHECK_CLOSE(rn.energy, rl.energy, 1e-8, "friction: newton and lbfgs reach the same energy");
-	for (k = 0; k < n; k++) {
-		if (cl[k] == 0 || cn[k] == 0)
-			continue;
-		for (a = 0; a < 3; a++) {
-			dpos = fmax(dpos, fabs(xl[3 * k + a] - xn[3 * k + a]) / p->r[k]);
-			dpos = fmax(dpos, fabs(xl[3 * n + 3 * k + a] - xn[3 * n + 3 * k + a]) / p->r[k]);
+	for (pass = 0; pass < 2; pass++) {
+		/* newton against plain lbfgs, then lbfgs preconditioned (its default) against it */
+		const char *who = pass ? "preconditioned lbfgs" : "newton";
+		struct qs_min_params dflt;
+		qs_min_params_default(&dflt);
+		friction_min(&s, &f, x0, QS_LBFGS, 0, 1e-9, xl, &rl, sl, cl, ql);
+		if (pass)
+			friction_min(&s, &f, x0, QS_LBFGS, dflt.lbfgs_precond, 1e-9, xn, &rn, sn, cn, qn);
+		else
+			friction_min(&s, &f, x0, QS_NEWTON, 0, 1e-9, xn, &rn, sn, cn, qn);
+		CHECK(rn.status == 0 && rn.res_max <= 1e-9 && rl.status == 0,
+		    "friction: %s converges (%ld iterations, residual %.3g; plain lbfgs %ld iterations, residual %.3g)", who,
+		    rn.iter, rn.res_max, rl.iter, rl.res_max);
+		if (pass)
+			CHECK_CLOSE(rn.energy, rl.energy, 1e-8, "friction: preconditioned and plain lbfgs reach the same energy");
+		else
+			CHECK_CLOSE(rn.energy, rl.energy, 1e-8, "friction: newton and plain lbfgs reach the same energy");
+		dpos = 0, dsig = 0, slide = 0, differ = 0;
+		for (k = 0; k < n; k++) {
+			if (cl[k] == 0 || cn[k] == 0)
+				continue;
+			for (a = 0; a < 3; a++) {
+				dpos = fmax(dpos, fabs(xl[3 * k + a] - xn[3 * k + a]) / p->r[k]);
+				dpos = fmax(dpos, fabs(xl[3 * n + 3 * k + a] - xn[3 * n + 3 * k + a]) / p->r[k]);
+			}
 		}
+		CHECK(dpos <= 1e-6, "friction, %s: the same centres and rotations (%.3g R apart)", who, dpos);
+		for (a = 0; a < 3; a++)
+			dsig = fmax(dsig, fabs(sn[a] - sl[a]) / fabs(sl[2]));
+		CHECK(dsig <= 1e-6, "friction, %s: the same wall stresses (sigma_zz %.6g Pa, %.3g apart)", who, sl[2], dsig);
+		for (k = 0; k < f.n; k++) {
+			int at_l = ql[k] >= 1 - 1e-9, at_n = qn[k] >= 1 - 1e-9;
+			slide += at_l;
+			differ += at_l != at_n && fmin(ql[k], qn[k]) < 1 - 1e-6;
+		}
+		CHECK(slide > 0 && differ == 0, "friction, %s: the same contacts at the sliding limit (%zu of %zu; %zu differ)",
+		    who, slide, f.n, differ);
 	}
-	CHECK(dpos <= 1e-6, "friction: the same centres and rotations (%.3g R apart)", dpos);
-	for (a = 0; a < 3; a++)
-		dsig = fmax(dsig, fabs(sn[a] - sl[a]) / fabs(sl[2]));
-	CHECK(dsig <= 1e-6, "friction: the same wall stresses (sigma_zz %.6g Pa, %.3g apart)", sl[2], dsig);
-	for (k = 0; k < f.n; k++) {
-		int at_l = ql[k] >= 1 - 1e-9, at_n = qn[k] >= 1 - 1e-9;
-		slide += at_l;
-		differ += at_l != at_n && fmin(ql[k], qn[k]) < 1 - 1e-6;
-	}
-	CHECK(slide > 0 && differ == 0, "friction: the same contacts at the sliding limit (%zu of %zu; %zu differ)", slide,
-	    f.n, differ);
 	fr_free(&f);
 	qs_free(&s);
 	free(x0), free(xl), free(xn), free(cl), free(cn), free(ql), free(qn);
