@@ -122,7 +122,7 @@ $(awk -F '\t' '!/^#/ { printf "| %d | %s | %d | %d | %d | %.4f | %.1f | %.1f | %
 	    --log "$out/fric-$n.tsv" -o "$fric" "$dense" 2>"$tmp.err"; then
 		read -r secs kib <"$tmp.time"
 		fric_rows="$fric_rows
-$(awk -F '\t' -v n="$n" -v s="$secs" -v k="$kib" '!/^#/ && $1 > 0 { it += $17; inc = $1; sr = $16; sc = $12 }
+$(awk -F '\t' -v n="$n" -v s="$secs" -v k="$kib" '!/^#/ && $1 > 0 { it += $18; inc = $1; sr = $16; sc = $12 }
 		    END { printf "| %d | %.1f | %.1f | %d | %.1f | %.1f | %.4f | %.3f |", n, s, k / 1024, inc, it / inc, s / inc, sr, sc / 1e6 }' "$out/fric-$n.tsv")"
 		if [ -x "$fincr" ] && "$fincr" "$fric" 5 >"$tmp.finc" 2>"$tmp.err"; then
 			finc_rows="$finc_rows
