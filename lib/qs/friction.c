@@ -671,10 +671,10 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 	struct qs_friction *f = t->data;
 	size_t n = s->n, q, i;
 	const double *r = s->p->r;
-	double *cpl = calloc(9 * (n ? n : 1), sizeof *cpl);
+	double *cpl = H->diag_only ? NULL : calloc(9 * (n ? n : 1), sizeof *cpl);
 	int st = 0;
 
-	if (!cpl) {
+	if (!cpl && !H->diag_only) {
 		msg_seterr("out of memory for the Hessian");
 		return -1;
 	}
@@ -740,7 +740,7 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 			B[u] -= kt * c->n[u / 3] * c->n[u % 3] / (ri * rj);
 		st |= qs_hessian_add_pair(H, n + ci, n + cj, B);
 	}
-	for (i = 0; i < n && !st; i++) {
+	for (i = 0; i < n && !st && cpl; i++) {
 		int u, nz = 0;
 		for (u = 0; u < 9; u++)
 			nz |= cpl[9 * i + u] != 0;

@@ -25,7 +25,7 @@ qs_min_params_default(struct qs_min_params *mp)
 	mp->ls_sigma = 0.1;
 	mp->fire_dt = 1.0;
 	mp->lbfgs_m = 8;
-	mp->lbfgs_precond = 0.1;
+	mp->precond_shift = 0.1;
 	mp->newton_eta = 0.1;
 	mp->newton_cg_max = 1000;
 }
@@ -80,7 +80,7 @@ struct qs_minimizer {
 	double *sy, *yy;	/* s.y and y.y of what each slot of S, Y holds */
 	double dg;		/* d.g of the direction lbfgs_direction made */
 	int head, count;
-	int precond;		/* H0 from the diagonal blocks (lbfgs_precond) */
+	int precond;		/* lbfgs's H0, fire's force from the diagonal blocks (grain_precond) */
 	long precond_age;	/* iterations since they were assembled; -1: not yet */
 	/* newton */
 	struct qs_hessian H;
@@ -327,6 +327,12 @@ cg_iterate(struct qs_minimizer *m)
 #define FIRE_FALPHA 0.99
 #define FIRE_NDELAY 20
 
+/* lbfgs's and fire's preconditioner: the diagonal blocks reassembled every so many
+ * iterations (grain_precond) */
+#define PRECOND_EVERY 50
+static void grain_precond(struct qs_minimizer *m);
+static void precond_apply(const struct qs_minimizer *m, const double *r, double *z);
+
 static int
 fire_restart(struct qs_minimizer *m)
 {
@@ -339,6 +345,13 @@ fire_restart(struct qs_minimizer *m)
 	}
 	if (kb <= 0)
 		kb = 1;
+	if (m->precond) {
+		/* the preconditioned force P^-1 g: P^-1 H has its eigenvalues near 1 or below
+		 * (block Jacobi), so the time step needs no stiffness bound */
+		grain_precond(m);
+		if (m->precond)
+			kb = 1;
+	}
 	m->dtmax = m->mp.fire_dt / sqrt(kb);
 	m->dt = 0.1 * m->dtmax;
 	m->alpha = FIRE_ALPHA0;
@@ -378,7 +391,18 @@ fire_iterate(struct qs_minimizer *m)
 	double *x = m->x, P, vn, fn;
 	size_t k;
 
-	P = -dot(w->g, w->v, w->n3);
+	const double *g = w->g;
+
+	if (m->precond) {
+		if (m->precond_age < 0 || m->precond_age >= PRECOND_EVERY)
+			grain_precond(m);
+		m->precond_age++;
+	}
+	if (m->precond) {
+		precond_apply(m, w->g, m->z);
+		g = m->z;
+	}
+	P = -dot(g, w->v, w->n3);
 	if (P > 0) {
 		if (++m->npos > FIRE_NDELAY) {
 			m->dt = fmin(m->dt * FIRE_FINC, m->dtmax);
@@ -394,12 +418,12 @@ fire_iterate(struct qs_minimizer *m)
 	}
 	/* semi-implicit Euler with FIRE's mixing of the velocity towards the force */
 	for (k = 0; k < w->n3; k++)
-		w->v[k] -= m->dt * w->g[k];
+		w->v[k] -= m->dt * g[k];
 	vn = sqrt(dot(w->v, w->v, w->n3));
-	fn = sqrt(dot(w->g, w->g, w->n3));
+	fn = sqrt(dot(g, g, w->n3));
 	if (fn > 0)
 		for (k = 0; k < w->n3; k++)
-			w->v[k] = (1 - m->alpha) * w->v[k] - m->alpha * vn * w->g[k] / fn;
+			w->v[k] = (1 - m->alpha) * w->v[k] - m->alpha * vn * g[k] / fn;
 	fire_forward(w, x, m->mp.cap, m->dt);
 	m->eprev = w->e;
 	w->e = qs_energy(w->s, x, w->g, w->fmax);
@@ -430,16 +454,16 @@ lbfgs_alloc(struct qs_minimizer *m)
 		msg_seterr("out of memory for L-BFGS");
 		return -1;
 	}
-	if (m->mp.lbfgs_precond > 0) {
-		size_t nodes = n3 / 3;
-		m->Minv = malloc(9 * (nodes ? nodes : 1) * sizeof *m->Minv);
+	if (m->mp.precond_shift > 0) {
+		/* the inverse blocks overwrite the diagonal ones (newton_precond allows it) */
 		m->z = malloc(n3 * sizeof *m->z);
 		m->eig = gsl_eigen_symmv_alloc(3);
-		if (!m->Minv || !m->z || !m->eig || qs_hessian_init(&m->H, nodes)) {
+		if (!m->z || !m->eig || qs_hessian_init(&m->H, n3 / 3)) {
 			msg_seterr("out of memory for L-BFGS");
 			return -1;
 		}
 		m->H.diag_only = 1;
+		m->Minv = m->H.diag;
 		m->precond = 1;
 	}
 	return 0;
@@ -499,44 +523,52 @@ lbfgs_direction(struct qs_minimizer *m)
 	}
 }
 
-/* L-BFGS's H0 from the nodes' diagonal blocks of the Hessian (hessian.h): each block
- * shifted by lbfgs_precond times the mean diagonal stiffness of its kind (centres, or
- * rotations), so that a grain with almost no stiffness of its own gets the inverse of a
- * typical one rather than a huge one, then inverted as Newton's block-Jacobi
- * preconditioner (newton_precond).  It scales each grain's step by its own stiffness: with
- * friction the centres and the rotations R Omega, and grains held by stiff and by soft
- * contacts, differ by orders of magnitude, which the one scalar of plain L-BFGS cannot
- * follow.  Assembled at the start and every LBFGS_PRECOND_EVERY iterations (only the diagonal
- * blocks); a functional with a term without second derivatives (friction under the paper's
- * rule) keeps the scalar H0. */
-#define LBFGS_PRECOND_EVERY 50
-
+/* Add f times the mean diagonal stiffness of its kind to every diagonal block of H: the
+ * mean over the n centres' blocks to the centres', over the rotations' to the rotations'
+ * (hessian.h's nodes).  Newton's Levenberg damping and L-BFGS's H0 shift. */
 static void
-lbfgs_precond(struct qs_minimizer *m)
+diag_shift(struct qs_hessian *H, size_t n, double f)
 {
-	size_t i, n = m->w.s->n;
+	size_t i;
 	double kc = 0, kr = 0;
 
-	if (qs_hessian(m->w.s, m->x, &m->H)) {
-		m->precond = 0;
-		return;
-	}
-	for (i = 0; i < m->H.n; i++) {
-		const double *D = m->H.diag + 9 * i, k = fabs(D[0] + D[4] + D[8]) / (3 * (double)n);
+	for (i = 0; i < H->n; i++) {
+		const double *D = H->diag + 9 * i, k = fabs(D[0] + D[4] + D[8]) / (3 * (double)n);
 		if (i < n)
 			kc += k;
 		else
 			kr += k;
 	}
-	for (i = 0; i < m->H.n; i++) {
-		double *D = m->H.diag + 9 * i, a = m->mp.lbfgs_precond * (i < n ? kc : kr);
-		D[0] += a, D[4] += a, D[8] += a;
+	for (i = 0; i < H->n; i++) {
+		double *D = H->diag + 9 * i, sh = f * (i < n ? kc : kr);
+		D[0] += sh, D[4] += sh, D[8] += sh;
 	}
+}
+
+/* L-BFGS's H0 and FIRE's preconditioned force P^-1 g (with precond_shift > 0) from the
+ * nodes' diagonal blocks of the Hessian (hessian.h): each block
+ * shifted by precond_shift times the mean diagonal stiffness of its kind (centres, or
+ * rotations), so that a grain with almost no stiffness of its own gets the inverse of a
+ * typical one rather than a huge one, then inverted as Newton's block-Jacobi
+ * preconditioner (newton_precond).  It scales each grain's step by its own stiffness: with
+ * friction the centres and the rotations R Omega, and grains held by stiff and by soft
+ * contacts, differ by orders of magnitude, which the one scalar of plain L-BFGS cannot
+ * follow.  Assembled at the start and every PRECOND_EVERY iterations (only the diagonal
+ * blocks); a functional with a term without second derivatives (friction under the paper's
+ * rule) keeps the scalar H0 and the plain force. */
+static void
+grain_precond(struct qs_minimizer *m)
+{
+	if (qs_hessian(m->w.s, m->x, &m->H)) {
+		m->precond = 0;
+		return;
+	}
+	diag_shift(&m->H, m->w.s->n, m->mp.precond_shift);
 	newton_precond(m);
 	m->precond_age = 0;
 }
 
-/* The two-loop recursion with H0 = gamma P^-1 (lbfgs_precond), gamma = s.y / y.P^-1 y of the
+/* The two-loop recursion with H0 = gamma P^-1 (precond_shift), gamma = s.y / y.P^-1 y of the
  * newest pair; the first step is -P^-1 g, whose length is already a displacement. */
 static void
 lbfgs_direction_precond(struct qs_minimizer *m)
@@ -546,18 +578,26 @@ lbfgs_direction_precond(struct qs_minimizer *m)
 	size_t n3 = w->n3;
 	double gamma = 1, t;
 
-	if (m->precond_age < 0 || m->precond_age >= LBFGS_PRECOND_EVERY)
-		lbfgs_precond(m);
+	if (m->precond_age < 0 || m->precond_age >= PRECOND_EVERY)
+		grain_precond(m);
 	m->precond_age++;
 	if (!m->precond) {
 		lbfgs_direction(m);
 		return;
 	}
-	par_neg_dot(m->z, w->g, w->g, n3);	/* z = -g */
+	/* first loop, newest to oldest, on z = -g: al_c = rho_c s_c.z, z -= al_c y_c, each axpy
+	 * with the next dot in its pass (the same bytes as the plain passes, par.h) */
+	c = (m->head - 1 + mm) % mm;
+	t = par_neg_dot(m->z, w->g, m->count ? m->S + (size_t)c * n3 : w->g, n3);
 	for (q = 0; q < m->count; q++) {
 		c = (m->head - 1 - q + mm) % mm;
-		m->al[c] = m->rho[c] * par_dot(m->S + (size_t)c * n3, m->z, n3);
-		par_axpy(m->z, -m->al[c], m->Y + (size_t)c * n3, n3);
+		m->al[c] = m->rho[c] * t;
+		if (q + 1 < m->count) {
+			cn = (m->head - 2 - q + mm) % mm;
+			t = par_axpy_scale_dot(m->z, -m->al[c], m->Y + (size_t)c * n3, 1, m->S + (size_t)cn * n3, n3);
+		} else {
+			par_axpy(m->z, -m->al[c], m->Y + (size_t)c * n3, n3);
+		}
 	}
 	if (m->count > 0) {
 		c = (m->head - 1 + mm) % mm;
@@ -671,10 +711,10 @@ newton_precond(struct qs_minimizer *m)
 	gsl_vector_view E = gsl_vector_view_array(ev, 3);
 
 	for (i = 0; i < n; i++) {
-		const double *D = m->H.diag + 9 * i;
-		double *M = m->Minv + 9 * i, big = 0, inv[3];
+		double D[9], *M = m->Minv + 9 * i, big = 0, inv[3];
 		int u, v, c;
 
+		memcpy(D, m->H.diag + 9 * i, sizeof D);	/* M may be the diagonal block itself */
 		if (spd_inverse3(D, M))
 			continue;
 		memcpy(a, D, sizeof a);
@@ -695,6 +735,8 @@ precond_apply(const struct qs_minimizer *m, const double *r, double *z)
 {
 	size_t i;
 
+	/* node by node: the same bytes for any split */
+#pragma omp parallel for schedule(static) if (m->w.n3 >= PAR_MIN_VEC)
 	for (i = 0; i < m->H.n; i++) {
 		const double *M = m->Minv + 9 * i, *ri = r + 3 * i;
 		double *zi = z + 3 * i;
@@ -757,35 +799,10 @@ newton_direction(struct qs_minimizer *m)
 		capped_descent(w, m->mp.cap);
 }
 
-/* Levenberg damping: lambda times the mean diagonal stiffness of the centres (of the
- * rotations, on theirs) added to every diagonal block.  An absolute shift, not a fraction of
- * each grain's own stiffness: a grain that is nearly free (a rattler touching one or two
- * neighbours, whose rolling modes have almost no stiffness with friction, or the negative
- * geometric stiffness of a chain) gets a bounded step, g / (lambda k_mean), instead of an
- * unbounded one. */
-static void
-newton_damp(struct qs_minimizer *m)
-{
-	size_t i, n = m->w.s->n;
-	double kc = 0, kr = 0;
-
-	for (i = 0; i < m->H.n; i++) {
-		const double *D = m->H.diag + 9 * i, k = fabs(D[0] + D[4] + D[8]) / (3 * (double)n);
-		if (i < n)
-			kc += k;
-		else
-			kr += k;
-	}
-	for (i = 0; i < m->H.n; i++) {
-		double *D = m->H.diag + 9 * i, sh = m->lambda * (i < n ? kc : kr);
-		D[0] += sh, D[4] += sh, D[8] += sh;
-	}
-}
-
 /* Each grain's part of the Newton direction cut to the step cap (cap times its radius),
  * rather than the whole direction scaled until its worst grain fits: a nearly free grain
- * (newton_damp) would otherwise shrink the step of all the others, and with friction it
- * did in most Newton steps (an increment at 8.8 MPa, 2740 grains: 1536 Newton steps with
+ * (see the damping in newton_iterate) would otherwise shrink the step of all the others,
+ * and with friction it did in most Newton steps (an increment at 8.8 MPa, 2740 grains: 1536 Newton steps with
  * the whole direction scaled, 84 with each grain cut).  The cut direction is kept when it
  * is still downhill, else the uncut one. */
 static void
@@ -815,8 +832,12 @@ newton_iterate(struct qs_minimizer *m)
 
 	if (qs_hessian(w->s, m->x, &m->H))
 		return -1;
+	/* Levenberg damping: an absolute shift, not a fraction of each grain's own stiffness
+	 * (diag_shift): a nearly free grain (a rattler touching one or two neighbours, whose
+	 * rolling modes have almost no stiffness with friction, or the negative geometric
+	 * stiffness of a chain) gets a bounded step, g / (lambda k_mean), not an unbounded one */
 	if (m->lambda > 0)
-		newton_damp(m);
+		diag_shift(&m->H, w->s->n, m->lambda);
 	newton_precond(m);
 	newton_direction(m);
 	newton_clip(m);
@@ -830,6 +851,24 @@ newton_iterate(struct qs_minimizer *m)
 	else if (alpha < 0.1 && alpha < amax)
 		m->lambda = fmax(10 * m->lambda, 1e-4);
 	m->eprev = accept_trial(w, m->x);
+	return 0;
+}
+
+/* fire's preconditioned force (grain_precond): the same storage as lbfgs's */
+static int
+fire_alloc(struct qs_minimizer *m)
+{
+	size_t n3 = m->w.n3;
+
+	if (!(m->mp.precond_shift > 0))
+		return 0;
+	m->z = malloc(n3 * sizeof *m->z);
+	m->eig = gsl_eigen_symmv_alloc(3);
+	if (!m->z || !m->eig || qs_hessian_init(&m->H, n3 / 3))
+		return -1;
+	m->H.diag_only = 1;
+	m->Minv = m->H.diag;
+	m->precond = 1;
 	return 0;
 }
 
@@ -860,7 +899,8 @@ qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp)
 	w->ft = malloc(s->n * sizeof *w->ft);
 	m->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
 	if (!w->g || !w->fmax || !w->d || !w->xt || !w->gt || !w->v || !w->ft || !m->solver ||
-	    (mp->method == QS_LBFGS && lbfgs_alloc(m)) || (mp->method == QS_NEWTON && newton_alloc(m))) {
+	    (mp->method == QS_LBFGS && lbfgs_alloc(m)) || (mp->method == QS_NEWTON && newton_alloc(m)) ||
+	    (mp->method == QS_FIRE && fire_alloc(m))) {
 		qs_minimizer_free(m);
 		msg_seterr("out of memory for the minimiser");
 		return NULL;
@@ -883,7 +923,9 @@ qs_minimizer_free(struct qs_minimizer *m)
 	w = &m->w;
 	free(w->g), free(w->fmax), free(w->d), free(w->xt), free(w->gt), free(w->v), free(w->ft);
 	free(m->S), free(m->Y), free(m->rho), free(m->al), free(m->sy), free(m->yy);
-	free(m->Minv), free(m->r), free(m->z), free(m->q), free(m->Hq);
+	if (m->Minv != m->H.diag)
+		free(m->Minv);
+	free(m->r), free(m->z), free(m->q), free(m->Hq);
 	qs_hessian_free(&m->H);
 	if (m->eig)
 		gsl_eigen_symmv_free(m->eig);

@@ -9,12 +9,13 @@
  *    near the minimum (rms force ratio 1e-6..1e-7), the derivative does not.
  *  - fire: FIRE 2.0 (Guénolé et al. 2020, as in LAMMPS min_fire) with unit masses, the time
  *    step bounded by 1 / sqrt(Gershgorin bound on the stiffness) at the start, and the same
- *    per-grain displacement cap.
+ *    per-grain displacement cap; with precond_shift > 0 the force is P^-1 g (lbfgs's
+ *    preconditioner below) and the time step fire_dt.
  *  - lbfgs: limited-memory BFGS (m stored steps) with the same capped derivative line
  *    search, trying the quasi-Newton step first and accepting |dPi/dalpha| <= 0.9 |dPi/dalpha(0)|;
  *    H0 of the two-loop recursion is each grain's diagonal block of the Hessian, shifted by
- *    lbfgs_precond times the mean and inverted, reassembled every 50 iterations (scaled by
- *    s.y / y.H0 y), or with lbfgs_precond 0 (or a term without second derivatives) the
+ *    precond_shift times the mean and inverted, reassembled every 50 iterations (scaled by
+ *    s.y / y.H0 y), or with precond_shift 0 (or a term without second derivatives) the
  *    scalar s.y / y.y.
  *  - newton: Newton-Krylov on the exact sparse Hessian (hessian.h; with friction the return
  *    map's consistent tangent, not with the paper's rule): each iteration assembles H, adds
@@ -23,7 +24,7 @@
  *    at negative curvature, cuts each grain's part of d to the step cap, and takes the same
  *    line search from the full step.
  *
- * The default is lbfgs with lbfgs_precond 0.1: make bench found it the fastest to the same
+ * The default is lbfgs with precond_shift 0.1: make bench found it the fastest to the same
  * residual (bench/lbfgs-precond.md; 2740 grains at 9 MPa, mu 0.3: 278 iterations and 0.29 s
  * per 1e-4 increment, against 874 and 0.70 s with the scalar H0 and 53 Newton steps and
  * 0.83 s with newton).
@@ -49,7 +50,7 @@ struct qs_min_params {
 	double ls_sigma;	/* CG: stop the line search at |dPi/dalpha| <= sigma |dPi/dalpha(0)| */
 	double fire_dt;		/* FIRE: dt_max in units of 1/sqrt(k bound) */
 	long lbfgs_m;		/* L-BFGS: stored steps */
-	double lbfgs_precond;	/* L-BFGS: H0 from the grains' stiffness blocks, shifted by this
+	double precond_shift;	/* L-BFGS's H0, FIRE's force: the grains' stiffness blocks, shifted by this
 				 * times the mean (0: the scalar H0 of plain L-BFGS) */
 	double newton_eta;	/* Newton: CG stops at |H d + g| <= eta |g| */
 	long newton_cg_max;	/* Newton: CG iterations per Newton step at most */

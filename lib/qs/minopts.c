@@ -26,8 +26,8 @@ qs_min_opts_check(struct qs_min_params *mp)
 		cli_usage_error("--eps1, --eps2: must be non-negative");
 	if (mp->lbfgs_m < 1 || mp->lbfgs_m > 100)
 		cli_usage_error("--lbfgs-m: must be in [1, 100]");
-	if (!(mp->lbfgs_precond >= 0 && mp->lbfgs_precond <= 100))
-		cli_usage_error("--lbfgs-precond: must be in [0, 100]");
+	if (!(mp->precond_shift >= 0 && mp->precond_shift <= 100))
+		cli_usage_error("--precond: must be in [0, 100]");
 	if (!(mp->fire_dt > 0 && mp->fire_dt <= 10))
 		cli_usage_error("--fire-dt: must be in (0, 10]");
 }

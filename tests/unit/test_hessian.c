@@ -169,7 +169,7 @@ friction_fd(gsl_rng *rng)
 }
 
 /* Minimise a frictional increment from x0 (6N, copied into x) by method m (L-BFGS's H0
- * preconditioned as lbfgs_precond says, 0: plain) to tol; the wall
+ * preconditioned as precond_shift says, 0: plain) to tol; the wall
  * stresses, each grain's contacts and each reference contact's |Q| / Q_max at the end. */
 static void
 friction_min(struct qs_system *s, struct qs_friction *f, const double *x0, enum qs_method m, double precond, double tol,
@@ -181,7 +181,7 @@ friction_min(struct qs_system *s, struct qs_friction *f, const double *x0, enum 
 	memcpy(x, x0, s->dim * sizeof *x);
 	qs_min_params_default(&mp);
 	mp.method = m;
-	mp.lbfgs_precond = precond;
+	mp.precond_shift = precond;
 	mp.tol = tol;
 	qs_minimize(s, x, &mp, rep);
 	qs_energy(s, x, NULL, NULL);
@@ -226,7 +226,7 @@ friction_newton(struct pack *p, const double *xeq)
 		qs_min_params_default(&dflt);
 		friction_min(&s, &f, x0, QS_LBFGS, 0, 1e-9, xl, &rl, sl, cl, ql);
 		if (pass)
-			friction_min(&s, &f, x0, QS_LBFGS, dflt.lbfgs_precond, 1e-9, xn, &rn, sn, cn, qn);
+			friction_min(&s, &f, x0, QS_LBFGS, dflt.precond_shift, 1e-9, xn, &rn, sn, cn, qn);
 		else
 			friction_min(&s, &f, x0, QS_NEWTON, 0, 1e-9, xn, &rn, sn, cn, qn);
 		CHECK(rn.status == 0 && rn.res_max <= 1e-9 && rl.status == 0,
