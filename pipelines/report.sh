@@ -18,6 +18,11 @@ gpa() { awk '{ printf "%.3f", $1 / 1e9 }'; }
 # first / last value of column C of table T
 first() { $cols "$1" "$2" | head -n 1; }
 last() { $cols "$1" "$2" | tail -n 1; }
+# column C of a moduli table T at its first fitted window, and at its last full fitted one:
+# a window with K or G nan (moduli rejects the fit: a rearrangement of a frictionless pack
+# inside it) or the short window at the end of the curve is no measurement of the trend
+mfirst() { $cols "$1" K G "$2" | awk '$1 !~ /nan/ && $2 !~ /nan/ { print $3; exit }'; }
+mlast() { $cols "$1" n K G "$2" | awk '$1 > nmax { nmax = $1 } $1 == nmax && $2 !~ /nan/ && $3 !~ /nan/ { v = $4 } END { print v }'; }
 # interp T C S: column C of moduli table T at sigma_c = S (linear between windows), or "-"
 interp() {
 	$cols "$1" sigma_c "$2" | awk -v s="$3" '
@@ -25,10 +30,13 @@ interp() {
 		{ ps = $1; pv = $2 }
 		END { if (!found) printf "-" }'
 }
-# growth exponent of column C against sigma_c over a moduli table: slope of log C on log sigma_c
+# growth exponent of column C against sigma_c over a moduli table: slope of log C on log
+# sigma_c over its full fitted windows (as mlast)
 expo() {
-	$cols "$1" sigma_c "$2" | awk '$2 !~ /nan/ && $2 > 0 { x = log($1); y = log($2); n++; sx += x; sy += y; sxx += x * x; sxy += x * y }
-		END { if (n > 2) printf "%.2f", (n * sxy - sx * sy) / (n * sxx - sx * sx); else printf "-" }'
+	$cols "$1" n sigma_c "$2" | awk '{ w[NR] = $1; s[NR] = $2; v[NR] = $3; if ($1 > nmax) nmax = $1 }
+		END { for (i = 1; i <= NR; i++) if (w[i] == nmax && v[i] !~ /nan/ && v[i] > 0) {
+			x = log(s[i]); y = log(v[i]); k++; sx += x; sy += y; sxx += x * x; sxy += x * y }
+		      if (k > 2) printf "%.2f", (k * sxy - sx * sy) / (k * sxx - sx * sx); else printf "-" }'
 }
 # common stress of several moduli tables: the middle of the overlap of their sigma_c ranges
 common() {
@@ -56,8 +64,8 @@ fric_header() {
 test_summary() {	# run: the uniaxial test's moduli in one line
 	m=$R/$1/moduli.tsv
 	printf '| %s | %s -> %s | %s -> %s | %s -> %s | %s | %s |\n' "$1" \
-	    "$(first "$m" sigma_c | mpa)" "$(last "$m" sigma_c | mpa)" \
-	    "$(first "$m" K | gpa)" "$(last "$m" K | gpa)" "$(first "$m" G | gpa)" "$(last "$m" G | gpa)" \
+	    "$(mfirst "$m" sigma_c | mpa)" "$(mlast "$m" sigma_c | mpa)" \
+	    "$(mfirst "$m" K | gpa)" "$(mlast "$m" K | gpa)" "$(mfirst "$m" G | gpa)" "$(mlast "$m" G | gpa)" \
 	    "$(expo "$m" K)" "$(expo "$m" G)"
 }
 test_header() {
@@ -147,10 +155,11 @@ EOF
 	test_header
 	for r in g2740-s4-mu0.3 g2740-s10-mu0.3 g2740-s10-mu0.5 g5036-s4-mu0; do test_summary $r; done
 	echo
-	echo '| run | last window: K / K_emt | G / G_emt_rough | G / G_emt_smooth |'
+	echo '| run | last full window: K / K_emt | G / G_emt_rough | G / G_emt_smooth |'
 	echo '| --- | --- | --- | --- |'
 	for r in g2740-s4-mu0.3 g2740-s10-mu0.3 g2740-s10-mu0.5 g5036-s4-mu0; do
-		$cols $R/$r/moduli.tsv K G K_emt G_emt_rough G_emt_smooth | tail -n 1 |
+		m=$R/$r/moduli.tsv
+		echo "$(mlast $m K) $(mlast $m G) $(mlast $m K_emt) $(mlast $m G_emt_rough) $(mlast $m G_emt_smooth)" |
 		    awk -v r=$r '{ printf "| %s | %.2f | %.2f | %.2f |\n", r, $1 / $3, $2 / $4, $2 / $5 }'
 	done
 	echo
