@@ -469,6 +469,53 @@ lbfgs_alloc(struct qs_minimizer *m)
 	return 0;
 }
 
+/* The two loops of L-BFGS's recursion over the stored pairs, each axpy fused with the dot
+ * product that follows it (par.h: the same bytes as the plain passes).  lbfgs_loop1: v = -g,
+ * then newest to oldest al_c = rho_c s_c.v, v -= al_c y_c; its last axpy scaled by scale and
+ * dotted with last (returned), or plain when last is NULL.  lbfgs_loop2: oldest to newest
+ * b = rho_c y_c.v (t the first of these dots), v += (al_c - b) s_c; returns v.g. */
+static double
+lbfgs_loop1(struct qs_minimizer *m, double *v, double scale, const double *last)
+{
+	struct work *w = &m->w;
+	int mm = (int)m->mp.lbfgs_m, q, c, cn;
+	size_t n3 = w->n3;
+	double t;
+
+	c = (m->head - 1 + mm) % mm;
+	t = par_neg_dot(v, w->g, m->count ? m->S + (size_t)c * n3 : w->g, n3);
+	for (q = 0; q < m->count; q++) {
+		c = (m->head - 1 - q + mm) % mm;
+		m->al[c] = m->rho[c] * t;
+		if (q + 1 < m->count) {
+			cn = (m->head - 2 - q + mm) % mm;
+			t = par_axpy_scale_dot(v, -m->al[c], m->Y + (size_t)c * n3, 1, m->S + (size_t)cn * n3, n3);
+		} else if (last) {
+			t = par_axpy_scale_dot(v, -m->al[c], m->Y + (size_t)c * n3, scale, last, n3);
+		} else {
+			par_axpy(v, -m->al[c], m->Y + (size_t)c * n3, n3);
+		}
+	}
+	return t;
+}
+
+static double
+lbfgs_loop2(struct qs_minimizer *m, double *v, double t)
+{
+	struct work *w = &m->w;
+	int mm = (int)m->mp.lbfgs_m, q, c, cn;
+	size_t n3 = w->n3;
+
+	for (q = m->count - 1; q >= 0; q--) {
+		double b;
+		c = (m->head - 1 - q + mm) % mm;
+		b = m->rho[c] * t;
+		cn = (m->head - q + mm) % mm;
+		t = par_axpy_scale_dot(v, m->al[c] - b, m->S + (size_t)c * n3, 1, q > 0 ? m->Y + (size_t)cn * n3 : w->g, n3);
+	}
+	return t;
+}
+
 /* d = -H g by the two-loop recursion over the stored pairs, each axpy fused with the dot
  * product that follows it (par.h: the same bytes as the plain passes), H0's gamma from the
  * dot products of the newest pair taken when it was stored; leaves d.g in m->dg. */
@@ -476,7 +523,7 @@ static void
 lbfgs_direction(struct qs_minimizer *m)
 {
 	struct work *w = &m->w;
-	int mm = (int)m->mp.lbfgs_m, q, c, cn;
+	int mm = (int)m->mp.lbfgs_m, c;
 	size_t n3 = w->n3;
 	double gamma, t;
 
@@ -487,34 +534,11 @@ lbfgs_direction(struct qs_minimizer *m)
 	} else {
 		c = (m->head - 1 + mm) % mm;
 		gamma = m->sy[c] / m->yy[c];
-		/* first loop, newest to oldest: al_c = rho_c s_c.d, d -= al_c y_c; the last axpy
-		 * with the scaling by gamma and the second loop's first dot */
-		t = par_neg_dot(w->d, w->g, m->S + (size_t)c * n3, n3);
-		for (q = 0; q < m->count; q++) {
-			c = (m->head - 1 - q + mm) % mm;
-			m->al[c] = m->rho[c] * t;
-			if (q + 1 < m->count) {
-				cn = (m->head - 2 - q + mm) % mm;
-				t = par_axpy_scale_dot(w->d, -m->al[c], m->Y + (size_t)c * n3, 1, m->S + (size_t)cn * n3, n3);
-			} else {
-				cn = (m->head - m->count + mm) % mm;	/* the oldest */
-				t = par_axpy_scale_dot(w->d, -m->al[c], m->Y + (size_t)c * n3, gamma, m->Y + (size_t)cn * n3, n3);
-			}
-		}
-		/* second loop, oldest to newest: b = rho_c y_c.d, d += (al_c - b) s_c; the last
-		 * axpy with d.g */
-		for (q = m->count - 1; q >= 0; q--) {
-			double b;
-			c = (m->head - 1 - q + mm) % mm;
-			b = m->rho[c] * t;
-			if (q > 0) {
-				cn = (m->head - q + mm) % mm;
-				t = par_axpy_scale_dot(w->d, m->al[c] - b, m->S + (size_t)c * n3, 1, m->Y + (size_t)cn * n3, n3);
-			} else {
-				t = par_axpy_scale_dot(w->d, m->al[c] - b, m->S + (size_t)c * n3, 1, w->g, n3);
-			}
-		}
-		m->dg = t;
+		/* the last axpy of the first loop with the scaling by gamma and the second loop's
+		 * first dot (against the oldest y) */
+		c = (m->head - m->count + mm) % mm;
+		t = lbfgs_loop1(m, w->d, gamma, m->Y + (size_t)c * n3);
+		m->dg = lbfgs_loop2(m, w->d, t);
 	}
 	if (m->dg >= 0) {	/* not downhill: forget the history */
 		m->count = 0;
@@ -574,7 +598,7 @@ static void
 lbfgs_direction_precond(struct qs_minimizer *m)
 {
 	struct work *w = &m->w;
-	int mm = (int)m->mp.lbfgs_m, q, c, cn;
+	int mm = (int)m->mp.lbfgs_m, c, cn;
 	size_t n3 = w->n3;
 	double gamma = 1, t;
 
@@ -585,36 +609,17 @@ lbfgs_direction_precond(struct qs_minimizer *m)
 		lbfgs_direction(m);
 		return;
 	}
-	/* first loop, newest to oldest, on z = -g: al_c = rho_c s_c.z, z -= al_c y_c, each axpy
-	 * with the next dot in its pass (the same bytes as the plain passes, par.h) */
-	c = (m->head - 1 + mm) % mm;
-	t = par_neg_dot(m->z, w->g, m->count ? m->S + (size_t)c * n3 : w->g, n3);
-	for (q = 0; q < m->count; q++) {
-		c = (m->head - 1 - q + mm) % mm;
-		m->al[c] = m->rho[c] * t;
-		if (q + 1 < m->count) {
-			cn = (m->head - 2 - q + mm) % mm;
-			t = par_axpy_scale_dot(m->z, -m->al[c], m->Y + (size_t)c * n3, 1, m->S + (size_t)cn * n3, n3);
-		} else {
-			par_axpy(m->z, -m->al[c], m->Y + (size_t)c * n3, n3);
-		}
-	}
+	lbfgs_loop1(m, m->z, 1, NULL);
 	if (m->count > 0) {
 		c = (m->head - 1 + mm) % mm;
 		precond_apply(m, m->Y + (size_t)c * n3, w->d);
 		gamma = m->sy[c] / par_dot(m->Y + (size_t)c * n3, w->d, n3);
 	}
 	precond_apply(m, m->z, w->d);
-	/* second loop, oldest to newest, the scaling by gamma in its first dot's pass */
+	/* the scaling by gamma in the second loop's first dot's pass */
 	cn = (m->head - m->count + mm) % mm;
 	t = par_axpy_scale_dot(w->d, 0, w->d, gamma, m->count ? m->Y + (size_t)cn * n3 : w->g, n3);
-	for (q = m->count - 1; q >= 0; q--) {
-		double b;
-		c = (m->head - 1 - q + mm) % mm;
-		b = m->rho[c] * t;
-		cn = (m->head - q + mm) % mm;
-		t = par_axpy_scale_dot(w->d, m->al[c] - b, m->S + (size_t)c * n3, 1, q > 0 ? m->Y + (size_t)cn * n3 : w->g, n3);
-	}
+	t = lbfgs_loop2(m, w->d, t);
 	m->dg = t;
 	if (!(m->dg < 0)) {	/* not downhill (or no stiffness at all): forget the history */
 		m->count = 0;
