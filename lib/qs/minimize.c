@@ -331,7 +331,27 @@ cg_iterate(struct qs_minimizer *m)
  * iterations (grain_precond) */
 #define PRECOND_EVERY 50
 static void grain_precond(struct qs_minimizer *m);
+static void newton_precond(struct qs_minimizer *m);
 static void precond_apply(const struct qs_minimizer *m, const double *r, double *z);
+
+/* The storage of lbfgs's and fire's preconditioner when precond_shift > 0: the diagonal
+ * blocks, which newton_precond overwrites with their inverses, and a work vector. */
+static int
+precond_alloc(struct qs_minimizer *m)
+{
+	size_t n3 = m->w.n3;
+
+	if (!(m->mp.precond_shift > 0))
+		return 0;
+	m->z = malloc(n3 * sizeof *m->z);
+	m->eig = gsl_eigen_symmv_alloc(3);
+	if (!m->z || !m->eig || qs_hessian_init(&m->H, n3 / 3))
+		return -1;
+	m->H.diag_only = 1;
+	m->Minv = m->H.diag;
+	m->precond = 1;
+	return 0;
+}
 
 static int
 fire_restart(struct qs_minimizer *m)
@@ -432,13 +452,10 @@ fire_iterate(struct qs_minimizer *m)
 
 /* --- L-BFGS ---------------------------------------------------------------------------- */
 
-/* L-BFGS: the two-loop recursion over the last m steps, H0 = (s.y / y.y) I, the same capped
+/* L-BFGS: the two-loop recursion over the last m steps, H0 = (s.y / y.y) I or the grains'
+ * blocks (grain_precond), the same capped
  * derivative line search as CG but first trying alpha = 1 and accepting a weak Wolfe point
  * (|dPi/dalpha| <= 0.9 |dPi/dalpha(0)|), as quasi-Newton methods want. */
-static int newton_alloc(struct qs_minimizer *m);
-static void newton_precond(struct qs_minimizer *m);
-static void precond_apply(const struct qs_minimizer *m, const double *r, double *z);
-
 static int
 lbfgs_alloc(struct qs_minimizer *m)
 {
@@ -454,19 +471,7 @@ lbfgs_alloc(struct qs_minimizer *m)
 		msg_seterr("out of memory for L-BFGS");
 		return -1;
 	}
-	if (m->mp.precond_shift > 0) {
-		/* the inverse blocks overwrite the diagonal ones (newton_precond allows it) */
-		m->z = malloc(n3 * sizeof *m->z);
-		m->eig = gsl_eigen_symmv_alloc(3);
-		if (!m->z || !m->eig || qs_hessian_init(&m->H, n3 / 3)) {
-			msg_seterr("out of memory for L-BFGS");
-			return -1;
-		}
-		m->H.diag_only = 1;
-		m->Minv = m->H.diag;
-		m->precond = 1;
-	}
-	return 0;
+	return precond_alloc(m);
 }
 
 /* The two loops of L-BFGS's recursion over the stored pairs, each axpy fused with the dot
@@ -807,8 +812,8 @@ newton_direction(struct qs_minimizer *m)
 /* Each grain's part of the Newton direction cut to the step cap (cap times its radius),
  * rather than the whole direction scaled until its worst grain fits: a nearly free grain
  * (see the damping in newton_iterate) would otherwise shrink the step of all the others,
- * and with friction it did in most Newton steps (an increment at 8.8 MPa, 2740 grains: 1536 Newton steps with
- * the whole direction scaled, 84 with each grain cut).  The cut direction is kept when it
+ * and with friction it did in most Newton steps (an increment at 8.8 MPa, 2740 grains:
+ * 1536 Newton steps with the whole direction scaled, 84 with each grain cut).  The cut direction is kept when it
  * is still downhill, else the uncut one. */
 static void
 newton_clip(struct qs_minimizer *m)
@@ -859,24 +864,6 @@ newton_iterate(struct qs_minimizer *m)
 	return 0;
 }
 
-/* fire's preconditioned force (grain_precond): the same storage as lbfgs's */
-static int
-fire_alloc(struct qs_minimizer *m)
-{
-	size_t n3 = m->w.n3;
-
-	if (!(m->mp.precond_shift > 0))
-		return 0;
-	m->z = malloc(n3 * sizeof *m->z);
-	m->eig = gsl_eigen_symmv_alloc(3);
-	if (!m->z || !m->eig || qs_hessian_init(&m->H, n3 / 3))
-		return -1;
-	m->H.diag_only = 1;
-	m->Minv = m->H.diag;
-	m->precond = 1;
-	return 0;
-}
-
 /* --- the interface ------------------------------------------------------------------ */
 
 struct qs_minimizer *
@@ -905,7 +892,7 @@ qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp)
 	m->solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
 	if (!w->g || !w->fmax || !w->d || !w->xt || !w->gt || !w->v || !w->ft || !m->solver ||
 	    (mp->method == QS_LBFGS && lbfgs_alloc(m)) || (mp->method == QS_NEWTON && newton_alloc(m)) ||
-	    (mp->method == QS_FIRE && fire_alloc(m))) {
+	    (mp->method == QS_FIRE && precond_alloc(m))) {
 		qs_minimizer_free(m);
 		msg_seterr("out of memory for the minimiser");
 		return NULL;
