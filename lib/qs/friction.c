@@ -652,6 +652,26 @@ mat3_add(double *D, const double *S, double sign, int sym)
 			D[3 * u + v] += sign * (sym && v < u ? S[3 * v + u] : S[3 * u + v]);
 }
 
+/* A contact's blocks on one of its grains g, whose translation enters u_s as sign T and
+ * whose rotation as C: (g, g) += K; (g, N+g) += sign K C (into cpl, summed per grain, unless
+ * NULL); (N+g, N+g) += C^T K C + kt n n^T / R_g^2.  K C into KC. */
+static void
+own_blocks(struct qs_hessian *H, double *cpl, size_t n, size_t g, const double K[9], const double C[9], double sign,
+    double kt, const double nrm[3], double rg, double KC[9])
+{
+	double CKC[9];
+	int u;
+
+	mat3_add(H->diag + 9 * g, K, 1, 1);
+	mat3_mul(K, C, KC, 0);
+	if (cpl)
+		mat3_add(cpl + 9 * g, KC, sign, 0);
+	mat3_mul(C, KC, CKC, 1);
+	for (u = 0; u < 9; u++)
+		CKC[u] += kt * nrm[u / 3] * nrm[u % 3] / (rg * rg);
+	mat3_add(H->diag + 9 * (n + g), CKC, 1, 1);
+}
+
 /* The return map's consistent tangent (hessian.h): Pi's tangential part is phi_s(q) with
  * q = Q^p - k* u_s and u_s linear in the unknowns, u_s = T dx_i + C_i w_i - T dx_j + C_j w_j
  * where w = R Omega, C_i = -[R_ij]x / R_i and C_j = [R_ji]x / R_j (the frozen lever arms).
@@ -683,7 +703,7 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 		const struct fr_contact *c = &f->c[q];
 		int wall = PACK_IS_WALL(c->j), u, v;
 		size_t ci = c->i, cj = wall ? 0 : (size_t)c->j;
-		double Q[3], M, qt, K[9], Ci[9], Cj[9], KC[9], CKC[9], B[9], kt, ri = r[ci], rj = wall ? 1 : r[cj];
+		double Q[3], M, qt, K[9], Ci[9], Cj[9], KC[9], B[9], kt, ri = r[ci], rj = wall ? 1 : r[cj];
 
 		fr_contact_eval(f, c, Q, &M, &qt, wall, FR_RETURN_MAP);
 		if (!(c->qmax > 0)) {
@@ -702,27 +722,11 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 		}
 		kt = fabs(M) < c->mmax ? c->kt : 0;
 		cross_matrix(c->li, -1 / ri, Ci);
-		/* (i, i) += K; (i, N+i) += K C_i; (N+i, N+i) += C_i^T K C_i + kt n n^T / R_i^2 */
-		mat3_add(H->diag + 9 * ci, K, 1, 1);
-		mat3_mul(K, Ci, KC, 0);
-		if (!H->diag_only)
-			mat3_add(cpl + 9 * ci, KC, 1, 0);
-		mat3_mul(Ci, KC, CKC, 1);
-		for (u = 0; u < 9; u++)
-			CKC[u] += kt * c->n[u / 3] * c->n[u % 3] / (ri * ri);
-		mat3_add(H->diag + 9 * (n + ci), CKC, 1, 1);
+		own_blocks(H, cpl, n, ci, K, Ci, 1, kt, c->n, ri, KC);
 		if (wall)
 			continue;
 		cross_matrix(c->lj, 1 / rj, Cj);
-		/* (j, j) += K; (j, N+j) -= K C_j; (N+j, N+j) += C_j^T K C_j + kt n n^T / R_j^2 */
-		mat3_add(H->diag + 9 * cj, K, 1, 1);
-		mat3_mul(K, Cj, KC, 0);
-		if (!H->diag_only)
-			mat3_add(cpl + 9 * cj, KC, -1, 0);
-		mat3_mul(Cj, KC, CKC, 1);
-		for (u = 0; u < 9; u++)
-			CKC[u] += kt * c->n[u / 3] * c->n[u % 3] / (rj * rj);
-		mat3_add(H->diag + 9 * (n + cj), CKC, 1, 1);
+		own_blocks(H, cpl, n, cj, K, Cj, -1, kt, c->n, rj, KC);
 		if (H->diag_only)
 			continue;
 		/* the pair: (i, j) = -K, (i, N+j) = K C_j, (N+i, j) = -C_i^T K,
