@@ -272,7 +272,7 @@ main(void)
 	struct qs_min_report rep, rl, rn;
 	size_t n = 300, n3 = 3 * n, i, k;
 	double *x0 = malloc(n3 * sizeof *x0), *xl = malloc(n3 * sizeof *xl), *xn = malloc(n3 * sizeof *xn);
-	double de[3] = {0, 0, 1e-4}, rmean = 0, El, En, dpos = 0, tol = 1e-9, *xeq;
+	double rmean = 0, El, En, dpos = 0, tol = 1e-9, *xeq;
 	unsigned *cl = malloc(n * sizeof *cl), *cn = malloc(n * sizeof *cn), rattlers = 0;
 	int st;
 
@@ -304,23 +304,13 @@ main(void)
 	qs_hessian_free(&H);
 	qs_free(&s);
 
-	/* the start: test_minimize's (its pack, CG's equilibrium, strained 1e-4 along z, perturbed) */
+	/* the start: test_minimize's (unit_min.h) */
 	pack_free(&p);
-	n = 200, n3 = 3 * n, rmean = 0;
-	gsl_rng_set(rng, 31337);
-	random_pack(&p, rng, n, 1e-4, 0.66, 0.04);
-	for (i = 0; i < n; i++)
-		rmean += p.r[i] / n;
+	n = 200, n3 = 3 * n;
 	xeq = malloc(n3 * sizeof *xeq);
-	energy_from(&p, p.x, QS_CG, 200000, 1e-6, 0, x0, &rep, cl);
-	for (i = 0, k = 0; i < n; i++)
-		k += cl[i] >= 4;
+	k = strained_start(&p, rng, x0, xeq, &rep, cl);
 	CHECK(rep.status == 0 && k >= 8 * n / 10, "setup: jammed (%zu of %zu grains with >= 4 contacts, Pi = %.3g J)", k, n,
 	    rep.energy);
-	memcpy(xeq, x0, n3 * sizeof *xeq);
-	load_strain_box(p.box, x0, n, de);
-	for (k = 0; k < n3; k++)
-		x0[k] += 1e-5 * rmean * (2 * gsl_rng_uniform(rng) - 1);
 	El = energy_from(&p, x0, QS_LBFGS, 200000, tol, 0, xl, &rl, cl);
 	En = energy_from(&p, x0, QS_NEWTON, 200000, tol, 0, xn, &rn, cn);
 	CHECK(rn.status == 0 && rn.res_max <= tol && strcmp(rn.stopped_by, "residual") == 0,

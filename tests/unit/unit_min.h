@@ -6,7 +6,9 @@
 #include <math.h>
 #include <string.h>
 #include "qs/functional.h"
+#include "qs/loading.h"
 #include "qs/minimize.h"
+#include "unit_pack.h"
 
 /* Minimise from x0 (copied into x) by method m to tol (max_iter, and cap when > 0, else the
  * defaults); each grain's contacts at the end into cnt unless NULL.  Returns the energy. */
@@ -32,6 +34,32 @@ energy_from(struct pack *p, const double *x0, enum qs_method m, long max_iter, d
 	}
 	qs_free(&s);
 	return rep->energy;
+}
+
+/* The minimisers' common start (test_minimize, test_hessian): p a random 200-grain pack
+ * (seed 31337, overlaps up to 4 %), its CG equilibrium to 1e-6 (CG's report into rep, each
+ * grain's contacts into cnt, the positions into xeq unless NULL), then x0 = that
+ * equilibrium strained 1e-4 along z (p's box too) and perturbed by 1e-5 of the mean
+ * radius per coordinate.  Returns the grains with at least 4 contacts at the equilibrium. */
+static size_t __attribute__((unused))
+strained_start(struct pack *p, gsl_rng *rng, double *x0, double *xeq, struct qs_min_report *rep, unsigned *cnt)
+{
+	size_t n = 200, i, k, braced = 0;
+	double de[3] = {0, 0, 1e-4}, rmean = 0;
+
+	gsl_rng_set(rng, 31337);
+	random_pack(p, rng, n, 1e-4, 0.66, 0.04);
+	for (i = 0; i < n; i++)
+		rmean += p->r[i] / n;
+	energy_from(p, p->x, QS_CG, 200000, 1e-6, 0, x0, rep, cnt);
+	for (i = 0; i < n; i++)
+		braced += cnt[i] >= 4;
+	if (xeq)
+		memcpy(xeq, x0, 3 * n * sizeof *xeq);
+	load_strain_box(p->box, x0, n, de);
+	for (k = 0; k < 3 * n; k++)
+		x0[k] += 1e-5 * rmean * (2 * gsl_rng_uniform(rng) - 1);
+	return braced;
 }
 
 /* The largest coordinate difference of two equilibria xa, xb over each grain's radius,
