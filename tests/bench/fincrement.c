@@ -5,7 +5,7 @@
  * From the same start (the pack as read, normally frictionalize's output, whose history is
  * developed), STEPS uniaxial compressions of STRAIN along z (defaults 5 and 1e-4) through the
  * loader that loadtest uses, per minimiser, frictional (6N unknowns, the pack's mu) and
- * frictionless (3N, mu 0); newton frictionless only.  One TSV row per case on stdout: mean iterations, evaluations
+ * frictionless (3N, mu 0).  One TSV row per case on stdout: mean iterations, evaluations
  * and wall time per increment (CLOCK_MONOTONIC; neighbour lists, the commit of the history
  * and the row's measures included), time per evaluation per contact, the largest residual,
  * and last the process's CPU time per evaluation per contact (CLOCK_PROCESS_CPUTIME_ID: on a
