@@ -5,6 +5,7 @@
 #  - one isotropic strain increment of 1e-4 from the dense pack, per minimiser
 #    (build/bench/increment): iterations, evaluations, time per evaluation per contact;
 #  - frictionalize, and uniaxial increments with and without friction (build/bench/fincrement);
+#  - the rest of the chain from the frictionalized pack: a 1 % uniaxial loadtest, and moduli;
 #  - the cost of one evaluation of the functional on the first size's dense pack tiled up to
 #    BENCH_TILES (default "1 2 3 4": 2740 to 175360 grains; build/bench/evalscale);
 #  - the spheroplate element contacts against libccd's penetration queries on random
@@ -19,6 +20,8 @@
 # Each size's rows are kept too (bench/rows-N.*, with the date and commit of the run that
 # made them), and results.md gathers every size measured so far, so that sizes can be run
 # separately (BENCH_SIZES=100000 BENCH_METHODS=lbfgs on one core while the others run).
+# BENCH_FINC_METHODS (default "all": fincrement's four minimisers; "lbfgs" at 1e5, where cg
+# and fire take minutes per increment).
 # BENCH_THREADS (default 1): the OpenMP threads of every program, so that the tables stay
 # one core's figures unless asked otherwise.
 set -u
@@ -43,14 +46,14 @@ info() { awk -v k="$2" -v f="${3:-%s}" '$1 == k { printf f, $2 }' "$1"; }
 
 # save N: the rows of size N, for this and later runs' results.md
 save() {
-	for t in gen dens inc fric finc; do
+	for t in gen dens inc fric finc chain; do
 		eval "printf '%s\n' \"\$${t}_rows\"" | sed '/^$/d' >"$out/rows-$1.$t"
 	done
 	echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)" >"$out/rows-$1.stamp"
 }
 
 for n in $sizes; do
-	gen_rows="" dens_rows="" inc_rows="" fric_rows="" finc_rows=""
+	gen_rows="" dens_rows="" inc_rows="" fric_rows="" finc_rows="" chain_rows=""
 	loose="$out/loose-$n.pack.gz"
 	# packgen: make the loose pack, or reuse the one an earlier run made
 	if [ "${BENCH_REGEN:-0}" = 1 ] || [ ! -s "$loose" ] || [ ! -s "$out/loose-$n.time" ]; then
@@ -118,18 +121,50 @@ $(awk -F '\t' '!/^#/ { printf "| %d | %s | %d | %d | %d | %.4f | %.1f | %.1f | %
 	if [ "$n" -gt "${BENCH_FRIC_MAX:-10000}" ]; then
 		fric_rows="| $n | skipped (BENCH_FRIC_MAX ${BENCH_FRIC_MAX:-10000}) | | | | | | |"
 		finc_rows="| $n | skipped | | | | | | | | |"
+		chain_rows="| $n | skipped | | | | | | | | | |"
 	elif [ -s "$dense" ] && /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/frictionalize" --mu 0.3 \
 	    --log "$out/fric-$n.tsv" -o "$fric" "$dense" 2>"$tmp.err"; then
 		read -r secs kib <"$tmp.time"
 		fric_rows="$fric_rows
 $(awk -F '\t' -v n="$n" -v s="$secs" -v k="$kib" '!/^#/ && $1 > 0 { it += $18; inc = $1; sr = $16; sc = $12 }
 		    END { printf "| %d | %.1f | %.1f | %d | %.1f | %.1f | %.4f | %.3f |", n, s, k / 1024, inc, it / inc, s / inc, sr, sc / 1e6 }' "$out/fric-$n.tsv")"
-		if [ -x "$fincr" ] && "$fincr" "$fric" 5 >"$tmp.finc" 2>"$tmp.err"; then
-			finc_rows="$finc_rows
+		for fm in ${BENCH_FINC_METHODS:-all}; do
+			[ "$fm" = all ] && fm=""
+			if [ -x "$fincr" ] && "$fincr" "$fric" 5 1e-4 $fm >"$tmp.finc" 2>"$tmp.err"; then
+				finc_rows="$finc_rows
 $(awk -F '\t' '!/^#/ { printf "| %d | %s | %s | %d | %.1f | %.1f | %.4f | %.1f | %.1e | %.4f |\n", $3, $1 == "mu" ? "mu 0.3" : "none", $2, $4, $6, $7, $8, $9, $10, $11 }' "$tmp.finc")"
-		else
-			finc_rows="$finc_rows
+			else
+				finc_rows="$finc_rows
 | $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | | | |"
+			fi
+		done
+		# the rest of the chain: a 1 % uniaxial test (100 increments of 1e-4, loadtest's
+		# defaults) from the frictionalized pack, and moduli's fit of its curve
+		curve="$out/chain-$n.tsv"
+		if /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/loadtest" -p uniaxial -n 100 \
+		    -o "$out/chain-$n.pack.gz" "$fric" >"$curve" 2>"$tmp.err" &&
+		    read -r lsecs lkib <"$tmp.time" &&
+		    /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/moduli" "$curve" >"$tmp.mod" 2>"$tmp.err"; then
+			read -r msecs mkib <"$tmp.time"
+			chain_rows="$chain_rows
+$(awk -F '\t' -v n="$n" -v s="$lsecs" -v k="$lkib" -v ms="$msecs" -v mk="$mkib" -v mod="$tmp.mod" '
+			    # columns by name from the # header (units in brackets dropped)
+			    function cols(line, a,   f, i, nf) { sub(/^# /, "", line); nf = split(line, f, "\t")
+				for (i = 1; i <= nf; i++) { sub(/\[.*/, "", f[i]); a[f[i]] = i } }
+			    /^# / && /iterations/ { cols($0, c); next }
+			    /^#/ { next }
+			    { rows++; if (rows > 1) { it += $c["iterations"]; inc++ }; sc = $c["sigma_c"] }
+			    END {
+				while ((getline l < mod) > 0) {
+					if (l ~ /^# / && l ~ /inc_from/) { cols(l, m); continue }
+					if (l ~ /^#/) continue
+					split(l, f, "\t"); K = f[m["K"]]; G = f[m["G"]]
+				}
+				printf "| %d | %.1f | %.1f | %d | %.1f | %.2f | %.3f | %.1f | %.1f | %.2f | %.2f |",
+				    n, s, k / 1024, inc, inc ? it / inc : 0, inc ? s / inc : 0, sc / 1e6, ms, mk / 1024, K / 1e9, G / 1e9 }' "$curve")"
+		else
+			chain_rows="$chain_rows
+| $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | | | | |"
 		fi
 	else
 		fric_rows="$fric_rows
@@ -216,6 +251,15 @@ rows() { for k in $all; do cat "$out/rows-$k.$1" 2>/dev/null; done; }
 	echo "| grains | friction | method | contacts | iterations | evaluations | s per increment | ns per evaluation per contact | largest residual | sliding ratio |"
 	echo "| ---: | :--- | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 	rows finc
+	echo
+	echo "## the rest of the chain: a 1 % uniaxial test and its moduli"
+	echo
+	echo "loadtest -p uniaxial -n 100 (increments of 1e-4, its defaults) from the frictionalized pack,"
+	echo "then moduli on its curve; K and G are the last interval's (1 increment, the lw stress)."
+	echo
+	echo "| grains | loadtest wall time (s) | peak memory (MiB) | increments | iterations per increment | s per increment | sigma_c at the end (MPa) | moduli wall time (s) | moduli peak memory (MiB) | K (GPa) | G (GPa) |"
+	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+	rows chain
 	echo
 	echo "## one evaluation of the functional against N (build/bench/evalscale)"
 	echo
