@@ -2,6 +2,7 @@
 #include "base/par.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -198,6 +199,32 @@ par_scale(double *y, double f, const double *x, size_t n)
 #pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
 	for (k = 0; k < (long)n; k++)
 		y[k] = f * x[k];
+}
+
+/* Each thread clears or copies its own run of whole 4096-element pieces, the calling thread
+ * alone below PAR_MIN_VEC elements. */
+void
+par_zero(double *y, size_t n)
+{
+	long q, nq = (long)((n + PAR_MIN_VEC - 1) / PAR_MIN_VEC);
+
+#pragma omp parallel for schedule(static) if (nq > 1)
+	for (q = 0; q < nq; q++) {
+		size_t k0 = (size_t)q * PAR_MIN_VEC, len = n - k0 < PAR_MIN_VEC ? n - k0 : PAR_MIN_VEC;
+		memset(y + k0, 0, len * sizeof *y);
+	}
+}
+
+void
+par_copy(double *y, const double *x, size_t n)
+{
+	long q, nq = (long)((n + PAR_MIN_VEC - 1) / PAR_MIN_VEC);
+
+#pragma omp parallel for schedule(static) if (nq > 1)
+	for (q = 0; q < nq; q++) {
+		size_t k0 = (size_t)q * PAR_MIN_VEC, len = n - k0 < PAR_MIN_VEC ? n - k0 : PAR_MIN_VEC;
+		memcpy(y + k0, x + k0, len * sizeof *y);
+	}
 }
 
 double

@@ -52,6 +52,9 @@ double par_dot(const double *a, const double *b, size_t n);
 void par_axpy(double *y, double f, const double *x, size_t n);
 /* y[k] = f x[k]. */
 void par_scale(double *y, double f, const double *x, size_t n);
+/* y[k] = 0, and y[k] = x[k]: memset and memcpy on the threads (no sums). */
+void par_zero(double *y, size_t n);
+void par_copy(double *y, const double *x, size_t n);
 
 /* Fused passes for the minimisers, each the same bytes as the plain functions one after the
  * other (the same operations on each element, the sums by par_dot's blocks in order):

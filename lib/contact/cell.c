@@ -135,14 +135,20 @@ long
 cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, double skin, cell_pair_fn fn,
     void *ctx)
 {
-	long visited = 0;
-	int cx, cy, cz, any_periodic = g->periodic[0] || g->periodic[1] || g->periodic[2];
-	int nx = g->nc[0], ny = g->nc[1], nz = g->nc[2];
+	return cell_for_pairs_in(g, 0, g->ncells, x, r, skin, fn, ctx);
+}
 
-	for (cz = 0; cz < nz; cz++)
-		for (cy = 0; cy < ny; cy++)
-			for (cx = 0; cx < nx; cx++) {
-				size_t c = ((size_t)cz * ny + cy) * nx + cx;
+long
+cell_for_pairs_in(const struct cell_grid *g, size_t c0, size_t c1, const double *x, const double *r, double skin,
+    cell_pair_fn fn, void *ctx)
+{
+	long visited = 0;
+	int any_periodic = g->periodic[0] || g->periodic[1] || g->periodic[2];
+	int nx = g->nc[0], ny = g->nc[1], nz = g->nc[2];
+	size_t c;
+
+	for (c = c0; c < c1 && c < g->ncells; c++) {
+				int cx = (int)(c % (size_t)nx), cy = (int)(c / (size_t)nx % (size_t)ny), cz = (int)(c / ((size_t)nx * ny));
 				int dz, dy, dx;
 
 				/* half stencil: this cell and the 13 neighbours "after" it */
@@ -190,6 +196,6 @@ cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, doub
 								}
 							}
 						}
-			}
+	}
 	return visited;
 }

@@ -37,5 +37,10 @@ int cell_build(struct cell_grid *g, const double *x, size_t n, const double lo[3
 typedef int (*cell_pair_fn)(size_t i, size_t j, double dx[3], double d2, void *ctx);
 long cell_for_pairs(const struct cell_grid *g, const double *x, const double *r, double skin,
     cell_pair_fn fn, void *ctx);
+/* The same for the pairs found from cells c0 <= c < c1 (linear index, x fastest) with the
+ * half stencil: a pair is met from the cell of one of its grains only, so disjoint ranges
+ * that cover the grid meet every pair once (the threads of nlist_build). */
+long cell_for_pairs_in(const struct cell_grid *g, size_t c0, size_t c1, const double *x, const double *r,
+    double skin, cell_pair_fn fn, void *ctx);
 
 #endif

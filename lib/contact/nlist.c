@@ -21,6 +21,7 @@ nlist_free(struct nlist *nl)
 	free(nl->nbr);
 	free(nl->xb);
 	free(nl->fill);
+	free(nl->tcnt);
 	cell_free(&nl->grid);
 	memset(nl, 0, sizeof *nl);
 }
@@ -44,12 +45,93 @@ on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
 	return 0;
 }
 
+/* The threads' build: each thread meets the pairs of its own run of cells (cell_for_pairs_in)
+ * and counts them per row in its own column of tcnt (no two threads write one counter); the
+ * rows' offsets are the columns' sums, a thread's place in a row the counts of the threads
+ * before it, and the rows are sorted afterwards, so the list is the same bytes as the serial
+ * build's for any thread count. */
+struct tpass_ctx {
+	struct nlist *nl;
+	unsigned *cnt;		/* this thread's column of tcnt */
+	int pass;
+};
+
+static int
+on_pair_thread(size_t i, size_t j, double dx[3], double d2, void *vctx)
+{
+	struct tpass_ctx *c = vctx;
+
+	(void)dx;
+	(void)d2;
+	if (c->pass == 0)
+		c->cnt[i]++;
+	else
+		c->nl->nbr[c->nl->first[i] + c->cnt[i]++] = j;
+	return 0;
+}
+
+static int
+pairs_threaded(struct nlist *nl, const double *x, const double *r, double skin, int T)
+{
+	size_t n = nl->n, i;
+	int fail = 0;
+
+	if ((size_t)T * n > nl->tcap) {
+		free(nl->tcnt);
+		nl->tcnt = malloc((size_t)T * n * sizeof *nl->tcnt);
+		nl->tcap = nl->tcnt ? (size_t)T * n : 0;
+		if (!nl->tcnt) {
+			msg_seterr("out of memory for the neighbour list");
+			return -1;
+		}
+	}
+	memset(nl->tcnt, 0, (size_t)T * n * sizeof *nl->tcnt);
+#pragma omp parallel num_threads(T)
+	{
+		size_t t = (size_t)par_tid(), nc = nl->grid.ncells;
+		struct tpass_ctx c = {nl, nl->tcnt + t * n, 0};
+		size_t c0 = nc * t / (size_t)T, c1 = nc * (t + 1) / (size_t)T, k;
+
+		cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair_thread, &c);
+#pragma omp barrier
+#pragma omp single
+		{
+			for (i = 0; i < n; i++) {
+				size_t sum = 0;
+				for (k = 0; k < (size_t)T; k++) {
+					unsigned v = nl->tcnt[k * n + i];
+					nl->tcnt[k * n + i] = (unsigned)sum;	/* the place of thread k in row i */
+					sum += v;
+				}
+				nl->first[i + 1] = nl->first[i] + sum;
+			}
+			if (nl->first[n] > nl->cap || !nl->nbr) {
+				size_t cap = nl->first[n] + nl->first[n] / 4 + 16;
+				free(nl->nbr);
+				nl->nbr = malloc(cap * sizeof *nl->nbr);
+				nl->cap = nl->nbr ? cap : 0;
+				fail = !nl->nbr;
+			}
+		}
+		if (!fail) {
+			c.pass = 1;
+			cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair_thread, &c);
+		}
+	}
+	if (fail) {
+		msg_seterr("out of memory for the neighbour list");
+		return -1;
+	}
+	return 0;
+}
+
 int
 nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const double lo[3], const double hi[3],
     double rmax, double skin, const int *periodic)
 {
 	struct pass_ctx c = {nl, 0};
 	size_t i, k;
+	int threads = n >= PAR_MIN ? par_threads() : 1;
 
 	if (n != nl->n || !nl->first) {
 		free(nl->first), free(nl->xb), free(nl->fill);
@@ -67,23 +149,29 @@ nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const 
 	if (cell_build(&nl->grid, x, n, lo, hi, 2 * rmax + skin, periodic))
 		return -1;
 	memset(nl->first, 0, (n + 1) * sizeof *nl->first);
-	cell_for_pairs(&nl->grid, x, r, skin, on_pair, &c);
-	for (i = 0; i < n; i++)
-		nl->first[i + 1] += nl->first[i];
-	if (nl->first[n] > nl->cap || !nl->nbr) {
-		size_t cap = nl->first[n] + nl->first[n] / 4 + 16;
-		free(nl->nbr);
-		nl->nbr = malloc(cap * sizeof *nl->nbr);
-		if (!nl->nbr) {
-			msg_seterr("out of memory for the neighbour list");
+	if (threads > 1) {
+		if (pairs_threaded(nl, x, r, skin, threads))
 			return -1;
+	} else {
+		cell_for_pairs(&nl->grid, x, r, skin, on_pair, &c);
+		for (i = 0; i < n; i++)
+			nl->first[i + 1] += nl->first[i];
+		if (nl->first[n] > nl->cap || !nl->nbr) {
+			size_t cap = nl->first[n] + nl->first[n] / 4 + 16;
+			free(nl->nbr);
+			nl->nbr = malloc(cap * sizeof *nl->nbr);
+			if (!nl->nbr) {
+				msg_seterr("out of memory for the neighbour list");
+				return -1;
+			}
+			nl->cap = cap;
 		}
-		nl->cap = cap;
+		memcpy(nl->fill, nl->first, n * sizeof *nl->fill);
+		c.pass = 1;
+		cell_for_pairs(&nl->grid, x, r, skin, on_pair, &c);
 	}
-	memcpy(nl->fill, nl->first, n * sizeof *nl->fill);
-	c.pass = 1;
-	cell_for_pairs(&nl->grid, x, r, skin, on_pair, &c);
 	/* rows sorted by j: deterministic order of summation, and merges of two lists */
+#pragma omp parallel for schedule(static) private(k) if (threads > 1)
 	for (i = 0; i < n; i++)
 		for (k = nl->first[i] + 1; k < nl->first[i + 1]; k++) {
 			size_t v = nl->nbr[k], q = k;

@@ -21,6 +21,8 @@ struct nlist {
 	double blo[3], bhi[3];	/* box at the build */
 	struct cell_grid grid;
 	size_t *fill;
+	unsigned *tcnt;		/* the threads' pair counts per row (nlist.c), tcap of them */
+	size_t tcap;
 	long builds;
 };
 

@@ -462,9 +462,9 @@ qs_energy(struct qs_system *s, const double *x, double *g, double *fmax)
 		return NAN;
 	s->evals++;
 	if (g)
-		memset(g, 0, s->dim * sizeof *g);
+		par_zero(g, s->dim);
 	if (fmax)
-		memset(fmax, 0, s->n * sizeof *fmax);
+		par_zero(fmax, s->n);
 	memset(s->wall_force, 0, sizeof s->wall_force);
 	for (q = 0; q < s->nterms; q++)
 		E += s->term[q].energy(&s->term[q], s, x, g, fmax);
@@ -480,21 +480,34 @@ void
 qs_residual(const struct qs_system *s, const double *g, const double *fbig, double floor_rel, double *res_max,
     double *res_mean)
 {
-	double rmax = 0, sum = 0, fl;
-	size_t i, nf = 0;
+	double rmax = 0, sum = 0, fl, part[PAR_MAXBLOCKS];
+	size_t n = s->n, bl = par_block(n), nb = n ? (n + bl - 1) / bl : 0, nf = 0, q, cnt[PAR_MAXBLOCKS];
 
 	fl = s->ncontacts ? floor_rel * s->sum_force / s->ncontacts : 0;
 	if (s->force_floor > fl)
 		fl = s->force_floor;
-	for (i = 0; i < s->n; i++) {
-		double f;
-		if (!(fbig[i] > 0))
-			continue;
-		f = layout_grain_len(&s->layout, g, i);
-		if (f / fmax(fbig[i], fl) > rmax)
-			rmax = f / fmax(fbig[i], fl);
-		sum += f;
-		nf++;
+	/* the sum by blocks of par_block(n) grains added in block order, the largest value in
+	 * any order: the same bytes for any thread count (base/par.h) */
+#pragma omp parallel for schedule(static) reduction(max : rmax) if (n >= PAR_MIN)
+	for (q = 0; q < nb; q++) {
+		size_t i, i1 = (q + 1) * bl < n ? (q + 1) * bl : n, c = 0;
+		double t = 0;
+		for (i = q * bl; i < i1; i++) {
+			double f;
+			if (!(fbig[i] > 0))
+				continue;
+			f = layout_grain_len(&s->layout, g, i);
+			if (f / fmax(fbig[i], fl) > rmax)
+				rmax = f / fmax(fbig[i], fl);
+			t += f;
+			c++;
+		}
+		part[q] = t;
+		cnt[q] = c;
+	}
+	for (q = 0; q < nb; q++) {
+		sum += part[q];
+		nf += cnt[q];
 	}
 	*res_max = rmax;
 	*res_mean = nf && s->ncontacts ? (sum / nf) / (s->sum_force / s->ncontacts) : 0;

@@ -117,6 +117,8 @@ alpha_cap(const struct work *w, const double *d, double cap)
 	double amax = INFINITY;
 	size_t i;
 
+	/* a smallest value is exact in any order (base/par.h) */
+#pragma omp parallel for schedule(static) reduction(min : amax) if (w->s->n >= PAR_MIN)
 	for (i = 0; i < w->s->n; i++) {
 		double l = grain_len(w, d, i);
 		if (l > 0 && cap * w->s->p->r[i] / l < amax)
@@ -217,7 +219,7 @@ accept_trial(struct work *w, double *x)
 {
 	double eprev = w->e, *t;
 
-	memcpy(x, w->xt, w->n3 * sizeof *x);
+	par_copy(x, w->xt, w->n3);
 	w->e = w->et;
 	t = w->g;
 	w->g = w->gt;

@@ -113,6 +113,26 @@ one_case(gsl_rng *rng, size_t n, double phi, double outside, double skin)
 	CHECK(s.bad_dx == 0, "n=%zu phi=%g skin=%g: dx = x_i - x_j and d2 = |dx|^2 (%ld wrong)", n, phi, skin, s.bad_dx);
 	CHECK(visited == s.calls && (size_t)visited == expected, "n=%zu phi=%g skin=%g: returns the number of pairs (%ld)",
 	    n, phi, skin, visited);
+	{
+		/* the threads' split (nlist_build): disjoint runs of cells that cover the grid
+		 * meet every pair exactly once between them */
+		size_t cuts[4] = {0, g.ncells / 3, 2 * g.ncells / 3, g.ncells}, q;
+		size_t again = 0, lost = 0;
+		long split = 0;
+		unsigned char *first = s.hits;
+
+		s.hits = calloc(n * n, 1);
+		for (q = 0; q < 3; q++)
+			split += cell_for_pairs_in(&g, cuts[q], cuts[q + 1], x, r, skin, on_pair, &s);
+		for (i = 0; i < n * n; i++) {
+			again += s.hits[i] > 1;
+			lost += first[i] != s.hits[i];
+		}
+		CHECK(split == visited && again == 0 && lost == 0,
+		    "n=%zu phi=%g skin=%g: three runs of cells meet the same %ld pairs once (%ld met, %zu twice, %zu differ)",
+		    n, phi, skin, visited, split, again, lost);
+		free(first);
+	}
 	cell_free(&g);
 	free(s.hits);
 	free(x);
