@@ -766,7 +766,7 @@ static void
 newton_direction(struct qs_minimizer *m)
 {
 	struct work *w = &m->w;
-	size_t n3 = w->n3, k;
+	size_t n3 = w->n3;
 	double gg = dot(w->g, w->g, n3), eta = m->mp.newton_eta, tol2, rz, rr;
 	long it;
 
@@ -780,11 +780,10 @@ newton_direction(struct qs_minimizer *m)
 	m->gnorm_prev = sqrt(gg);
 	tol2 = eta * eta * gg;
 
-	memset(w->d, 0, n3 * sizeof *w->d);
-	for (k = 0; k < n3; k++)
-		m->r[k] = -w->g[k];
+	par_zero(w->d, n3);
+	par_scale(m->r, -1, w->g, n3);
 	precond_apply(m, m->r, m->z);
-	memcpy(m->q, m->z, n3 * sizeof *m->q);
+	par_copy(m->q, m->z, n3);
 	rz = dot(m->r, m->z, n3);
 	for (it = 0; it < m->mp.newton_cg_max; it++) {
 		double qHq, a, rz1;
@@ -803,8 +802,14 @@ newton_direction(struct qs_minimizer *m)
 			break;
 		precond_apply(m, m->r, m->z);
 		rz1 = dot(m->r, m->z, n3);
-		for (k = 0; k < n3; k++)
-			m->q[k] = m->z[k] + rz1 / rz * m->q[k];
+		{
+			double beta = rz1 / rz;
+			long kk;
+			/* elementwise, no sum: the same bytes on any thread count */
+#pragma omp parallel for schedule(static) if (n3 >= PAR_MIN_VEC)
+			for (kk = 0; kk < (long)n3; kk++)
+				m->q[kk] = m->z[kk] + beta * m->q[kk];
+		}
 		rz = rz1;
 	}
 	if (dot(w->d, w->g, n3) >= 0)	/* no progress at all: along -g */
