@@ -12,7 +12,7 @@
 #    near-contact pairs at platyness 0.14, 0.5, 0.8 (build/bench/platecontact, ~10 s).
 # Results go to bench/results.md (readable tables) with the machine and the commit.
 #
-# Knobs: BENCH_SIZES (e.g. "2740 10000" for a quicker run); BENCH_METHODS (densify's
+# Knobs: BENCH_SIZES (e.g. "2740 10000" for a quicker run; " " only gathers the rows of earlier runs into results.md); BENCH_METHODS (densify's
 # minimisers, default "cg fire lbfgs"); BENCH_FRIC_MAX (largest size that is frictionalized,
 # default 10000: about an hour at 1e5 grains); BENCH_REGEN=1 remakes the loose packs.  The
 # packs are kept in bench/ (loose-N.pack.gz, dense-N-METHOD.pack.gz, the densify logs) so
@@ -179,7 +179,7 @@ done
 first=$(echo $sizes | cut -d ' ' -f 1)
 firstm=$(echo $methods | cut -d ' ' -f 1)
 case " $methods " in *" lbfgs "*) firstm=lbfgs ;; esac
-if [ "$first" -le 10000 ]; then
+if [ -n "$first" ] && [ "$first" -le 10000 ]; then
 	if [ -x "$escale" ] && [ -s "$out/dense-$first-$firstm.pack.gz" ] &&
 	    "$escale" "$out/dense-$first-$firstm.pack.gz" ${BENCH_TILES:-1 2 3 4} >"$tmp.scale" 2>"$tmp.err"; then
 		awk -F '\t' '!/^#/ { printf "| %d | %d | %d | %.4f | %.5f | %.1f |\n", $1, $2, $3, $4, $5, $6 }' "$tmp.scale" >"$out/rows-scale"
