@@ -8,8 +8,9 @@ set output out
 set datafile separator "\t"
 set grid
 set key top right font ",9"
-# the two series, each in the order of its axis (rows are dS pex K G)
-tab = "< sh ".cols." ".summary." dS pex K G"
+# the two series, each in the order of its axis (rows are dS pex K G); a probe that rearranged
+# (fit_rel above 0.5: its K and G are not moduli, pipelines/report.sh) is left out
+tab = "< sh ".cols." ".summary." dS pex K G fit_rel | awk '$5 + 0 <= 0.5'"
 srcA = tab." | awk '$1 + 0 == -0.01' | sort -g -k2,2"
 srcB = tab." | awk '$2 + 0 == 1e6' | sort -g -r -k1,1"
 K0 = real(system("sh ".cols." ".summary." run K | awk '$1 == \"hyd-d0-p0\" { print $2 / 1e9 }'"))
