@@ -22,6 +22,7 @@
 # separately (BENCH_SIZES=100000 BENCH_METHODS=lbfgs on one core while the others run).
 # BENCH_FINC_METHODS (default "all": fincrement's four minimisers; "lbfgs" at 1e5, where cg
 # and fire take minutes per increment).
+# BENCH_NOTE: a remark kept with the size's date and commit (what else ran on the machine).
 # BENCH_THREADS (default 1): the OpenMP threads of every program, so that the tables stay
 # one core's figures unless asked otherwise.
 set -u
@@ -49,7 +50,7 @@ save() {
 	for t in gen dens inc fric finc chain; do
 		eval "printf '%s\n' \"\$${t}_rows\"" | sed '/^$/d' >"$out/rows-$1.$t"
 	done
-	echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)" >"$out/rows-$1.stamp"
+	echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)${BENCH_NOTE:+ ($BENCH_NOTE)}" >"$out/rows-$1.stamp"
 }
 
 for n in $sizes; do
