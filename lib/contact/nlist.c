@@ -88,9 +88,10 @@ pairs_threaded(struct nlist *nl, const double *x, const double *r, double skin, 
 	memset(nl->tcnt, 0, (size_t)T * n * sizeof *nl->tcnt);
 #pragma omp parallel num_threads(T)
 	{
-		size_t t = (size_t)par_tid(), nc = nl->grid.ncells;
+		/* the team OpenMP gave, which may be smaller than asked for: its threads cover the cells */
+		size_t TT = (size_t)par_team(), t = (size_t)par_tid(), nc = nl->grid.ncells;
 		struct tpass_ctx c = {nl, nl->tcnt + t * n, 0};
-		size_t c0 = nc * t / (size_t)T, c1 = nc * (t + 1) / (size_t)T, k;
+		size_t c0 = nc * t / TT, c1 = nc * (t + 1) / TT, k;
 
 		cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair_thread, &c);
 #pragma omp barrier
@@ -98,7 +99,7 @@ pairs_threaded(struct nlist *nl, const double *x, const double *r, double skin, 
 		{
 			for (i = 0; i < n; i++) {
 				size_t sum = 0;
-				for (k = 0; k < (size_t)T; k++) {
+				for (k = 0; k < TT; k++) {
 					unsigned v = nl->tcnt[k * n + i];
 					nl->tcnt[k * n + i] = (unsigned)sum;	/* the place of thread k in row i */
 					sum += v;
