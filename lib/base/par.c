@@ -201,30 +201,33 @@ par_scale(double *y, double f, const double *x, size_t n)
 		y[k] = f * x[k];
 }
 
-/* Each thread clears or copies its own run of whole 4096-element pieces, the calling thread
- * alone below PAR_MIN_VEC elements. */
-void
-par_zero(double *y, size_t n)
+/* y = x, or y = 0 when x is NULL: each thread clears or copies its own run of whole
+ * PAR_MIN_VEC-element pieces, the calling thread alone below PAR_MIN_VEC elements. */
+static void
+copy_pieces(double *y, const double *x, size_t n)
 {
 	long q, nq = (long)((n + PAR_MIN_VEC - 1) / PAR_MIN_VEC);
 
 #pragma omp parallel for schedule(static) if (nq > 1)
 	for (q = 0; q < nq; q++) {
 		size_t k0 = (size_t)q * PAR_MIN_VEC, len = n - k0 < PAR_MIN_VEC ? n - k0 : PAR_MIN_VEC;
-		memset(y + k0, 0, len * sizeof *y);
+		if (x)
+			memcpy(y + k0, x + k0, len * sizeof *y);
+		else
+			memset(y + k0, 0, len * sizeof *y);
 	}
+}
+
+void
+par_zero(double *y, size_t n)
+{
+	copy_pieces(y, NULL, n);
 }
 
 void
 par_copy(double *y, const double *x, size_t n)
 {
-	long q, nq = (long)((n + PAR_MIN_VEC - 1) / PAR_MIN_VEC);
-
-#pragma omp parallel for schedule(static) if (nq > 1)
-	for (q = 0; q < nq; q++) {
-		size_t k0 = (size_t)q * PAR_MIN_VEC, len = n - k0 < PAR_MIN_VEC ? n - k0 : PAR_MIN_VEC;
-		memcpy(y + k0, x + k0, len * sizeof *y);
-	}
+	copy_pieces(y, x, n);
 }
 
 double

@@ -148,54 +148,54 @@ cell_for_pairs_in(const struct cell_grid *g, size_t c0, size_t c1, const double 
 	size_t c;
 
 	for (c = c0; c < c1 && c < g->ncells; c++) {
-				int cx = (int)(c % (size_t)nx), cy = (int)(c / (size_t)nx % (size_t)ny), cz = (int)(c / ((size_t)nx * ny));
-				int dz, dy, dx;
+		int cx = (int)(c % (size_t)nx), cy = (int)(c / (size_t)nx % (size_t)ny), cz = (int)(c / ((size_t)nx * ny));
+		int dz, dy, dx;
 
-				/* half stencil: this cell and the 13 neighbours "after" it */
-				for (dz = 0; dz <= 1; dz++)
-					for (dy = (dz ? -1 : 0); dy <= 1; dy++)
-						for (dx = (dz || dy ? -1 : 0); dx <= 1; dx++) {
-							int ox = cx + dx, oy = cy + dy, oz = cz + dz;
-							size_t o, p, q;
+		/* half stencil: this cell and the 13 neighbours "after" it */
+		for (dz = 0; dz <= 1; dz++)
+			for (dy = (dz ? -1 : 0); dy <= 1; dy++)
+				for (dx = (dz || dy ? -1 : 0); dx <= 1; dx++) {
+					int ox = cx + dx, oy = cy + dy, oz = cz + dz;
+					size_t o, p, q;
 
-							if (g->periodic[0])
-								ox = (ox + nx) % nx;
-							if (g->periodic[1])
-								oy = (oy + ny) % ny;
-							if (g->periodic[2])
-								oz = oz % nz;
-							if (ox < 0 || oy < 0 || ox >= nx || oy >= ny || oz >= nz)
+					if (g->periodic[0])
+						ox = (ox + nx) % nx;
+					if (g->periodic[1])
+						oy = (oy + ny) % ny;
+					if (g->periodic[2])
+						oz = oz % nz;
+					if (ox < 0 || oy < 0 || ox >= nx || oy >= ny || oz >= nz)
+						continue;
+					o = ((size_t)oz * ny + oy) * nx + ox;
+					for (p = g->start[c]; p < g->start[c + 1]; p++) {
+						size_t i = g->idx[p];
+						size_t q0 = o == c ? p + 1 : g->start[o];
+						for (q = q0; q < g->start[o + 1]; q++) {
+							size_t j = g->idx[q];
+							double d[3], d2, cut;
+							d[0] = x[3 * i] - x[3 * j];
+							d[1] = x[3 * i + 1] - x[3 * j + 1];
+							d[2] = x[3 * i + 2] - x[3 * j + 2];
+							if (any_periodic)
+								min_image(g, d);
+							d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+							cut = r[i] + r[j] + skin;
+							if (d2 >= cut * cut)
 								continue;
-							o = ((size_t)oz * ny + oy) * nx + ox;
-							for (p = g->start[c]; p < g->start[c + 1]; p++) {
-								size_t i = g->idx[p];
-								size_t q0 = o == c ? p + 1 : g->start[o];
-								for (q = q0; q < g->start[o + 1]; q++) {
-									size_t j = g->idx[q];
-									double d[3], d2, cut;
-									d[0] = x[3 * i] - x[3 * j];
-									d[1] = x[3 * i + 1] - x[3 * j + 1];
-									d[2] = x[3 * i + 2] - x[3 * j + 2];
-									if (any_periodic)
-										min_image(g, d);
-									d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-									cut = r[i] + r[j] + skin;
-									if (d2 >= cut * cut)
-										continue;
-									visited++;
-									if (i < j) {
-										if (fn(i, j, d, d2, ctx))
-											return -1;
-									} else {
-										d[0] = -d[0];
-										d[1] = -d[1];
-										d[2] = -d[2];
-										if (fn(j, i, d, d2, ctx))
-											return -1;
-									}
-								}
+							visited++;
+							if (i < j) {
+								if (fn(i, j, d, d2, ctx))
+									return -1;
+							} else {
+								d[0] = -d[0];
+								d[1] = -d[1];
+								d[2] = -d[2];
+								if (fn(j, i, d, d2, ctx))
+									return -1;
 							}
 						}
+					}
+				}
 	}
 	return visited;
 }

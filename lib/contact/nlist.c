@@ -20,14 +20,19 @@ nlist_free(struct nlist *nl)
 	free(nl->first);
 	free(nl->nbr);
 	free(nl->xb);
-	free(nl->fill);
 	free(nl->tcnt);
 	cell_free(&nl->grid);
 	memset(nl, 0, sizeof *nl);
 }
 
+/* The build, on T threads (one below PAR_MIN grains): each thread meets the pairs of its own
+ * run of cells (cell_for_pairs_in) and counts them per row in its own column of tcnt (no two
+ * threads write one counter); the rows' offsets are the columns' sums, a thread's place in a
+ * row the counts of the threads before it, and the rows are sorted afterwards, so the list is
+ * the same bytes for any thread count. */
 struct pass_ctx {
 	struct nlist *nl;
+	unsigned *cnt;		/* this thread's column of tcnt */
 	int pass;
 };
 
@@ -39,31 +44,6 @@ on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
 	(void)dx;
 	(void)d2;
 	if (c->pass == 0)
-		c->nl->first[i + 1]++;
-	else
-		c->nl->nbr[c->nl->fill[i]++] = j;
-	return 0;
-}
-
-/* The threads' build: each thread meets the pairs of its own run of cells (cell_for_pairs_in)
- * and counts them per row in its own column of tcnt (no two threads write one counter); the
- * rows' offsets are the columns' sums, a thread's place in a row the counts of the threads
- * before it, and the rows are sorted afterwards, so the list is the same bytes as the serial
- * build's for any thread count. */
-struct tpass_ctx {
-	struct nlist *nl;
-	unsigned *cnt;		/* this thread's column of tcnt */
-	int pass;
-};
-
-static int
-on_pair_thread(size_t i, size_t j, double dx[3], double d2, void *vctx)
-{
-	struct tpass_ctx *c = vctx;
-
-	(void)dx;
-	(void)d2;
-	if (c->pass == 0)
 		c->cnt[i]++;
 	else
 		c->nl->nbr[c->nl->first[i] + c->cnt[i]++] = j;
@@ -71,29 +51,29 @@ on_pair_thread(size_t i, size_t j, double dx[3], double d2, void *vctx)
 }
 
 static int
-pairs_threaded(struct nlist *nl, const double *x, const double *r, double skin, int T)
+find_pairs(struct nlist *nl, const double *x, const double *r, double skin, int T)
 {
-	size_t n = nl->n, i;
+	size_t n = nl->n, i, need = (size_t)T * (n ? n : 1);
 	int fail = 0;
 
-	if ((size_t)T * n > nl->tcap) {
+	if (need > nl->tcap) {
 		free(nl->tcnt);
-		nl->tcnt = malloc((size_t)T * n * sizeof *nl->tcnt);
-		nl->tcap = nl->tcnt ? (size_t)T * n : 0;
+		nl->tcnt = malloc(need * sizeof *nl->tcnt);
+		nl->tcap = nl->tcnt ? need : 0;
 		if (!nl->tcnt) {
 			msg_seterr("out of memory for the neighbour list");
 			return -1;
 		}
 	}
-	memset(nl->tcnt, 0, (size_t)T * n * sizeof *nl->tcnt);
-#pragma omp parallel num_threads(T)
+	memset(nl->tcnt, 0, need * sizeof *nl->tcnt);
+#pragma omp parallel num_threads(T) if (T > 1)
 	{
 		/* the team OpenMP gave, which may be smaller than asked for: its threads cover the cells */
 		size_t TT = (size_t)par_team(), t = (size_t)par_tid(), nc = nl->grid.ncells;
-		struct tpass_ctx c = {nl, nl->tcnt + t * n, 0};
+		struct pass_ctx c = {nl, nl->tcnt + t * n, 0};
 		size_t c0 = nc * t / TT, c1 = nc * (t + 1) / TT, k;
 
-		cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair_thread, &c);
+		cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair, &c);
 #pragma omp barrier
 #pragma omp single
 		{
@@ -116,7 +96,7 @@ pairs_threaded(struct nlist *nl, const double *x, const double *r, double skin, 
 		}
 		if (!fail) {
 			c.pass = 1;
-			cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair_thread, &c);
+			cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair, &c);
 		}
 	}
 	if (fail) {
@@ -130,17 +110,15 @@ int
 nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const double lo[3], const double hi[3],
     double rmax, double skin, const int *periodic)
 {
-	struct pass_ctx c = {nl, 0};
 	size_t i, k;
 	int threads = n >= PAR_MIN ? par_threads() : 1;
 
 	if (n != nl->n || !nl->first) {
-		free(nl->first), free(nl->xb), free(nl->fill);
+		free(nl->first), free(nl->xb);
 		nl->first = malloc((n + 1) * sizeof *nl->first);
 		nl->xb = malloc(3 * n * sizeof *nl->xb);
-		nl->fill = malloc((n ? n : 1) * sizeof *nl->fill);
 		nl->n = n;
-		if (!nl->first || !nl->xb || !nl->fill) {
+		if (!nl->first || !nl->xb) {
 			msg_seterr("out of memory for the neighbour list");
 			return -1;
 		}
@@ -149,28 +127,9 @@ nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const 
 	nl->rmax = rmax;
 	if (cell_build(&nl->grid, x, n, lo, hi, 2 * rmax + skin, periodic))
 		return -1;
-	memset(nl->first, 0, (n + 1) * sizeof *nl->first);
-	if (threads > 1) {
-		if (pairs_threaded(nl, x, r, skin, threads))
-			return -1;
-	} else {
-		cell_for_pairs(&nl->grid, x, r, skin, on_pair, &c);
-		for (i = 0; i < n; i++)
-			nl->first[i + 1] += nl->first[i];
-		if (nl->first[n] > nl->cap || !nl->nbr) {
-			size_t cap = nl->first[n] + nl->first[n] / 4 + 16;
-			free(nl->nbr);
-			nl->nbr = malloc(cap * sizeof *nl->nbr);
-			if (!nl->nbr) {
-				msg_seterr("out of memory for the neighbour list");
-				return -1;
-			}
-			nl->cap = cap;
-		}
-		memcpy(nl->fill, nl->first, n * sizeof *nl->fill);
-		c.pass = 1;
-		cell_for_pairs(&nl->grid, x, r, skin, on_pair, &c);
-	}
+	nl->first[0] = 0;
+	if (find_pairs(nl, x, r, skin, threads))
+		return -1;
 	/* rows sorted by j: deterministic order of summation, and merges of two lists */
 #pragma omp parallel for schedule(static) private(k) if (threads > 1)
 	for (i = 0; i < n; i++)

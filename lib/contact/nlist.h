@@ -20,7 +20,6 @@ struct nlist {
 	double *xb;		/* positions at the build */
 	double blo[3], bhi[3];	/* box at the build */
 	struct cell_grid grid;
-	size_t *fill;
 	unsigned *tcnt;		/* the threads' pair counts per row (nlist.c), tcap of them */
 	size_t tcap;
 	long builds;
