@@ -16,7 +16,7 @@
 static struct opts {
 	struct densify_params dp;
 	const char *log;
-	int allow_limit;
+	int allow_limit, full_steps;
 	long min_coord, nsub;
 } o = {
 	.min_coord = 4, .nsub = 1,
@@ -32,6 +32,7 @@ static struct cli_opt opt_table[] = {
 	{"grow-tol", 0, CLI_DOUBLE, &o.dp.grow_tol, "RATIO", "residual target of growth rounds below the onset (unjammed)", NULL},
 	{"grow-max-iter", 0, CLI_LONG, &o.dp.grow_max_iter, "N", "iteration limit of those rounds (reaching it is not an error)", NULL},
 	{"release-after", 0, CLI_LONG, &o.dp.release_after, "N", "iterations between releases of grains with 1-3 contacts; 0: never", NULL},
+	{"full-steps", 0, CLI_FLAG, &o.full_steps, NULL, "every compaction step to the full tolerance (not only the last)", NULL},
 	{"min-coord", 0, CLI_LONG, &o.min_coord, "N", "grains with fewer contacts (grains and walls) are expanded", NULL},
 	{"max-rounds", 0, CLI_LONG, &o.dp.max_rounds, "N", "limit on growth rounds and on compaction steps", NULL},
 	{"sub-increments", 0, CLI_LONG, &o.nsub, "N", "sub-increments per strain step (affine guess each)", NULL},
@@ -95,6 +96,7 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	if (!(o.dp.skin > 0 && o.dp.skin <= 2))
 		cli_usage_error("--skin: must be in (0, 2]");
 	cli_usage_done();
+	o.dp.loose_steps = !o.full_steps;
 	if (o.dp.onset == 0)
 		o.dp.onset = densify_onset_default(o.dp.stress);	/* the history line records the value used */
 	o.dp.min_coord = (unsigned)o.min_coord;

@@ -34,6 +34,7 @@ densify_params_default(struct densify_params *dp)
 	 * coordination within 0.04 (the scatter between seeds), bench/results.md. */
 	dp->grow_max_iter = 5000;
 	dp->release_after = 5000;
+	dp->loose_steps = 1;
 	dp->min_coord = 4;
 	dp->max_rounds = 1000;
 	dp->nsub = 1;
@@ -437,6 +438,7 @@ compaction_step(struct densify_state *d, long round, double *e_prev, double *y_p
 	const struct densify_params *dp = d->dp;
 	struct pack *p = d->p;
 	double y = pow(d->st.sigma_c, 2.0 / 3.0), yt = pow(dp->stress, 2.0 / 3.0), de, d3[3], eps[3], eps_now;
+	struct qs_min_params mp;
 
 	if (round > dp->max_rounds) {
 		msg_seterr("compaction did not reach %g Pa in %ld steps (sigma_c %g Pa)", dp->stress, dp->max_rounds,
@@ -463,8 +465,18 @@ compaction_step(struct densify_state *d, long round, double *e_prev, double *y_p
 		grow_grains(&d->s, d->x, d->cnt, dp, 1.0, d->gp);
 	if (fabs(d->st.sigma_c / dp->stress - 1) <= dp->stress_tol)
 		d3[0] = d3[1] = d3[2] = 0;
-	if (minimize_releasing(&d->s, d->x, d3, dp, &dp->min, &d->rep) < 0)
+	/* A step that moves the box only brings the pack nearer the target, like a growth
+	 * round: grow_tol in at most grow_max_iter iterations; the step that stays at the
+	 * target is the full equilibrium, and only a full one can end the compaction. */
+	mp = dp->min;
+	if (dp->loose_steps && d3[0] != 0) {
+		mp.tol = fmax(mp.tol, dp->grow_tol);
+		if (mp.max_iter > dp->grow_max_iter)
+			mp.max_iter = dp->grow_max_iter;
+	}
+	if (minimize_releasing(&d->s, d->x, d3, dp, &mp, &d->rep) < 0)
 		return -1;
+	d->full = mp.tol <= dp->min.tol;
 	record(d, "compact", round);
 	return 0;
 }
@@ -518,7 +530,7 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	}
 	p->has_refbox = 1;
 	d.s.force_floor = 0;
-	for (round = 1; fabs(d.st.sigma_c / dpl.stress - 1) > dpl.stress_tol || d.st.under4 > 0; round++)
+	for (round = 1; fabs(d.st.sigma_c / dpl.stress - 1) > dpl.stress_tol || d.st.under4 > 0 || !d.full; round++)
 		if (compaction_step(&d, round, &e_prev, &y_prev))
 			goto out;
 	if (finish(&d))

@@ -113,6 +113,16 @@ check_dense "release every 50 iterations" rel50.pack 4e6
 expect_ok "densify --release-after 0" densify --stress 4e6 --release-after 0 -o rel0.pack loose.pack
 check_dense "no release" rel0.pack 4e6
 
+# Compaction steps that move the box stop at --grow-tol (or --grow-max-iter); only a step at
+# the target, minimised to the full --tol, ends the compaction.  --full-steps takes every
+# step to --tol.  Either way the pack passes the same independent checks.
+expect_num "d4.tsv: a compaction step stopped short of --tol (loose)" \
+    "$(awk -F '\t' '$1 == "compact" && $9 > 1e-4 { k++ } END { print k + 0 }' d4.tsv)" ">=" 1
+expect_ok "densify --full-steps" densify --stress 4e6 --full-steps --log full.tsv -o full.pack loose.pack
+check_dense "every step to --tol" full.pack 4e6
+expect_num "full.tsv: every compaction step at --tol" \
+    "$(awk -F '\t' '$1 == "compact" && !($9 <= 1e-4) { k++ } END { print k + 0 }' full.tsv)" == 0
+
 # Errors: exit status, nothing on stdout, one line on stderr, no output file.
 # expect_fail NAME STATUS REGEX ARGS...: densify ARGS -o nothing.pack, as expect_error, and
 # neither nothing.pack nor a temporary file is left.
