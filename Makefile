@@ -59,7 +59,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -226,6 +226,14 @@ bench-plates: all
 	@$(MAKE) --no-print-directory B=build build/bench/platestep
 	@sh tests/bench-plates.sh build/bin
 
+# The chain's peak memory at 1.25e6 grains (bench/memory-1e6.md, tests/bench-memory.sh: make
+# bench's dense 1e4 pack tiled 5 x 5 x 5, each stage cut short; a few minutes):
+# make bench-memory [BENCH_MEMORY_TILES=5]
+BENCH_MEMORY_TILES ?= 5
+bench-memory: all
+	@$(MAKE) --no-print-directory B=build build/bench/evalscale
+	@sh tests/bench-memory.sh build/bin $(BENCH_MEMORY_TILES)
+
 # qusgm against LIGGGHTS (Hertz-Mindlin DEM) on the same oedometric increments from the same
 # pack (bench/peers.md, tests/bench-peers.sh; about a minute): make bench-peers
 # [PEERS_INCREMENTS=10].  As root, installs LIGGGHTS if missing; otherwise stops with the
@@ -304,6 +312,7 @@ help:
 	@echo "make pipelines  the papers' studies (STUDY=name, SMALL=1 for small packs; pipelines/README.md)"
 	@echo "make bench      benchmarks; results in bench/results.md and bench/plates.md"
 	@echo "make bench-plates  the spheroplate DEM's benchmarks alone (bench/plates.md)"
+	@echo "make bench-memory  the chain's peak memory at 1.25e6 grains, tiled (bench/memory-1e6.md)"
 	@echo "make bench-peers   qusgm against LIGGGHTS on the same oedometric increments (bench/peers.md; installs liggghts as root)"
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make cluster-check  a one-node Slurm cluster here (root: installs slurm-wlm, munge): a SMALL study through srun vs make -j"

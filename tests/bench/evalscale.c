@@ -10,7 +10,13 @@
  * the first evaluation (neighbour list included) and of one later evaluation, and ns per
  * evaluation per contact, which is constant when the cost is linear.  This measures the
  * functional at sizes (1e5 grains and more) that packgen and densify take hours to reach;
- * it says nothing about how many iterations a minimisation needs there. */
+ * it says nothing about how many iterations a minimisation needs there.
+ *
+ * usage: evalscale -o OUT PACK M
+ *
+ * writes the tiled pack instead (the tiled box its reference box, no contact history): the
+ * tools' memory at 1e6 grains, in runs cut short by an iteration limit (bench/memory-1e6.md).
+ * It is not an equilibrium where the inner walls were. */
 #include "qs/functional.h"
 #include "base/msg.h"
 #include "pack/packio.h"
@@ -57,8 +63,25 @@ main(int argc, char **argv)
 	int k;
 
 	msg_init(argv[0]);
+	if (argc == 5 && !strcmp(argv[1], "-o")) {
+		struct pack t;
+		int m = atoi(argv[4]);
+
+		if (m < 1 || m > 20)
+			msg_die(EXIT_USAGE, "M: '%s' is not in 1..20", argv[4]);
+		if (pack_read_path(argv[3], &p))
+			msg_die_err(EXIT_DATA);
+		tile(&p, m, &t);
+		memcpy(t.refbox, t.box, sizeof t.refbox);
+		t.has_refbox = 1;
+		if (pack_write_path(&t, argv[2]))
+			msg_die_err(EXIT_DATA);
+		pack_free(&t);
+		pack_free(&p);
+		return 0;
+	}
 	if (argc < 3)
-		msg_die(EXIT_USAGE, "usage: evalscale PACK M...");
+		msg_die(EXIT_USAGE, "usage: evalscale PACK M... | evalscale -o OUT PACK M");
 	if (pack_read_path(argv[1], &p))
 		msg_die_err(EXIT_DATA);
 	printf("# tiles\tgrains\tcontacts\tfirst_eval_s\teval_s\tns_per_eval_contact\n");
