@@ -44,9 +44,10 @@ run packinfo "$bin/packinfo" "$w/tiled.pack.gz"
 run packgen "$bin/packgen" -n "$n" --seed 1 --max-steps 200 -o "$w/loose.pack.gz"
 run densify "$bin/densify" --stress 4e6 --max-iter 20 --max-rounds 2 --allow-limit -q -o "$w/dense.pack.gz" "$w/tiled.pack.gz"
 run frictionalize "$bin/frictionalize" --max-inc 2 --window 2 --window-overlap 0 --max-iter 20 --allow-limit -q -o "$w/fric.pack.gz" "$w/tiled.pack.gz"
-src2="$w/fric.pack.gz"
-[ -s "$src2" ] || src2="$w/tiled.pack.gz"
-run loadtest "$bin/loadtest" -p uniaxial -n 2 --max-iter 20 --allow-limit -q -o "$w/end.pack.gz" "$src2"
+# loadtest from the tiled pack, friction on from no history: frictionalize's pack, cut short
+# far from equilibrium, has contacts whose torsion the reader rejects as too far above its
+# limit for a committed pack
+run loadtest "$bin/loadtest" -p uniaxial -n 2 --max-iter 20 --allow-limit -q -o "$w/end.pack.gz" "$w/tiled.pack.gz"
 cp "$w/o" "$w/curve.tsv"
 run moduli "$bin/moduli" "$w/curve.tsv"
 {
@@ -56,7 +57,8 @@ run moduli "$bin/moduli" "$w/curve.tsv"
 	echo "make bench's dense 1e4 pack tiled $m x $m x $m (build/bench/evalscale -o), every stage cut short by an"
 	echo "iteration limit (its arrays are allocated before it iterates); packgen on as many grains for 200"
 	echo "DEM steps and densify for 2 compaction steps of 20 iterations (exit 1 at those limits is expected);"
-	echo "frictionalize 2 increments, loadtest 2 (20 iterations each), moduli on loadtest's 2-increment curve."
+	echo "frictionalize 2 increments, loadtest 2 from the tiled pack with friction (20 iterations each),"
+	echo "moduli on loadtest's 2-increment curve."
 	echo "Peak resident memory from /usr/bin/time."
 	echo
 	echo "| stage | wall s | peak MiB | KiB per grain | exit | command |"
