@@ -319,6 +319,19 @@ state_alloc(struct densify_state *d)
 	return 0;
 }
 
+/* The minimiser of a stage that only brings the pack nearer where it is going (a growth
+ * round, a compaction step that moves the box): grow_tol, at most grow_max_iter iterations. */
+static struct qs_min_params
+loose_min(const struct densify_params *dp)
+{
+	struct qs_min_params mp = dp->min;
+
+	mp.tol = fmax(mp.tol, dp->grow_tol);
+	if (mp.max_iter > dp->grow_max_iter)
+		mp.max_iter = dp->grow_max_iter;
+	return mp;
+}
+
 /* The end condition holds at grow_tol: the full equilibrium, in chunks of grow_max_iter
  * iterations, stopping early if the pack relaxes below the onset (it only looked jammed: a
  * 1e4-grain pack once spent 200k L-BFGS iterations relaxing from 1e4 to 6e3 Pa). */
@@ -373,7 +386,7 @@ phase_a_round(struct densify_state *d, long round)
 	const struct densify_params *dp = d->dp;
 	struct pack *p = d->p;
 	double de, sc, d3[3], zero[3] = {0, 0, 0};
-	struct qs_min_params mp = dp->min;
+	struct qs_min_params mp;
 	size_t grown, i;
 
 	/* the reference box: where the stress reached the onset and stayed there (a pack that
@@ -407,9 +420,7 @@ phase_a_round(struct densify_state *d, long round)
 	 * judged again (below).  Just above jamming a full minimisation slows critically (70k
 	 * L-BFGS iterations in the jamming round of a 1e4-grain pack, 44k more over the 8
 	 * rounds that seated its rattlers). */
-	mp.tol = fmax(mp.tol, dp->grow_tol);
-	if (mp.max_iter > dp->grow_max_iter)
-		mp.max_iter = dp->grow_max_iter;
+	mp = loose_min(dp);
 	d->s.force_floor = d->st.sigma_c < dp->onset ? d->floor_loose : 0;
 	if (minimize_releasing(&d->s, d->x, de > 0 ? d3 : zero, dp, &mp, &d->rep) < 0)
 		return -1;
@@ -468,12 +479,7 @@ compaction_step(struct densify_state *d, long round, double *e_prev, double *y_p
 	/* A step that moves the box only brings the pack nearer the target, like a growth
 	 * round: grow_tol in at most grow_max_iter iterations; the step that stays at the
 	 * target is the full equilibrium, and only a full one can end the compaction. */
-	mp = dp->min;
-	if (dp->loose_steps && d3[0] != 0) {
-		mp.tol = fmax(mp.tol, dp->grow_tol);
-		if (mp.max_iter > dp->grow_max_iter)
-			mp.max_iter = dp->grow_max_iter;
-	}
+	mp = dp->loose_steps && d3[0] != 0 ? loose_min(dp) : dp->min;
 	if (minimize_releasing(&d->s, d->x, d3, dp, &mp, &d->rep) < 0)
 		return -1;
 	d->full = mp.tol <= dp->min.tol;
