@@ -22,7 +22,7 @@ struct dem {
 	size_t n;
 	double *x, *v, *w, *f, *t, *r, *m, *I;
 	double lo[3], hi[3];
-	double rmax, skin, dt, mu, damping, rate, viscous;
+	double rmax, skin, dt, dt_safety, mu, damping, rate, viscous;
 	int unloading;		/* slow, quasi-static expansion towards the final stress */
 	/* the contacts, with the tangential spring of every listed pair and grain-wall pair
 	 * as their history, carried over a rebuild of the list */
@@ -51,6 +51,15 @@ dem_free(struct dem *d)
 	cell_free(&d->grid);
 }
 
+/* The time step over sqrt(m_eff / k) of the stiffest likely contact.  The settling is for
+ * geometry only, so the step is as long as the integration stays stable with margin:
+ * at 2740 grains (seed 1) 1.2 was stable and 1.6 was not; half of the largest stable
+ * value is taken.  The step count it saves is the creep after unloading, which runs in
+ * physical time: 0.2 (until 2026-12) took 101300 steps at 2740 grains and 123200 at 1e4,
+ * 0.6 takes 39400 and 54700, with the same porosity, coordination and grains under 4 to
+ * within the scatter between seeds (bench/packgen-scaling.md). */
+#define DEM_DT_SAFETY 0.6
+
 void
 dem_params_default(struct dem_params *dp)
 {
@@ -61,6 +70,7 @@ dem_params_default(struct dem_params *dp)
 	dp->aspect[0] = dp->aspect[1] = dp->aspect[2] = 1;
 	dp->rest_tol = 2e-2;
 	dp->rate = 2e-5;
+	dp->dt_safety = DEM_DT_SAFETY;
 	dp->viscous = 0;
 	dp->preload = 200;
 	dp->max_steps = 2000000;
@@ -503,14 +513,6 @@ max_overlap(const struct dem *d, double *coord)
 	return o.mo;
 }
 
-/* The time step over sqrt(m_eff / k) of the stiffest likely contact.  The settling is for
- * geometry only, so the step is as long as the integration stays stable with margin:
- * at 2740 grains (seed 1) 1.2 was stable and 1.6 was not; half of the largest stable
- * value is taken.  The step count it saves is the creep after unloading, which runs in
- * physical time: 0.2 (until 2026-12) took 101300 steps at 2740 grains and 123200 at 1e4,
- * 0.6 takes 39400 and 54700, with the same porosity, coordination and grains under 4 to
- * within the scatter between seeds (bench/packgen-scaling.md). */
-#define DEM_DT_SAFETY 0.6
 
 /* Time step from the stiffest likely contact: the two smallest grains, or the smallest
  * grain on a wall, at overlap h (relative to the radius). */
@@ -519,7 +521,7 @@ dt_for_overlap(struct dem *d, double mmin, double rmin, double h)
 {
 	double k = fmax(2 * sqrt(0.5 * rmin * h * rmin), 2 * E_WALL * sqrt(rmin * h * rmin));
 
-	d->dt = DEM_DT_SAFETY * sqrt(0.5 * mmin / k);
+	d->dt = d->dt_safety * sqrt(0.5 * mmin / k);
 }
 
 /* Scaled copies of the grains (mean radius 1, density 1), in the order of placement:
@@ -614,6 +616,14 @@ dem_settle(struct dem *d, const struct dem_params *dp, double pfinal, double vol
 			st->at_rest = fabs(log(st->p_ratio)) < log(ptarget > pfinal ? 1.25 : 2.0) && ub < dp->rest_tol;
 			if (fn && step % 1000 == 0)
 				fn(st, ctx);
+			/* an overlap of half a radius is far outside anything the servo allows: the
+			 * integration has gone unstable (a step too long for the stiffest contacts);
+			 * stop instead of stepping NaNs to max_steps */
+			if (!(st->max_overlap < 0.5) || !isfinite(st->p_ratio)) {
+				msg_seterr("the DEM diverged at step %ld (largest overlap/r %.3g, stress/target %.3g): "
+				    "the time step is too long for these grains", step, st->max_overlap, st->p_ratio);
+				return -1;
+			}
 			if (st->at_rest && ptarget > pfinal) {
 				ptarget = pfinal;	/* jammed at the preload: now unload */
 				d->unloading = 1;
@@ -727,6 +737,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	d.mu = dp->mu;
 	d.damping = dp->damping;
 	d.rate = dp->rate;
+	d.dt_safety = dp->dt_safety;
 	d.viscous = dp->viscous;
 	d.skin = 0.3 * rmin;
 	if (contact_enum_init(&d.ce, n, d.r, d.lo, d.hi, NULL, d.skin, DEM_LAW->history))

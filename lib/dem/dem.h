@@ -28,6 +28,7 @@ struct dem_params {
 	double preload;		/* jam at this multiple of the target stress, then unload */
 	double viscous;		/* fraction of the velocity lost per step */
 	double rate;		/* largest strain of the box per step */
+	double dt_safety;	/* time step over sqrt(m_eff / k) of the stiffest likely contact */
 	long max_steps;
 };
 

@@ -1,0 +1,82 @@
+/* test_dem: packgen's sphere DEM (lib/dem/dem.c): a small pack comes to rest at the target
+ * overlap with every grain inside the box and no pair overlapping by more than the servo
+ * allows; a time step far beyond the stability limit is caught as a divergence (one clear
+ * error, well before the step limit) instead of stepping NaNs to max_steps. */
+#include "unit.h"
+#include "dem/dem.h"
+#include "base/msg.h"
+#include "pack/pack.h"
+
+#include <gsl/gsl_rng.h>
+#include <string.h>
+
+/* 300 grains with radii uniform in [0.7, 1.3] mm (the default psd's spread), glass. */
+static void
+grains(struct pack *p, gsl_rng *rng)
+{
+	size_t k;
+
+	pack_init(p);
+	pack_reserve(p, 300);
+	for (k = 0; k < 300; k++) {
+		double x[3] = {0, 0, 0};
+		pack_add_grain(p, (long)k + 1, x, 1e-3 * (0.7 + 0.6 * gsl_rng_uniform(rng)), 7e10, 0.2, 2500);
+	}
+}
+
+static void
+test_rest(void)
+{
+	struct dem_params dp;
+	struct dem_status st;
+	struct pack p;
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	size_t i, outside = 0;
+	int a, rc;
+
+	gsl_rng_set(rng, 3);
+	grains(&p, rng);
+	dem_params_default(&dp);
+	rc = dem_loose_pack(&p, &dp, rng, NULL, NULL, &st);
+	CHECK(rc == 0 && st.at_rest, "dem: 300 grains come to rest (%s; %ld steps)", rc ? msg_geterr() : "ok", st.step);
+	for (i = 0; i < p.n; i++)
+		for (a = 0; a < 3; a++)
+			outside += p.x[3 * i + a] < p.box[a] || p.x[3 * i + a] > p.box[a + 3];
+	CHECK(outside == 0, "dem: every centre inside the box (%zu outside)", outside);
+	/* the servo holds the mean overlap near 1e-4 of a radius; ten times the largest seen at
+	 * 2740 to 1e5 grains (5e-4 to 8e-4, bench/packgen-scaling.md) would be a broken servo */
+	CHECK(st.max_overlap > 0 && st.max_overlap < 1e-2, "dem: largest overlap/r %.3g in (0, 1e-2)", st.max_overlap);
+	CHECK(st.coordination > 1 && st.coordination < 6, "dem: a loose pack's coordination %.3g in (1, 6)", st.coordination);
+	pack_free(&p);
+	gsl_rng_free(rng);
+}
+
+static void
+test_divergence(void)
+{
+	struct dem_params dp;
+	struct dem_status st;
+	struct pack p;
+	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+	int rc;
+
+	gsl_rng_set(rng, 3);
+	grains(&p, rng);
+	dem_params_default(&dp);
+	dp.dt_safety = 5;	/* explicit integration of a spring is unstable beyond 2 sqrt(m/k) */
+	rc = dem_loose_pack(&p, &dp, rng, NULL, NULL, &st);
+	CHECK(rc != 0 && strstr(msg_geterr(), "diverged") != NULL, "dem: a step of 5 sqrt(m/k) diverges with a clear error (%s)",
+	    rc ? msg_geterr() : "came to rest");
+	CHECK(rc != 0 && st.step < dp.max_steps / 10, "dem: the divergence stops the run early (step %ld of %ld)", st.step,
+	    dp.max_steps);
+	pack_free(&p);
+	gsl_rng_free(rng);
+}
+
+int
+main(void)
+{
+	test_rest();
+	test_divergence();
+	return unit_summary();
+}
