@@ -142,30 +142,51 @@ line_mmax(const struct pack *p, const struct pack_contact *c, double mu, double 
 	return 3 * M_PI / 16 * sqrt(Rs * hertz_overlap(Es, Rs, P)) * mu * P;
 }
 
-int
-fr_check_history(const struct pack *p)
+/* The mean committed normal force over p's history lines (0 without lines). */
+static double
+history_mean_P(const struct pack *p)
 {
 	double Pmean = 0;
 	size_t k;
 
 	for (k = 0; k < p->nc; k++)
 		Pmean += p->c[k].P0 / p->nc;
+	return Pmean;
+}
+
+/* Whether history line c lies beyond what a commit of an equilibrium can leave: |Q0| above
+ * mu (P0 + Pmean), or |M0| above M_max(P0) + M_max(Pmean) (the slip the normal force's fall in
+ * one increment calls for is far below the limit of an average contact).  1 for Q0, 2 for
+ * M0, 0 within. */
+static int
+line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pmean)
+{
+	double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu;
+	double qlim = mu * (c->P0 + Pmean) * (1 + 1e-9);
+	double mlim = (line_mmax(p, c, mu, c->P0) + line_mmax(p, c, mu, Pmean)) * (1 + 1e-9);
+
+	return vec3_norm(c->Q0) > qlim ? 1 : fabs(c->M0) > mlim ? 2 : 0;
+}
+
+int
+fr_check_history(const struct pack *p)
+{
+	double Pmean = history_mean_P(p);
+	size_t k;
+
 	for (k = 0; k < p->nc; k++) {
 		const struct pack_contact *c = &p->c[k];
 		double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, qn = vec3_norm(c->Q0);
-		/* the most a committed line can exceed its limit: the slip the normal force's fall
-		 * in one increment calls for, far below the limit of an average contact */
-		double qlim = mu * (c->P0 + Pmean) * (1 + 1e-9);
-		double mlim = (line_mmax(p, c, mu, c->P0) + line_mmax(p, c, mu, Pmean)) * (1 + 1e-9);
+		int beyond = line_beyond_commit(p, c, Pmean);
 		char jn[32];
 
-		if (qn <= qlim && fabs(c->M0) <= mlim)
+		if (!beyond)
 			continue;
 		if (PACK_IS_WALL(c->j))
 			snprintf(jn, sizeof jn, "%s", pack_wall_names[PACK_WALL_INDEX(c->j)]);
 		else
 			snprintf(jn, sizeof jn, "%ld", p->id[c->j]);
-		if (qn > qlim)
+		if (beyond == 1)
 			msg_seterr("contact %ld %s: |Q0| = %.6g N is far above its sliding limit mu P0 = %.6g N (mu %g; "
 			           "a committed pack exceeds it by less than mu times the mean normal force, %.6g N)",
 			    p->id[c->i], jn, qn, mu * c->P0, mu, mu * Pmean);
@@ -785,6 +806,33 @@ fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 	if (contacts_store(p, 1))
 		return -1;
 	memset(x + n3, 0, n3 * sizeof *x);
+	/* A commit far from equilibrium (a minimisation stopped at its iteration limit, kept
+	 * with --allow-limit) can leave a line whose normal force fell by far more than one
+	 * increment's worth (a grain that overlapped its neighbours deeply at the start): its
+	 * Q0 or M0, frozen at the start's limit, is then beyond what fr_check_history accepts
+	 * from a commit, and the pack would not read back.  Such a line slips to its limit at
+	 * P0 now, as the next increment's start (fr_begin's clamp) would do anyway.  A commit of
+	 * an equilibrium never reaches that bound, so its lines are kept exactly. */
+	f->ncommit_slipped = 0;
+	{
+		double Pmean = history_mean_P(p);
+
+		for (k = 0; k < p->nc; k++) {
+			struct pack_contact *c = &p->c[k];
+			double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, qn, qm, mm;
+			int a;
+
+			if (!line_beyond_commit(p, c, Pmean))
+				continue;
+			qn = vec3_norm(c->Q0), qm = mu * c->P0, mm = line_mmax(p, c, mu, c->P0);
+			if (qn > qm)
+				for (a = 0; a < 3; a++)
+					c->Q0[a] *= qm / qn;
+			if (fabs(c->M0) > mm)
+				c->M0 = c->M0 > 0 ? mm : -mm;
+			f->ncommit_slipped++;
+		}
+	}
 	/* the slip count: the trial force of each reference contact against the limit of its
 	 * normal force now (opened contacts have none) */
 	f->ntrial_slip = 0;

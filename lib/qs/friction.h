@@ -72,6 +72,10 @@ struct qs_friction {
 	 * final normal force (ntrial_slip), and the history lines committed at that limit,
 	 * |Q0| >= mu P0 (nlimit); see fr_commit */
 	size_t ntrial_slip, nlimit;
+	/* from fr_commit: lines beyond what a commit of an equilibrium leaves (fr_check_history's
+	 * bound), slipped to their limit at P0 so that the pack reads back; nonzero only when
+	 * the increment ended far from equilibrium */
+	size_t ncommit_slipped;
 };
 
 void fr_init(struct qs_friction *f, enum fr_rule rule);
