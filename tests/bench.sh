@@ -22,6 +22,7 @@
 # separately (BENCH_SIZES=100000 BENCH_METHODS=lbfgs on one core while the others run).
 # BENCH_FINC_METHODS (default "all": fincrement's four minimisers; "lbfgs" at 1e5, where cg
 # and fire take minutes per increment).
+# BENCH_REUSE_DENSE=1 reuses the dense packs and rows of an earlier run (densify skipped).
 # BENCH_NOTE: a remark kept with the size's date and commit (what else ran on the machine).
 # BENCH_THREADS (default 1): the OpenMP threads of every program, so that the tables stay
 # one core's figures unless asked otherwise.
@@ -79,6 +80,14 @@ $(awk -v n="$n" -v s="$secs" -v k="$kib" -v p="$(info "$tmp.info" porosity %.4f)
 	for m in $methods; do
 		dense="$out/dense-$n-$m.pack.gz"
 		log="$out/dense-$n-$m.tsv"
+		# BENCH_REUSE_DENSE=1: keep an earlier run's dense pack and its row (densify takes
+		# over an hour at 1e5 grains), so that the later stages can be measured alone
+		if [ "${BENCH_REUSE_DENSE:-0}" = 1 ] && [ -s "$dense" ] && [ -s "$out/rows-$n.dens" ] &&
+		    grep -q "^| $n | $m |" "$out/rows-$n.dens"; then
+			dens_rows="$dens_rows
+$(grep "^| $n | $m |" "$out/rows-$n.dens")"
+			continue
+		fi
 		if ! /usr/bin/time -f '%e %M' -o "$tmp.time" "$bin/densify" --stress 4e6 --method "$m" --log "$log" \
 		    -o "$dense" "$loose" 2>"$tmp.err"; then
 			dens_rows="$dens_rows
