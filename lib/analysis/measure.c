@@ -4,6 +4,7 @@
 #include "base/quat.h"
 #include "base/vec3.h"
 #include "analysis/fabric.h"
+#include "contact/hertz.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
 
@@ -361,8 +362,23 @@ measure_contact(const struct pack *p, const struct geo_contact *c, struct pack_m
 	}
 	m->overlap_max = fmax(m->overlap_max, c->h / Rmin);
 	if (c->hist >= 0) {
+		/* the line's forces within Coulomb's limits at the normal force now (physics.md §5),
+		 * as every loading's start applies them (friction.c, setup_contact): a commit leaves
+		 * a line above them where its normal force fell, and the pack transmits only the
+		 * limit there.  Without the clamp a settled pack read 1.1e-4 here while loadtest
+		 * found 9.5e-5 on it (a 200-grain frictionalized pack). */
+		double mu = wall ? p->wall_mu : p->mu, qlim = mu * c->P, qn;
+		double Rs = wall ? p->r[i] : hertz_Rstar(p->r[i], p->r[c->j]);
+		double mlim = 3 * M_PI / 16 * sqrt(Rs * fmax(c->h, 0)) * qlim;
+
 		pack_contact_q0_on(&p->c[c->hist], i, Q);
 		Mt = p->c[c->hist].M0;
+		qn = vec3_norm(Q);
+		if (qn > qlim)
+			for (a = 0; a < 3; a++)
+				Q[a] *= qlim / qn;
+		if (fabs(Mt) > mlim)
+			Mt = Mt > 0 ? mlim : -mlim;
 	}
 	for (a = 0; a < 3; a++)
 		f[a] = c->P * c->n[a] + Q[a];
