@@ -45,5 +45,7 @@ qs_load_opts_check(struct load_params *lp, const char *rule, long nsub, double m
 		cli_usage_error("--sub-increments (<= 1000) and --k-inc must be positive");
 	if (!(lp->skin > 0 && lp->skin <= 2))
 		cli_usage_error("--skin: must be in (0, 2]");
+	if (!(lp->inc_tol > 0 && lp->inc_tol < 1))
+		cli_usage_error("--inc-tol: must be in (0, 1)");
 	lp->nsub = (int)nsub;
 }
