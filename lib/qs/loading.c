@@ -211,9 +211,9 @@ loader_measure(struct loader *L, struct load_row *row)
  * A pass that starts at residual r needs only to reach SETTLE_CUT r: its own commit moves the
  * state again by about what it corrected (each pass cuts the residual 1.2 to 10 times), so
  * the digits below that are lost; only the last passes, near the tolerance, go to half of it.
- * With the increment minimised to inc_tol (LOAD_INC_TOL) this takes 98 L-BFGS iterations per
- * 1e-4 increment of a 2740-grain pack at 9 MPa instead of 172, and 224 instead of 648 at 1e4
- * grains, to the same stresses (bench/settle.md).  The passes themselves are cheap then, so
+ * With the increment minimised to inc_tol (LOAD_INC_TOL) this takes 97 L-BFGS iterations per
+ * 1e-4 increment of a 2740-grain pack at 8.5 MPa instead of 172, and 307 instead of 648 at 1e4
+ * grains, to the same stresses and sliding contacts (bench/settle.md).  The passes themselves are cheap then, so
  * there may be more of them. */
 #define SETTLE_PASSES 60
 #define SETTLE_CUT 0.3
