@@ -213,8 +213,8 @@ loader_measure(struct loader *L, struct load_row *row)
  * the digits below that are lost; only the last passes, near the tolerance, go to half of it.
  * With the increment minimised to inc_tol (LOAD_INC_TOL) this takes 97 L-BFGS iterations per
  * 1e-4 increment of a 2740-grain pack at 8.5 MPa instead of 172, and 307 instead of 648 at 1e4
- * grains, to the same stresses and sliding contacts (bench/settle.md).  The passes themselves are cheap then, so
- * there may be more of them. */
+ * grains, to the same stresses and sliding contacts (bench/settle.md).  The passes
+ * themselves are cheap then, so there may be more of them. */
 #define SETTLE_PASSES 60
 #define SETTLE_CUT 0.3
 
