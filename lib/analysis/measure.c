@@ -525,6 +525,12 @@ measure_hydrate(const struct pack *p, struct hydrate_measures *h)
 int
 measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m)
 {
+	return measure_pack_in(p, NULL, gc, m);
+}
+
+int
+measure_pack_in(const struct pack *p, struct contact_enum *e, struct geo_contacts *gc, struct pack_measures *m)
+{
 	unsigned *cnt;
 	unsigned char *rat;
 	struct balance b;
@@ -535,7 +541,7 @@ measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures
 	m->sliding_ratio = NAN;
 	m->bulk_margin = NAN;
 	bulk_absent(m);
-	if (contacts_find(p, gc))
+	if (e ? contacts_find_in(p, e, gc) : contacts_find(p, gc))
 		return -1;
 	cnt = malloc(p->n * sizeof *cnt);
 	rat = malloc(p->n);

@@ -76,6 +76,8 @@ void measure_hydrate(const struct pack *p, struct hydrate_measures *h);
 /* Fills m, all but the bulk (measure_bulk); gc receives the contacts (may be reused by the
  * caller).  0 or -1. */
 int measure_pack(const struct pack *p, struct geo_contacts *gc, struct pack_measures *m);
+/* The same, finding the contacts through the caller's enumerator over p (contacts_find_in). */
+int measure_pack_in(const struct pack *p, struct contact_enum *e, struct geo_contacts *gc, struct pack_measures *m);
 /* Per-grain contact counts (grain + wall) over gc; counts has p->n entries. */
 void measure_coordination(const struct pack *p, const struct geo_contacts *gc, unsigned *counts);
 /* The fewest contacts a grain needs not to be a rattler in pack p.  Frictionless, 4: a sphere

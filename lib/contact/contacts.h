@@ -330,10 +330,17 @@ void contacts_init(struct geo_contacts *gc);
 void contacts_free(struct geo_contacts *gc);
 /* All contacts of p at p->x (see above); 0 or -1. */
 int contacts_find(const struct pack *p, struct geo_contacts *gc);
+/* The same with an enumerator the caller keeps over p (contact_enum_init on p->r and p->box,
+ * any skin), brought up to p->x (rebuilt only when stale): the same contacts in the same order,
+ * without building a new list each time (a frictional increment finds its contacts at every
+ * start and commit of its settle passes; the functional's own enumerator serves).  0 or -1. */
+int contacts_find_in(const struct pack *p, struct contact_enum *e, struct geo_contacts *gc);
 /* Replace p->c by a line per touching contact with P0 from Hertz at the current positions;
  * Q0 and M0 are carried over from the line of the same pair when keep_history is set (lines
  * of pairs that no longer touch are dropped), zero otherwise.  0 or -1. */
 int contacts_store(struct pack *p, int keep_history);
+/* contacts_store through the caller's enumerator e (contacts_find_in); NULL: a new one. */
+int contacts_store_in(struct pack *p, struct contact_enum *e, int keep_history);
 /* The E* and R* of contact c. */
 void contacts_moduli(const struct pack *p, const struct geo_contact *c, double *Es, double *Rs);
 

@@ -253,7 +253,7 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 	size_t k, matched = 0;
 
 	contacts_init(&gc);
-	if (contacts_find(p, &gc))
+	if (contacts_find_in(p, &s->ce, &gc))
 		return -1;
 	if (gc.n > f->cap) {
 		struct fr_contact *c = realloc(f->c, gc.n * sizeof *c);
@@ -803,7 +803,7 @@ fr_commit(struct qs_friction *f, struct qs_system *s, double *x)
 			return -1;
 	}
 	memcpy(p->x, x, n3 * sizeof *x);
-	if (contacts_store(p, 1))
+	if (contacts_store_in(p, &s->ce, 1))
 		return -1;
 	memset(x + n3, 0, n3 * sizeof *x);
 	/* A commit far from equilibrium (a minimisation stopped at its iteration limit, kept

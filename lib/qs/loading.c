@@ -148,7 +148,7 @@ fill_row(struct loader *L, struct load_row *row, size_t *ncontacts)
 	int a;
 
 	contacts_init(&gc);
-	if (measure_pack(L->p, &gc, &m)) {
+	if (measure_pack_in(L->p, &L->s.ce, &gc, &m)) {
 		contacts_free(&gc);
 		return -1;
 	}
@@ -305,7 +305,7 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 			return -1;
 	} else {
 		memcpy(L->p->x, L->x, 3 * L->p->n * sizeof *L->x);
-		if (contacts_store(L->p, 0))
+		if (contacts_store_in(L->p, &L->s.ce, 0))
 			return -1;
 	}
 	L->inc++;

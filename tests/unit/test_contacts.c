@@ -341,6 +341,68 @@ test_nan_energy(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* contacts_find_in through a kept enumerator with a skin, after the grains move a little
+ * (the list not rebuilt), finds what a new enumerator finds, record for record; and the
+ * history lines are matched the same way whether they are in the enumerator's order (the
+ * merge a commit's lines take) or shuffled (the sorted keys). */
+static void
+test_find_in(gsl_rng *rng)
+{
+	struct pack p;
+	struct contact_enum e;
+	struct geo_contacts a, b;
+	size_t i, k, diff = 0, hist_diff = 0, matched = 0;
+	long rebuilds;
+
+	random_pack(&p, rng, 500, 1e-4, 0.6, 0.02);
+	contacts_init(&a);
+	contacts_init(&b);
+	CHECK(contact_enum_init(&e, p.n, p.r, p.box, p.box + 3, p.periodic, 0.3 * 1e-4, 0) == 0 &&
+	    contact_enum_update(&e, p.x, 1) == 0, "find_in: enumerator built");
+	rebuilds = e.rebuilds;
+	for (i = 0; i < 3 * p.n; i++)
+		p.x[i] += 1e-7 * (gsl_rng_uniform(rng) - 0.5);
+	i = contacts_store(&p, 0) == 0;
+	CHECK(i && p.nc > 0, "find_in: %zu history lines stored", p.nc);
+	/* a few lines dropped: contacts without history, the merge must skip over them */
+	for (k = 0; k + 7 < p.nc; k += 7)
+		p.c[k].P0 = -1;
+	for (i = k = 0; k < p.nc; k++)
+		if (p.c[k].P0 >= 0)
+			p.c[i++] = p.c[k];
+	p.nc = i;
+	CHECK(contacts_find(&p, &a) == 0 && contacts_find_in(&p, &e, &b) == 0, "find_in: both found");
+	CHECK(e.rebuilds == rebuilds, "find_in: the kept list served without a rebuild");
+	CHECK(a.n == b.n && a.n > 0, "find_in: %zu contacts, as a new enumerator's %zu", b.n, a.n);
+	for (k = 0; k < a.n && k < b.n; k++) {
+		diff += memcmp(&a.c[k], &b.c[k], sizeof a.c[k]) != 0;
+		matched += a.c[k].hist >= 0;
+	}
+	CHECK(diff == 0 && matched == p.nc, "find_in: the same records (%zu differ), %zu of %zu lines matched", diff,
+	    matched, p.nc);
+	/* the lines shuffled, and one pair named j i: matched through the sorted keys */
+	gsl_ran_shuffle(rng, p.c, p.nc, sizeof *p.c);
+	for (k = 0; k < p.nc; k++)
+		if (!PACK_IS_WALL(p.c[k].j)) {
+			size_t t = p.c[k].i;
+			p.c[k].i = (size_t)p.c[k].j;
+			p.c[k].j = (long)t;
+			break;
+		}
+	CHECK(contacts_find_in(&p, &e, &b) == 0, "find_in: shuffled history found");
+	for (k = 0; k < a.n && k < b.n; k++) {
+		long h = b.c[k].hist;
+		const struct pack_contact *c = h >= 0 ? &p.c[h] : NULL;
+		hist_diff += (a.c[k].hist >= 0) != (h >= 0) ||
+		    (c && !((c->i == b.c[k].i && c->j == b.c[k].j) || ((long)c->i == b.c[k].j && c->j == (long)b.c[k].i)));
+	}
+	CHECK(hist_diff == 0, "find_in: shuffled lines matched to the same pairs (%zu differ)", hist_diff);
+	contacts_free(&a);
+	contacts_free(&b);
+	contact_enum_free(&e);
+	pack_free(&p);
+}
+
 int
 main(void)
 {
@@ -352,6 +414,7 @@ main(void)
 	test_enumerator(rng, xz, "periodic x and z");
 	test_enumerator(rng, all, "periodic x y z");
 	test_history(rng);
+	test_find_in(rng);
 	test_laws(rng);
 	test_law_closed_forms();
 	test_steppable(rng);
