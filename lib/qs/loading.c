@@ -32,6 +32,23 @@ int
 load_increment(struct qs_system *s, double *x, const double de[3], int nsub, long k_inc,
     const struct qs_min_params *mp, struct qs_min_report *rep)
 {
+	struct qs_minimizer *m = qs_minimizer_alloc(s, mp);
+	int st;
+
+	if (!m) {
+		memset(rep, 0, sizeof *rep);
+		rep->status = -1;
+		return -1;
+	}
+	st = load_increment_in(s, m, x, de, nsub, k_inc, mp, rep);
+	qs_minimizer_free(m);
+	return st;
+}
+
+int
+load_increment_in(struct qs_system *s, struct qs_minimizer *m, double *x, const double de[3], int nsub, long k_inc,
+    const struct qs_min_params *mp, struct qs_min_report *rep)
+{
 	struct qs_min_params sub = *mp;
 	struct qs_min_report r;
 	long iter = 0, evals = 0;
@@ -46,7 +63,7 @@ load_increment(struct qs_system *s, double *x, const double de[3], int nsub, lon
 	for (k = 0; k < nsub; k++) {
 		load_strain_box(s->p->box, x, s->n, part);
 		sub.max_iter = k + 1 < nsub ? k_inc : mp->max_iter;
-		st = qs_minimize(s, x, &sub, &r);
+		st = qs_minimize_in(m, x, &sub, &r);
 		iter += r.iter;
 		evals += r.evals;
 		if (st < 0)
@@ -113,6 +130,7 @@ loader_open(struct loader *L, struct pack *p, const struct load_params *lp)
 void
 loader_close(struct loader *L)
 {
+	qs_minimizer_free(L->min);
 	qs_free(&L->s);
 	fr_free(&L->f);
 	free(L->x);
@@ -128,9 +146,14 @@ begin(struct loader *L)
 
 	memcpy(L->x, L->p->x, n3 * sizeof *L->x);
 	memset(L->x + n3, 0, n3 * sizeof *L->x);
-	if (L->lp.friction)
-		return fr_begin(&L->f, &L->s);
-	fr_detach(&L->s);
+	if (L->lp.friction ? fr_begin(&L->f, &L->s) : (fr_detach(&L->s), 0))
+		return -1;
+	if (!L->min || L->min_dim != L->s.dim) {
+		qs_minimizer_free(L->min);
+		if (!(L->min = qs_minimizer_alloc(&L->s, &L->lp.min)))
+			return -1;
+		L->min_dim = L->s.dim;
+	}
 	return 0;
 }
 
@@ -221,33 +244,29 @@ loader_measure(struct loader *L, struct load_row *row)
 static int
 settle(struct loader *L, struct qs_min_report *rep)
 {
-	struct qs_min_report r2;
-	double *g = malloc(6 * L->p->n * sizeof *g), *fgrain = malloc(L->p->n * sizeof *fgrain);
+	struct qs_min_params mp = L->lp.min;
+	struct qs_min_report r0, r2;
 	int pass, st = 0;
 
-	if (!g || !fgrain) {
-		free(g), free(fgrain);
-		msg_seterr("out of memory");
-		return -1;
-	}
 	for (pass = 0; pass <= SETTLE_PASSES; pass++) {
-		double rmax, rmean;
-		if (begin(L) || isnan(qs_energy(&L->s, L->x, g, fgrain))) {
+		double rmax;
+		/* the committed state, evaluated by the minimiser's start (one evaluation for the
+		 * check and the pass) */
+		if (begin(L) || qs_minimizer_params(L->min, &mp) || qs_minimizer_set(L->min, L->x)) {
 			st = -1;
 			break;
 		}
-		qs_residual(&L->s, g, fgrain, L->lp.min.tol_floor, &rmax, &rmean);
+		qs_minimizer_test(L->min, &r0);
+		rmax = r0.res_max;
 		rep->res_max = rmax;
-		rep->res_mean = rmean;
-		if (rmax <= L->lp.min.tol || pass == SETTLE_PASSES)
+		rep->res_mean = r0.res_mean;
+		if (rmax <= L->lp.min.tol || pass == SETTLE_PASSES) {
+			rep->evals += r0.evals;
 			break;
-		{
-			struct qs_min_params mp = L->lp.min;
-			/* loose while far from the tolerance; once a pass's cut would reach it, half of
-			 * it, as before (the commit pushes a state that stopped just under it over) */
-			mp.tol = SETTLE_CUT * rmax >= mp.tol ? SETTLE_CUT * rmax : 0.5 * mp.tol;
-			st = qs_minimize(&L->s, L->x, &mp, &r2);
 		}
+		/* loose while far from the tolerance; once a pass's cut would reach it, half of it,
+		 * as before (the commit pushes a state that stopped just under it over) */
+		st = qs_minimizer_continue(L->min, SETTLE_CUT * rmax >= mp.tol ? SETTLE_CUT * rmax : 0.5 * mp.tol, &r2);
 		if (st < 0)
 			break;
 		rep->iter += r2.iter;
@@ -262,7 +281,6 @@ settle(struct loader *L, struct qs_min_report *rep)
 			break;
 		}
 	}
-	free(g), free(fgrain);
 	return st;
 }
 
@@ -289,7 +307,7 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 
 		if (L->lp.friction)
 			mp.tol = fmax(mp.tol, L->lp.inc_tol);
-		st = load_increment(&L->s, L->x, dbox, L->lp.nsub, L->lp.k_inc, &mp, &rep);
+		st = load_increment_in(&L->s, L->min, L->x, dbox, L->lp.nsub, L->lp.k_inc, &mp, &rep);
 	}
 	if (st < 0)
 		return -1;

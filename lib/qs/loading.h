@@ -24,7 +24,10 @@
 void load_strain_box(double box[6], double *x, size_t n, const double de[3]);
 
 /* Apply the strain increment de in nsub sub-increments and minimise; x is updated, and the
- * box of s->p.  Returns the status of the last minimisation; rep sums iterations. */
+ * box of s->p.  Returns the status of the last minimisation; rep sums iterations.
+ * load_increment_in minimises with the caller's minimiser m (qs_minimize_in). */
+int load_increment_in(struct qs_system *s, struct qs_minimizer *m, double *x, const double de[3], int nsub, long k_inc,
+    const struct qs_min_params *mp, struct qs_min_report *rep);
 int load_increment(struct qs_system *s, double *x, const double de[3], int nsub, long k_inc,
     const struct qs_min_params *mp, struct qs_min_report *rep);
 
@@ -77,6 +80,10 @@ struct loader {
 	struct qs_friction f;
 	double *x;		/* 6N: centres then R_i Omega_i */
 	long inc;
+	/* the minimiser of every increment and settle pass, made at the first for s's unknowns
+	 * (its memory and preconditioner kept: loading.c, settle) */
+	struct qs_minimizer *min;
+	size_t min_dim;
 };
 
 void load_params_default(struct load_params *lp);

@@ -950,7 +950,8 @@ qs_minimizer_set(struct qs_minimizer *m, double *x)
 	m->evals0 = m->w.s->evals;
 	m->step = 0;
 	m->head = m->count = 0;
-	m->precond_age = -1;
+	if (!m->mp.keep_precond)
+		m->precond_age = -1;
 	m->lambda = 0;
 	m->gnorm_prev = 0;
 	if (evaluate(m))
@@ -1013,29 +1014,72 @@ qs_minimizer_set_max_iter(struct qs_minimizer *m, long max_iter)
 }
 
 int
-qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, struct qs_min_report *rep)
+qs_minimizer_params(struct qs_minimizer *m, const struct qs_min_params *mp)
 {
-	struct qs_minimizer *m;
+	if (mp->method != m->mp.method || mp->lbfgs_m != m->mp.lbfgs_m ||
+	    (mp->precond_shift > 0) != (m->mp.precond_shift > 0)) {
+		msg_seterr("a kept minimiser's method, memory or preconditioning changed");
+		return -1;
+	}
+	m->mp = *mp;
+	return 0;
+}
+
+/* Test and iterate until the test says stop; the report's status, or -1. */
+static int
+minimize_loop(struct qs_minimizer *m, struct qs_min_report *rep)
+{
+	int st;
+
+	while ((st = qs_minimizer_test(m, rep)) == QS_MIN_CONTINUE)
+		if (qs_minimizer_iterate(m))
+			return -1;
+	return rep->status;
+}
+
+int
+qs_minimize_in(struct qs_minimizer *m, double *x, const struct qs_min_params *mp, struct qs_min_report *rep)
+{
 	int st = -1;
 
 	memset(rep, 0, sizeof *rep);
-	m = qs_minimizer_alloc(s, mp);
-	if (m && qs_minimizer_set(m, x) == 0) {
-		while ((st = qs_minimizer_test(m, rep)) == QS_MIN_CONTINUE)
-			if (qs_minimizer_iterate(m)) {
-				st = -1;
-				break;
-			}
-	}
+	if (qs_minimizer_params(m, mp) == 0 && qs_minimizer_set(m, x) == 0)
+		st = minimize_loop(m, rep);
+	return qs_minimizer_report(m, st, rep);
+}
+
+int
+qs_minimizer_continue(struct qs_minimizer *m, double tol, struct qs_min_report *rep)
+{
+	m->mp.tol = tol;
+	memset(rep, 0, sizeof *rep);
+	return qs_minimizer_report(m, minimize_loop(m, rep), rep);
+}
+
+int
+qs_minimizer_report(const struct qs_minimizer *m, int st, struct qs_min_report *rep)
+{
+	rep->evals = m->w.s->evals - m->evals0;
 	if (st < 0) {
 		rep->status = -1;
-		if (m)
-			rep->evals = s->evals - m->evals0;
-	} else {
-		rep->energy = m->w.e;
-		rep->evals = s->evals - m->evals0;
-		st = rep->status;
+		return -1;
 	}
+	rep->energy = m->w.e;
+	return rep->status;
+}
+
+int
+qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, struct qs_min_report *rep)
+{
+	struct qs_minimizer *m = qs_minimizer_alloc(s, mp);
+	int st;
+
+	if (!m) {
+		memset(rep, 0, sizeof *rep);
+		rep->status = -1;
+		return -1;
+	}
+	st = qs_minimize_in(m, x, mp, rep);
 	qs_minimizer_free(m);
 	return st;
 }

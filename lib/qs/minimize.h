@@ -54,6 +54,7 @@ struct qs_min_params {
 				 * times the mean (0: the scalar H0 of plain L-BFGS) */
 	double newton_eta;	/* Newton: CG stops at |H d + g| <= eta |g| */
 	long newton_cg_max;	/* Newton: CG iterations per Newton step at most */
+	int keep_precond;	/* qs_minimizer_set keeps the preconditioner's blocks and their age */
 };
 
 struct qs_min_report {
@@ -71,6 +72,11 @@ const char *qs_method_name(enum qs_method m);
 /* Minimise from x (3n, updated in place).  Returns the report's status.  It is the loop
  * below: alloc, set, then test and iterate until the test says stop. */
 int qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, struct qs_min_report *rep);
+/* qs_minimize with a minimiser the caller keeps (qs_minimizer_alloc on the same system, with
+ * the same method, lbfgs_m and preconditioning as mp: qs_minimizer_params), so that a run of
+ * minimisations (a frictional increment and its settle passes) allocates its memory once. */
+struct qs_minimizer;
+int qs_minimize_in(struct qs_minimizer *m, double *x, const struct qs_min_params *mp, struct qs_min_report *rep);
 
 /* The steppable minimiser, in the shape of GSL's multimin: INITIALIZE (alloc, set),
  * ITERATE, TEST.  The caller owns x, which the minimiser moves in place; between
@@ -80,7 +86,6 @@ int qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, 
  * gradient, the per-grain step cap (mp->cap times the radius) and the stiffness bound come
  * from the functional (functional.h) and its layout of the unknowns (layout.h). */
 enum { QS_MIN_CONTINUE = 2, QS_MIN_SUCCESS = 0, QS_MIN_MAXITER = 1 };
-struct qs_minimizer;
 
 /* NULL when out of memory (msg_seterr).  The method and every parameter are copied. */
 struct qs_minimizer *qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp);
@@ -97,5 +102,12 @@ int qs_minimizer_test(struct qs_minimizer *m, struct qs_min_report *rep);
 /* The gradient at x (dim), and a new iteration limit (counted from set). */
 const double *qs_minimizer_gradient(const struct qs_minimizer *m);
 void qs_minimizer_set_max_iter(struct qs_minimizer *m, long max_iter);
+/* New parameters for the next set (the same method, lbfgs_m and preconditioning; else -1). */
+int qs_minimizer_params(struct qs_minimizer *m, const struct qs_min_params *mp);
+/* From where the minimiser stands (after set, or a stop), on to the tolerance tol: test and
+ * iterate as qs_minimize does; rep counts from set.  The status, or -1. */
+int qs_minimizer_continue(struct qs_minimizer *m, double tol, struct qs_min_report *rep);
+/* rep's evaluations (since set) and energy after a loop that ended with status st; returns st. */
+int qs_minimizer_report(const struct qs_minimizer *m, int st, struct qs_min_report *rep);
 
 #endif
