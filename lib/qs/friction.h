@@ -110,6 +110,9 @@ int fr_begin(struct qs_friction *f, struct qs_system *s);
  * contact whose normal force rose faster than its tangential load (it sticks under the
  * updated limit), half the contacts of a pack under uniaxial compression.  0 or -1. */
 int fr_commit(struct qs_friction *f, struct qs_system *s, double *x);
+/* fr_commit of a state where the functional was last evaluated (the contacts' forces are x's,
+ * as a minimiser leaves them: qs_minimizer_current), without evaluating it again. */
+int fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x);
 /* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
  * |Q| >= Q_max (1 - 1e-9)). */
 size_t fr_sliding(const struct qs_friction *f);

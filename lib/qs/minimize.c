@@ -58,6 +58,9 @@ struct work {
 	size_t n3;
 	double *g, *fmax, *d, *xt, *gt, *ft, *v;
 	double e, et;	/* energy at x and at the trial point xt */
+	/* s->evals just after the evaluation at x and at xt: when s->evals still equals x_evals,
+	 * every term's state (the contacts' forces) is x's (qs_minimizer_current) */
+	long x_evals, xt_evals;
 };
 
 /* The steppable minimiser: the work vectors, the method's state between iterations, and the
@@ -160,6 +163,7 @@ dphi(double alpha, void *vctx)
 	for (k = 0; k < w->n3; k++)
 		w->xt[k] = c->x[k] + alpha * w->d[k];
 	c->last_e = w->et = qs_energy(w->s, w->xt, w->gt, w->ft);
+	w->xt_evals = w->s->evals;
 	if (isnan(c->last_e))
 		c->failed = 1;
 	c->last_alpha = alpha;
@@ -220,6 +224,7 @@ accept_trial(struct work *w, double *x)
 	double eprev = w->e, *t;
 
 	par_copy(x, w->xt, w->n3);
+	w->x_evals = w->xt_evals;
 	w->e = w->et;
 	t = w->g;
 	w->g = w->gt;
@@ -449,6 +454,7 @@ fire_iterate(struct qs_minimizer *m)
 	fire_forward(w, x, m->mp.cap, m->dt);
 	m->eprev = w->e;
 	w->e = qs_energy(w->s, x, w->g, w->fmax);
+	w->x_evals = w->s->evals;
 	return isnan(w->e) ? -1 : 0;
 }
 
@@ -938,6 +944,7 @@ static int
 evaluate(struct qs_minimizer *m)
 {
 	m->w.e = qs_energy(m->w.s, m->x, m->w.g, m->w.fmax);
+	m->w.x_evals = m->w.s->evals;
 	return isnan(m->w.e) ? -1 : 0;
 }
 
@@ -999,6 +1006,12 @@ qs_minimizer_iterate(struct qs_minimizer *m)
 
 	m->it++;
 	return st;
+}
+
+int
+qs_minimizer_current(const struct qs_minimizer *m)
+{
+	return m->x && m->w.s->evals == m->w.x_evals;
 }
 
 const double *

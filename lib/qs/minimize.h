@@ -102,6 +102,10 @@ int qs_minimizer_test(struct qs_minimizer *m, struct qs_min_report *rep);
 /* The gradient at x (dim), and a new iteration limit (counted from set). */
 const double *qs_minimizer_gradient(const struct qs_minimizer *m);
 void qs_minimizer_set_max_iter(struct qs_minimizer *m, long max_iter);
+/* Whether the functional's last evaluation was at the minimiser's x (so every term's state,
+ * such as the friction term's contact forces, is x's): true after set and after every
+ * iteration of every method, until something else evaluates. */
+int qs_minimizer_current(const struct qs_minimizer *m);
 /* New parameters for the next set (the same method, lbfgs_m and preconditioning; else -1). */
 int qs_minimizer_params(struct qs_minimizer *m, const struct qs_min_params *mp);
 /* From where the minimiser stands (after set, or a stop), on to the tolerance tol: test and
