@@ -129,17 +129,33 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	c->M = c->mp;
 }
 
-/* M_max of a history line's contact at normal force P (physics.md §5): a = sqrt(R* h(P)). */
-static double
-line_mmax(const struct pack *p, const struct pack_contact *c, double mu, double P)
+/* E* and R* of a history line's pair. */
+static void
+line_moduli(const struct pack *p, const struct pack_contact *c, double *Es, double *Rs)
 {
 	size_t i = c->i;
 	int wall = PACK_IS_WALL(c->j);
-	double Es = wall ? hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu) :
-	                   hertz_Estar(p->E[i], p->nu[i], p->E[c->j], p->nu[c->j]);
-	double Rs = wall ? p->r[i] : hertz_Rstar(p->r[i], p->r[c->j]);
 
+	*Es = wall ? hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu) :
+	             hertz_Estar(p->E[i], p->nu[i], p->E[c->j], p->nu[c->j]);
+	*Rs = wall ? p->r[i] : hertz_Rstar(p->r[i], p->r[c->j]);
+}
+
+/* M_max of a contact of moduli Es, Rs at normal force P (physics.md §5): a = sqrt(R* h(P)). */
+static double
+mmax_at(double Es, double Rs, double mu, double P)
+{
 	return 3 * M_PI / 16 * sqrt(Rs * hertz_overlap(Es, Rs, P)) * mu * P;
+}
+
+/* M_max of a history line's contact at normal force P. */
+static double
+line_mmax(const struct pack *p, const struct pack_contact *c, double mu, double P)
+{
+	double Es, Rs;
+
+	line_moduli(p, c, &Es, &Rs);
+	return mmax_at(Es, Rs, mu, P);
 }
 
 /* The mean committed normal force over p's history lines (0 without lines). */
@@ -161,11 +177,17 @@ history_mean_P(const struct pack *p)
 static int
 line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pmean)
 {
-	double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu;
+	double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, Es, Rs;
 	double qlim = mu * (c->P0 + Pmean) * (1 + 1e-9);
-	double mlim = (line_mmax(p, c, mu, c->P0) + line_mmax(p, c, mu, Pmean)) * (1 + 1e-9);
 
-	return vec3_norm(c->Q0) > qlim ? 1 : fabs(c->M0) > mlim ? 2 : 0;
+	/* every commit checks every line: the torsional limits (two cube roots) only when the
+	 * force is within its bound and there is a couple to check */
+	if (vec3_norm(c->Q0) > qlim)
+		return 1;
+	if (c->M0 == 0)
+		return 0;
+	line_moduli(p, c, &Es, &Rs);
+	return fabs(c->M0) > (mmax_at(Es, Rs, mu, c->P0) + mmax_at(Es, Rs, mu, Pmean)) * (1 + 1e-9) ? 2 : 0;
 }
 
 int
