@@ -301,6 +301,13 @@ test_sphere_box_volume(void)
 			CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), M_PI * h * h * (3 * r - h) / 3, 1e-12, name);
 		}
 	}
+	/* a cap x >= 0.8 r with a face y <= 0.75 r that crosses the sphere but not the cap (there
+	 * |y| <= 0.6 r): two faces, so the quadrature, against the one-face closed form */
+	for (b = 0; b < 3; b++)
+		lo[b] = -inf, hi[b] = inf;
+	lo[0] = 0.8 * r, hi[1] = 0.75 * r, h = 0.2 * r;
+	CHECK_CLOSE(measure_sphere_box_volume(r, lo, hi), M_PI * h * h * (3 * r - h) / 3, 1e-12,
+	    "sphere in box: the quadrature of two faces, one missing the cap, gives the cap");
 	/* the eight octants about the centre: V/8 each (the sign of the corner does not matter) */
 	for (o = 0; o < 8; o++) {
 		char name[96];
