@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* doubles per grain in f->gs: x - x0 (3), Omega (3) */
+/* doubles per grain in f->gs: x - x0 (3), w = R Omega (3) */
 #define FR_GS 6
 
 /* q0 = a0 / b0 and q1 = a1 / b1: with GCC and clang as one two-lane division (each lane the
@@ -87,10 +87,12 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	c->Es = lp.Es;
 	c->Rs = lp.Rs;
 	contact_lever_lengths(wall, p->r[i], wall ? 0 : p->r[g->j], g->d, g->h, &li, &lj);
-	for (k = 0; k < 3; k++) {
-		c->li[k] = -g->n[k] * li;
-		c->lj[k] = wall ? 0 : g->n[k] * lj;
-	}
+	c->li = li;
+	c->lj = wall ? 0 : lj;
+	c->ai = li / p->r[i];
+	c->bi = 1 / p->r[i];
+	c->aj = wall ? 0 : lj / p->r[g->j];
+	c->bj = wall ? 0 : 1 / p->r[g->j];
 	law->tangent(law, &lp, g->h, g->P, wall ? p->wall_mu : p->mu, &t);
 	c->k = t.k;
 	c->qmax = t.qmax;
@@ -327,38 +329,36 @@ clamp_potential(double s, double lim)
 }
 
 /* Contact c at x: its force Q on i, couple M on i about n and elastic trial |Q^p - k u_s|
- * into Q, M, qtrial; returns its energy.  Reads only f->gs (x - x0 and Omega per grain, from
- * fr_grains) and c's frozen data, so a thread may evaluate a contact that another owns
+ * into Q, M, qtrial; returns its energy.  Reads only f->gs (x - x0 and w = R Omega per grain,
+ * from fr_grains) and c's frozen data, so a thread may evaluate a contact that another owns
  * (fr_energy's gathers).  wall (c is a wall contact) and rule (f->rule) are constants at
- * each call, so that each kind compiles without the others' branches. */
+ * each call, so that each kind compiles without the others' branches.
+ * The slip u_s = T du + Omega_i x R_ij - Omega_j x R_ji is, with the lever arms along n,
+ * T du - (ai w_i + aj w_j) x n: one cross product; the twist (Omega_i - Omega_j) . n is
+ * bi w_i . n - bj w_j . n (walls translate along their normal and do not turn). */
 CONTACT_INLINE double
 fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double Q[3], double *M, double *qtrial,
     const int wall, const enum fr_rule rule)
 {
-	static const double zero[3] = {0, 0, 0};
 	size_t i = c->i, j = wall ? 0 : (size_t)c->j;
 	int a;
-	const double *gi = f->gs + FR_GS * i, *gj = f->gs + FR_GS * j, *Oi = gi + 3, *Oj = wall ? zero : gj + 3;
-	double du[3], us[3], t[3], dn, Ot, q[3], qn, m, E, Et, es, et;
+	const double *gi = f->gs + FR_GS * i, *gj = f->gs + FR_GS * j, *wi = gi + 3, *wj = gj + 3;
+	double du[3], v[3], us[3], t[3], dn, Ot, q[3], qn, m, E, Et, es, et;
 
-	for (a = 0; a < 3; a++)
+	for (a = 0; a < 3; a++) {
 		du[a] = wall ? gi[a] : gi[a] - gj[a];
-	/* u_s = T du + Omega_i x R_ij - Omega_j x R_ji (walls translate along their normal) */
-	dn = vec3_dot(du, c->n);
-	vec3_cross(Oi, c->li, t);
-	for (a = 0; a < 3; a++)
-		us[a] = du[a] - dn * c->n[a] + t[a];
-	if (!wall) {
-		vec3_cross(Oj, c->lj, t);
-		for (a = 0; a < 3; a++)
-			us[a] -= t[a];
+		v[a] = wall ? c->ai * wi[a] : c->ai * wi[a] + c->aj * wj[a];
 	}
+	dn = vec3_dot(du, c->n);
+	vec3_cross(v, c->n, t);
+	for (a = 0; a < 3; a++)
+		us[a] = du[a] - dn * c->n[a] - t[a];
 	for (a = 0; a < 3; a++)
 		q[a] = c->qp[a] - c->k * us[a];
 	qn = vec3_norm(q);
 	*qtrial = qn;
 	/* torsion: Omega_t = (Omega_i - Omega_j) . n, the same clamp in one dimension */
-	Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
+	Ot = wall ? c->bi * vec3_dot(wi, c->n) : c->bi * vec3_dot(wi, c->n) - c->bj * vec3_dot(wj, c->n);
 	m = c->mp - c->kt * Ot;
 	*M = fabs(m) <= c->mmax ? m : (m > 0 ? c->mmax : -c->mmax);
 	et = clamp_potential(fabs(m), c->mmax) - c->mpp;
@@ -406,34 +406,31 @@ fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *
 {
 	const double *g0i = f->gs + FR_GS * c0->i, *g0j = f->gs + FR_GS * (size_t)c0->j;
 	const double *g1i = f->gs + FR_GS * c1->i, *g1j = f->gs + FR_GS * (size_t)c1->j;
-	fr_v2 du[3], Oi[3], Oj[3], n[3], li[3], lj[3], us[3], t[3], q[3], sq[3], dn, qq, qn, Ot, m, es, et, e;
+	fr_v2 du[3], wi[3], wj[3], n[3], v[3], us[3], t[3], q[3], sq[3], dn, qq, qn, Ot, m, es, et, e;
 	fr_v2 k = {c0->k, c1->k}, kt = {c0->kt, c1->kt}, qmax = {c0->qmax, c1->qmax}, mp = {c0->mp, c1->mp};
+	fr_v2 ai = {c0->ai, c1->ai}, aj = {c0->aj, c1->aj}, bi = {c0->bi, c1->bi}, bj = {c0->bj, c1->bj};
 	struct fr_contact *c;
 	int a, L;
 
 	for (a = 0; a < 3; a++) {
 		fr_v2 xi = {g0i[a], g1i[a]}, xj = {g0j[a], g1j[a]};
 		du[a] = xi - xj;
-		Oi[a] = (fr_v2){g0i[3 + a], g1i[3 + a]};
-		Oj[a] = (fr_v2){g0j[3 + a], g1j[3 + a]};
+		wi[a] = (fr_v2){g0i[3 + a], g1i[3 + a]};
+		wj[a] = (fr_v2){g0j[3 + a], g1j[3 + a]};
 		n[a] = (fr_v2){c0->n[a], c1->n[a]};
-		li[a] = (fr_v2){c0->li[a], c1->li[a]};
-		lj[a] = (fr_v2){c0->lj[a], c1->lj[a]};
+		v[a] = ai * wi[a] + aj * wj[a];
 	}
 	dn = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
-	FR_V2_CROSS(Oi, li, t);
+	FR_V2_CROSS(v, n, t);
 	for (a = 0; a < 3; a++)
-		us[a] = du[a] - dn * n[a] + t[a];
-	FR_V2_CROSS(Oj, lj, t);
-	for (a = 0; a < 3; a++)
-		us[a] -= t[a];
+		us[a] = du[a] - dn * n[a] - t[a];
 	for (a = 0; a < 3; a++)
 		q[a] = (fr_v2){c0->qp[a], c1->qp[a]} - k * us[a];
 	qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
 	qn = (fr_v2){sqrt(qq[0]), sqrt(qq[1])};
 	for (a = 0; a < 3; a++)
 		sq[a] = qmax * q[a] / qn;
-	Ot = (Oi[0] * n[0] + Oi[1] * n[1] + Oi[2] * n[2]) - (Oj[0] * n[0] + Oj[1] * n[1] + Oj[2] * n[2]);
+	Ot = bi * (wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2]) - bj * (wj[0] * n[0] + wj[1] * n[1] + wj[2] * n[2]);
 	m = mp - kt * Ot;
 	for (L = 0; L < 2; L++) {
 		int stick = qn[L] <= qmax[L];
@@ -451,12 +448,12 @@ fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *
 }
 #endif
 
-/* Grains g0..g1 of f->gs at x: the translation x - x0 and Omega = (R Omega) / R, once a grain
- * rather than once a contact (the same operations, so the same bytes). */
+/* Grains g0..g1 of f->gs at x: the translation x - x0 and the rotation w = R Omega, side by
+ * side, once a grain rather than once a contact. */
 static void
 fr_grains(struct qs_friction *f, const struct qs_system *s, const double *x, size_t g0, size_t g1)
 {
-	const double *r = s->p->r, *x0 = f->x0, *w = x + 3 * s->n;
+	const double *x0 = f->x0, *w = x + 3 * s->n;
 	size_t i;
 	int a;
 
@@ -464,63 +461,60 @@ fr_grains(struct qs_friction *f, const struct qs_system *s, const double *x, siz
 		double *gi = f->gs + FR_GS * i;
 		for (a = 0; a < 3; a++) {
 			gi[a] = x[3 * i + a] - x0[3 * i + a];
-			gi[3 + a] = w[3 * i + a] / r[i];
+			gi[3 + a] = w[3 * i + a];
 		}
 	}
 }
 
 /* The gradient of contact c with force Q and couple M: dPi/du_i = -Q, dPi/dOmega_i =
- * -(R_ij x Q) - M n, scaled by 1/R_i; on j the opposite force and its own lever arm. */
+ * -(R_ij x Q) - M n, which over R_i (the unknown is w = R Omega) is ai (n x Q) - bi M n; on j
+ * the opposite force and its own lever arm, -(aj (n x Q) + bj M n).  Everything is read into
+ * locals before the first store into g: g may alias c (both double), and the compiler would
+ * read c's fields again after each store (a third of the kernel's instructions). */
 CONTACT_INLINE void
 fr_add_i(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
 {
 	size_t i = c->i;
-	double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i, mi[3], ri = s->p->r[i];
-	int a;
+	double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i;
+	const double n0 = c->n[0], n1 = c->n[1], n2 = c->n[2], q0 = Q[0], q1 = Q[1], q2 = Q[2];
+	const double ai = c->ai, mi = M * c->bi;
+	const double x0 = n1 * q2 - n2 * q1, x1 = n2 * q0 - n0 * q2, x2 = n0 * q1 - n1 * q0;
+	const double w0 = ai * x0 - mi * n0, w1 = ai * x1 - mi * n1, w2 = ai * x2 - mi * n2;
 
-	vec3_cross(c->li, Q, mi);
-	for (a = 0; a < 3; a++) {
-		gi[a] -= Q[a];
-		gwi[a] -= (mi[a] + M * c->n[a]) / ri;
-	}
+	gi[0] -= q0, gi[1] -= q1, gi[2] -= q2;
+	gwi[0] += w0, gwi[1] += w1, gwi[2] += w2;
 }
 
 CONTACT_INLINE void
 fr_add_j(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
 {
 	size_t j = (size_t)c->j;
-	double *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j, mj[3], rj = s->p->r[j];
-	int a;
+	double *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j;
+	const double n0 = c->n[0], n1 = c->n[1], n2 = c->n[2], q0 = Q[0], q1 = Q[1], q2 = Q[2];
+	const double aj = c->aj, mj = M * c->bj;
+	const double x0 = n1 * q2 - n2 * q1, x1 = n2 * q0 - n0 * q2, x2 = n0 * q1 - n1 * q0;
+	const double w0 = aj * x0 + mj * n0, w1 = aj * x1 + mj * n1, w2 = aj * x2 + mj * n2;
 
-	vec3_cross(c->lj, Q, mj);
-	for (a = 0; a < 3; a++) {
-		gj[a] += Q[a];
-		gwj[a] += (mj[a] + M * c->n[a]) / rj;
-	}
+	gj[0] += q0, gj[1] += q1, gj[2] += q2;
+	gwj[0] += w0, gwj[1] += w1, gwj[2] += w2;
 }
 
-/* fr_add_i and fr_add_j of a pair in one (the same operations, the six divisions two by two). */
+/* fr_add_i and fr_add_j of a pair in one (n x Q once). */
 CONTACT_INLINE void
 fr_add_ij(const struct qs_system *s, double *g, const struct fr_contact *c, const double Q[3], double M)
 {
 	size_t i = c->i, j = (size_t)c->j;
 	double *gi = g + 3 * i, *gwi = g + 3 * s->n + 3 * i, *gj = g + 3 * j, *gwj = g + 3 * s->n + 3 * j;
-	double mi[3], mj[3], ri = s->p->r[i], rj = s->p->r[j], u[6];
-	int a;
+	const double n0 = c->n[0], n1 = c->n[1], n2 = c->n[2], q0 = Q[0], q1 = Q[1], q2 = Q[2];
+	const double ai = c->ai, aj = c->aj, mi = M * c->bi, mj = M * c->bj;
+	const double x0 = n1 * q2 - n2 * q1, x1 = n2 * q0 - n0 * q2, x2 = n0 * q1 - n1 * q0;
+	const double wi0 = ai * x0 - mi * n0, wi1 = ai * x1 - mi * n1, wi2 = ai * x2 - mi * n2;
+	const double wj0 = aj * x0 + mj * n0, wj1 = aj * x1 + mj * n1, wj2 = aj * x2 + mj * n2;
 
-	vec3_cross(c->li, Q, mi);
-	vec3_cross(c->lj, Q, mj);
-	FR_DIV2(u[0], u[1], mi[0] + M * c->n[0], mi[1] + M * c->n[1], ri, ri);
-	FR_DIV2(u[2], u[3], mi[2] + M * c->n[2], mj[0] + M * c->n[0], ri, rj);
-	FR_DIV2(u[4], u[5], mj[1] + M * c->n[1], mj[2] + M * c->n[2], rj, rj);
-	for (a = 0; a < 3; a++) {
-		gi[a] -= Q[a];
-		gwi[a] -= u[a];
-	}
-	for (a = 0; a < 3; a++) {
-		gj[a] += Q[a];
-		gwj[a] += u[3 + a];
-	}
+	gi[0] -= q0, gi[1] -= q1, gi[2] -= q2;
+	gwi[0] += wi0, gwi[1] += wi1, gwi[2] += wi2;
+	gj[0] += q0, gj[1] += q1, gj[2] += q2;
+	gwj[0] += wj0, gwj[1] += wj1, gwj[2] += wj2;
 }
 
 /* What the rows of grains below g0 (other threads') scatter into grains g0 <= j < g1: the
@@ -764,7 +758,7 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 		const struct fr_contact *c = &f->c[q];
 		int wall = PACK_IS_WALL(c->j), u, v;
 		size_t ci = c->i, cj = wall ? 0 : (size_t)c->j;
-		double Q[3], M, qt, K[9], Ci[9], Cj[9], KC[9], B[9], kt, ri = r[ci], rj = wall ? 1 : r[cj];
+		double Q[3], M, qt, K[9], Ci[9], Cj[9], KC[9], B[9], kt, ri = r[ci], rj = wall ? 1 : r[cj], li[3], lj[3];
 
 		fr_contact_eval(f, c, Q, &M, &qt, wall, FR_RETURN_MAP);
 		if (!(c->qmax > 0)) {
@@ -786,11 +780,15 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 					    Q[u] / c->qmax * Q[v] / c->qmax);
 		}
 		kt = fabs(M) < c->mmax ? c->kt : 0;
-		cross_matrix(c->li, -1 / ri, Ci);
+		for (u = 0; u < 3; u++) {
+			li[u] = -c->n[u] * c->li;
+			lj[u] = c->n[u] * c->lj;
+		}
+		cross_matrix(li, -1 / ri, Ci);
 		own_blocks(H, cpl, n, ci, K, Ci, 1, kt, c->n, ri, KC);
 		if (wall)
 			continue;
-		cross_matrix(c->lj, 1 / rj, Cj);
+		cross_matrix(lj, 1 / rj, Cj);
 		own_blocks(H, cpl, n, cj, K, Cj, -1, kt, c->n, rj, KC);
 		if (H->diag_only)
 			continue;

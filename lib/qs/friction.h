@@ -41,7 +41,11 @@ struct fr_contact {
 	size_t i;
 	long j;			/* grain index or PACK_WALL(w) */
 	double n[3];		/* reference normal on i, from j to i */
-	double li[3], lj[3];	/* lever arms centre -> contact of i and of j (R_ij, R_ji) */
+	/* the lever arms centre -> contact of i and of j lie along the normal (spheres):
+	 * R_ij = -li n and R_ji = lj n (lj = 0 for a wall); over the radii, ai = li / R_i,
+	 * aj = lj / R_j, bi = 1 / R_i, bj = 1 / R_j (0 for a wall), so that the kernel works on
+	 * the unknowns w = R Omega without a division or a cross product per lever arm */
+	double li, lj, ai, aj, bi, bj;
 	double k, qmax, qp[3];	/* stick stiffness, sliding limit, reference force on i */
 	double kt, mmax, mp;	/* torsion: stiffness, limit, reference couple on i about n */
 	double pp, mpp;		/* |Q^p|^2 and (M^p)^2, for the energy */
@@ -54,7 +58,7 @@ struct qs_friction {
 	size_t n, cap;
 	struct fr_contact *c;
 	double *x0;		/* reference centres (3N) */
-	double *gs;		/* per grain at an evaluation, FR_GS apart: x - x0, then Omega */
+	double *gs;		/* per grain at an evaluation, FR_GS apart: x - x0, then w = R Omega */
 	/* the index of the contacts (fr_begin), for the threads: per grain i the range of the
 	 * pairs (i, j) and of its walls in c (CSR, n + 1 offsets each), and per grain j the
 	 * pairs (m < j, j) ascending (col_first, col_k) */

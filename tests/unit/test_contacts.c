@@ -13,6 +13,7 @@
 #include "qs/functional.h"
 #include "qs/minimize.h"
 
+#include <float.h>
 #include <gsl/gsl_randist.h>
 #include <math.h>
 #include <stdlib.h>
@@ -191,8 +192,13 @@ test_laws(gsl_rng *rng)
 	E1 = qs_energy(&s, x, g, NULL);
 	s.law = &hertz_copy;	/* the same law, not the fast path's pointer: through the interface */
 	E2 = qs_energy(&s, x, g2, NULL);
-	CHECK(E1 == E2 && memcmp(g, g2, n3 * sizeof *g) == 0, "laws: Hertz through the interface equals the fast path to the bit (Pi %.17g, %.17g)",
-	    E1, E2);
+	/* the forces to the bit (the same operations, scattered in the same order); the energy
+	 * sums the same terms, by blocks of grains on the fast path and in one running sum
+	 * through the interface, which can differ by the rounding of reassociating s->ncontacts
+	 * positive terms, at most ncontacts ulps (a pack where they happened to agree hid this) */
+	CHECK(memcmp(g, g2, n3 * sizeof *g) == 0, "laws: Hertz through the interface gives the fast path's gradient to the bit");
+	CHECK(fabs(E1 - E2) <= (double)s.ncontacts * DBL_EPSILON * E1 && E1 > 0,
+	    "laws: and its energy to the rounding of the sum's order (Pi %.17g, %.17g, %zu contacts)", E1, E2, s.ncontacts);
 	lin.kn = 2e4;
 	s.law = &lin;
 	E2 = qs_energy(&s, x, g, NULL);

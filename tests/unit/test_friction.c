@@ -978,7 +978,7 @@ contact_kinematics(const struct qs_friction *f, const struct qs_system *s, const
     double us[3], double *Ot)
 {
 	const double *w = x + 3 * s->n, *r = s->p->r;
-	double du[3], Oi[3], Oj[3] = {0, 0, 0}, t[3], dn;
+	double du[3], Oi[3], Oj[3] = {0, 0, 0}, t[3], dn, li[3], lj[3];
 	int a, wall = PACK_IS_WALL(c->j);
 	size_t i = c->i, j = wall ? 0 : (size_t)c->j;
 
@@ -990,11 +990,16 @@ contact_kinematics(const struct qs_friction *f, const struct qs_system *s, const
 			Oj[a] = w[3 * j + a] / r[j];
 		}
 	}
+	/* the lever arms as vectors, R_ij = -li n and R_ji = lj n (friction.h) */
+	for (a = 0; a < 3; a++) {
+		li[a] = -c->n[a] * c->li;
+		lj[a] = c->n[a] * c->lj;
+	}
 	dn = vec3_dot(du, c->n);
-	vec3_cross(Oi, c->li, t);
+	vec3_cross(Oi, li, t);
 	for (a = 0; a < 3; a++)
 		us[a] = du[a] - dn * c->n[a] + t[a];
-	vec3_cross(Oj, c->lj, t);
+	vec3_cross(Oj, lj, t);
 	for (a = 0; a < 3; a++)
 		us[a] -= t[a];
 	*Ot = vec3_dot(Oi, c->n) - vec3_dot(Oj, c->n);
@@ -1047,8 +1052,17 @@ check_frozen(const struct qs_friction *f, const struct pack *p, const char *tag)
 		ref_of(p, i, c->j, h, &rc);
 		for (a = 0; a < 3; a++) {
 			e = fmax(e, fabs(c->n[a] - n[a]));
-			e = fmax(e, fabs(c->li[a] - li[a]) / p->r[i]);
-			e = fmax(e, fabs(c->lj[a] - lj[a]) / p->r[i]);
+			e = fmax(e, fabs(-c->n[a] * c->li - li[a]) / p->r[i]);
+			e = fmax(e, fabs(c->n[a] * c->lj - lj[a]) / p->r[i]);
+		}
+		/* the kernel's lever arms and reciprocals over the radii */
+		e = fmax(e, fabs(c->ai * p->r[i] - c->li) / p->r[i]);
+		e = fmax(e, fabs(c->bi * p->r[i] - 1));
+		if (!PACK_IS_WALL(c->j)) {
+			e = fmax(e, fabs(c->aj * p->r[c->j] - c->lj) / p->r[c->j]);
+			e = fmax(e, fabs(c->bj * p->r[c->j] - 1));
+		} else {
+			e = fmax(e, fabs(c->lj) + fabs(c->aj) + fabs(c->bj));
 		}
 		e = fmax(e, fabs(c->k / rc.k - 1));
 		e = fmax(e, fabs(c->qmax / rc.qmax - 1));
