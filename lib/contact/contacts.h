@@ -48,6 +48,7 @@ struct contact {
 	double h;		/* overlap (m); negative: the gap of a near pair */
 	double ri, rj;		/* the radii (rj = 0 for a wall) */
 	double *hist;		/* the pair's history slot (hsize doubles), or NULL */
+	size_t k;		/* in contact_foreach_row, a pair's index in the list (e->nl.nbr) */
 };
 
 /* What contact_foreach visits: CONTACT_TOUCHING, pairs closer than r_i + r_j and walls
@@ -196,6 +197,7 @@ contact_foreach_row(const struct contact_enum *e, const double *x, size_t i, int
 			continue;
 		}
 		c.j = (long)j;
+		c.k = k;
 		c.rj = rj;
 		c.d = sqrt(dd);
 		c.h = sum - c.d;

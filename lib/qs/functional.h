@@ -66,6 +66,11 @@ struct qs_system {
 	/* the threaded Hertz evaluation's sums per block of grains (functional.c) */
 	struct qs_block_sums *blk;
 	size_t blk_cap;
+	/* Hertz's 4/3 E* sqrt(R*) of every listed pair, by list index, made at each rebuild of
+	 * the list (coef_builds: ce.rebuilds then) */
+	double *hertz_coef;
+	size_t coef_cap;
+	long coef_builds;
 	/* from the last evaluation */
 	size_t ncontacts;
 	double sum_force;	/* sum of normal contact forces (N) */
