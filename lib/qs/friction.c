@@ -183,21 +183,40 @@ history_mean_P(const struct pack *p)
 	return Pmean;
 }
 
+/* A floor under M_max(Pmean) of every pair and wall contact of p: M_max grows with R* and
+ * falls with E*, so it is the limit at the largest E* and the smallest R* (r_min / 2) with
+ * the smaller friction coefficient, less 0.1 % for the rounding of the per-contact forms. */
+static double
+history_mmax_floor(const struct pack *p, double Pmean)
+{
+	double cmin = INFINITY, rmin = INFINITY, wall_comp = (1 - p->wall_nu * p->wall_nu) / p->wall_E;
+	size_t i;
+
+	for (i = 0; i < p->n; i++) {
+		cmin = fmin(cmin, (1 - p->nu[i] * p->nu[i]) / p->E[i]);
+		rmin = fmin(rmin, p->r[i]);
+	}
+	if (!(Pmean > 0) || !(cmin > 0) || !(rmin > 0))
+		return 0;
+	return 0.999 * mmax_at(1 / (cmin + (wall_comp > 0 ? fmin(cmin, wall_comp) : cmin)), rmin / 2,
+	    fmin(p->mu, p->wall_mu), Pmean);
+}
+
 /* Whether history line c lies beyond what a commit of an equilibrium can leave: |Q0| above
  * mu (P0 + Pmean), or |M0| above M_max(P0) + M_max(Pmean) (the slip the normal force's fall in
  * one increment calls for is far below the limit of an average contact).  1 for Q0, 2 for
- * M0, 0 within. */
+ * M0, 0 within.  mfloor: history_mmax_floor's, under which a couple needs no check. */
 static int
-line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pmean)
+line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pmean, double mfloor)
 {
 	double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, Es, Rs;
 	double qlim = mu * (c->P0 + Pmean) * (1 + 1e-9);
 
 	/* every commit checks every line: the torsional limits (two cube roots) only when the
-	 * force is within its bound and there is a couple to check */
+	 * force is within its bound and the couple is above the floor of every contact's */
 	if (vec3_norm(c->Q0) > qlim)
 		return 1;
-	if (c->M0 == 0)
+	if (fabs(c->M0) < mfloor)
 		return 0;
 	line_moduli(p, c, &Es, &Rs);
 	return fabs(c->M0) > (mmax_at(Es, Rs, mu, c->P0) + mmax_at(Es, Rs, mu, Pmean)) * (1 + 1e-9) ? 2 : 0;
@@ -206,13 +225,13 @@ line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pm
 int
 fr_check_history(const struct pack *p)
 {
-	double Pmean = history_mean_P(p);
+	double Pmean = history_mean_P(p), mfloor = history_mmax_floor(p, Pmean);
 	size_t k;
 
 	for (k = 0; k < p->nc; k++) {
 		const struct pack_contact *c = &p->c[k];
 		double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, qn = vec3_norm(c->Q0);
-		int beyond = line_beyond_commit(p, c, Pmean);
+		int beyond = line_beyond_commit(p, c, Pmean, mfloor);
 		char jn[32];
 
 		if (!beyond)
@@ -874,14 +893,14 @@ fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x)
 	 * an equilibrium never reaches that bound, so its lines are kept exactly. */
 	f->ncommit_slipped = 0;
 	{
-		double Pmean = history_mean_P(p);
+		double Pmean = history_mean_P(p), mfloor = history_mmax_floor(p, Pmean);
 
 		for (k = 0; k < p->nc; k++) {
 			struct pack_contact *c = &p->c[k];
 			double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, qn, qm, mm;
 			int a;
 
-			if (!line_beyond_commit(p, c, Pmean))
+			if (!line_beyond_commit(p, c, Pmean, mfloor))
 				continue;
 			qn = vec3_norm(c->Q0), qm = mu * c->P0, mm = line_mmax(p, c, mu, c->P0);
 			if (qn > qm)
