@@ -4,6 +4,17 @@
 
 #include <math.h>
 
+/* A loop over three (or nine) components unrolled whole (GCC does not at -O2): the same
+ * operations in the same order, with small vectors kept in registers rather than on the
+ * stack.  The frictional kernel (friction.c) took a third fewer instructions with it. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define VEC3_UNROLL _Pragma("GCC unroll 9")
+#elif defined(__clang__)
+#define VEC3_UNROLL _Pragma("clang loop unroll(full)")
+#else
+#define VEC3_UNROLL
+#endif
+
 static inline void
 vec3_cross(const double a[3], const double b[3], double c[3])
 {

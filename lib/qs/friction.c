@@ -13,17 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The loops over three components unrolled (GCC does not at -O2): the same operations in the
- * same order, with the kernel's two-lane vectors kept in registers rather than on the stack,
- * and a third of the instructions of friction_hessian's 3x3 blocks. */
-#if defined(__GNUC__) && !defined(__clang__)
-#define FR_UNROLL _Pragma("GCC unroll 3")
-#elif defined(__clang__)
-#define FR_UNROLL _Pragma("clang loop unroll(full)")
-#else
-#define FR_UNROLL
-#endif
-
 /* doubles per grain in f->gs: x - x0 (3), w = R Omega (3) */
 #define FR_GS 6
 
@@ -375,17 +364,17 @@ fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double 
 	const double *gi = f->gs + FR_GS * i, *gj = f->gs + FR_GS * j, *wi = gi + 3, *wj = gj + 3;
 	double du[3], v[3], us[3], t[3], dn, Ot, q[3], qn, m, E, Et, es, et;
 
-	FR_UNROLL
+	VEC3_UNROLL
 	for (a = 0; a < 3; a++) {
 		du[a] = wall ? gi[a] : gi[a] - gj[a];
 		v[a] = wall ? c->ai * wi[a] : c->ai * wi[a] + c->aj * wj[a];
 	}
 	dn = vec3_dot(du, c->n);
 	vec3_cross(v, c->n, t);
-	FR_UNROLL
+	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
 		us[a] = du[a] - dn * c->n[a] - t[a];
-	FR_UNROLL
+	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
 		q[a] = c->qp[a] - c->k * us[a];
 	qn = vec3_norm(q);
@@ -399,12 +388,12 @@ fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double 
 		/* F (6)-(7b): the stiffness reduced so that |Q^p - k u_s| = Q_max */
 		double un = vec3_norm(us), cq = vec3_dot(c->qp, us) / un, pp = c->pp;
 		double rad = cq * cq + c->qmax * c->qmax - pp, kr = rad > 0 ? (cq + sqrt(rad)) / un : 0;
-		FR_UNROLL
+		VEC3_UNROLL
 		for (a = 0; a < 3; a++)
 			Q[a] = c->qp[a] - kr * us[a];
 		qn = vec3_norm(Q);
 		if (qn > c->qmax)	/* only when |Q^p| > Q_max, which fr_begin rules out */
-			FR_UNROLL
+			VEC3_UNROLL
 			for (a = 0; a < 3; a++)
 				Q[a] *= c->qmax / qn;
 		E = -vec3_dot(c->qp, us) + 0.5 * kr * vec3_dot(us, us);
@@ -447,7 +436,7 @@ fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *
 	struct fr_contact *c;
 	int a, L;
 
-	FR_UNROLL
+	VEC3_UNROLL
 	for (a = 0; a < 3; a++) {
 		fr_v2 xi = {g0i[a], g1i[a]}, xj = {g0j[a], g1j[a]};
 		du[a] = xi - xj;
@@ -458,15 +447,15 @@ fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *
 	}
 	dn = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
 	FR_V2_CROSS(v, n, t);
-	FR_UNROLL
+	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
 		us[a] = du[a] - dn * n[a] - t[a];
-	FR_UNROLL
+	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
 		q[a] = (fr_v2){c0->qp[a], c1->qp[a]} - k * us[a];
 	qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
 	qn = (fr_v2){sqrt(qq[0]), sqrt(qq[1])};
-	FR_UNROLL
+	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
 		sq[a] = qmax * q[a] / qn;
 	Ot = bi * (wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2]) - bj * (wj[0] * n[0] + wj[1] * n[1] + wj[2] * n[2]);
@@ -475,7 +464,7 @@ fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *
 		int stick = qn[L] <= qmax[L];
 		c = L ? c1 : c0;
 		c->qtrial = qn[L];
-		FR_UNROLL
+		VEC3_UNROLL
 		for (a = 0; a < 3; a++)
 			c->Q[a] = stick ? q[a][L] : sq[a][L];
 		es[L] = clamp_potential(qn[L], c->qmax) - c->pp;
@@ -710,12 +699,12 @@ mat3_mul(const double *A, const double *B, double *AB, const int ta)
 {
 	int u, v, w;
 
-	FR_UNROLL
+	VEC3_UNROLL
 	for (u = 0; u < 3; u++)
-		FR_UNROLL
+		VEC3_UNROLL
 		for (v = 0; v < 3; v++) {
 			double sum = 0;
-			FR_UNROLL
+			VEC3_UNROLL
 			for (w = 0; w < 3; w++)
 				sum += (ta ? A[3 * w + u] : A[3 * u + w]) * B[3 * w + v];
 			AB[3 * u + v] = sum;
@@ -729,9 +718,9 @@ mat3_add(double *D, const double *S, double sign, const int sym)
 {
 	int u, v;
 
-	FR_UNROLL
+	VEC3_UNROLL
 	for (u = 0; u < 3; u++)
-		FR_UNROLL
+		VEC3_UNROLL
 		for (v = 0; v < 3; v++)
 			D[3 * u + v] += sign * (sym && v < u ? S[3 * v + u] : S[3 * u + v]);
 }
@@ -751,7 +740,7 @@ own_blocks(struct qs_hessian *H, double *cpl, size_t n, size_t g, const double K
 	if (cpl)
 		mat3_add(cpl + 9 * g, KC, sign, 0);
 	mat3_mul(C, KC, CKC, 1);
-	FR_UNROLL
+	VEC3_UNROLL
 	for (u = 0; u < 9; u++)
 		CKC[u] += kt * nrm[u / 3] * nrm[u % 3] / (rg * rg);
 	mat3_add(H->diag + 9 * (n + g), CKC, 1, 1);
@@ -794,17 +783,17 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 		if (!(c->qmax > 0)) {
 			memset(K, 0, sizeof K);	/* no limit, no tangential force */
 		} else if (qt <= c->qmax) {
-			FR_UNROLL
+			VEC3_UNROLL
 			for (u = 0; u < 3; u++)
-				FR_UNROLL
+				VEC3_UNROLL
 				for (v = 0; v < 3; v++)
 					K[3 * u + v] = c->k * ((u == v) - c->n[u] * c->n[v]);
 		} else {
 			/* qh = Q / Q_max: the trial's direction */
 			double sc = c->k * c->qmax / qt;
-			FR_UNROLL
+			VEC3_UNROLL
 			for (u = 0; u < 3; u++)
-				FR_UNROLL
+				VEC3_UNROLL
 				for (v = 0; v < 3; v++)
 					K[3 * u + v] = sc * ((u == v) - c->n[u] * c->n[v] -
 					    Q[u] / c->qmax * Q[v] / c->qmax);

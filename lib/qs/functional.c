@@ -1,5 +1,6 @@
 /* functional: Hertz energy and gradient over a pack (see functional.h). */
 #include "qs/functional.h"
+#include "base/vec3.h"
 #include "qs/hessian.h"
 #include "base/msg.h"
 #include "base/par.h"
@@ -424,18 +425,23 @@ on_hessian(const struct contact *c, void *vacc)
 
 	law->pair(law, a->s->p, c->i, c->j, &lp);
 	law->normal(law, &lp, c->h, &P, &k);
+	VEC3_UNROLL
 	for (u = 0; u < 3; u++)
 		n[u] = c->dx[u] / c->d;
 	/* a wall is a plane: no geometric term */
 	g = PACK_IS_WALL(c->j) ? 0 : P / c->d;
 	/* the upper triangle mirrored, so that H is symmetric to the bit (CG assumes it) */
+	VEC3_UNROLL
 	for (u = 0; u < 3; u++)
+		VEC3_UNROLL
 		for (v = u; v < 3; v++)
 			B[3 * u + v] = B[3 * v + u] = (k + g) * n[u] * n[v] - (u == v ? g : 0);
+	VEC3_UNROLL
 	for (u = 0; u < 9; u++)
 		a->H->diag[9 * c->i + u] += B[u];
 	if (PACK_IS_WALL(c->j))
 		return 0;
+	VEC3_UNROLL
 	for (u = 0; u < 9; u++) {
 		a->H->diag[9 * (size_t)c->j + u] += B[u];
 		B[u] = -B[u];
