@@ -5,6 +5,8 @@
 #  - one isotropic strain increment of 1e-4 from the dense pack, per minimiser
 #    (build/bench/increment): iterations, evaluations, time per evaluation per contact;
 #  - frictionalize, and uniaxial increments with and without friction (build/bench/fincrement);
+#  - the frictional functional's cost per contact per evaluation, term by term, at the state of
+#    a uniaxial increment from the frictionalized pack (build/bench/frevaluate);
 #  - the rest of the chain from the frictionalized pack: a 1 % uniaxial loadtest, and moduli;
 #  - the cost of one evaluation of the functional on the first size's dense pack tiled up to
 #    BENCH_TILES (default "1 2 3 4": 2740 to 175360 grains; build/bench/evalscale);
@@ -33,6 +35,7 @@ case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
 incr="$bin/../bench/increment"
 fincr="$bin/../bench/fincrement"
 escale="$bin/../bench/evalscale"
+frev="$bin/../bench/frevaluate"
 platec="$bin/../bench/platecontact"
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/bench"
@@ -48,14 +51,14 @@ info() { awk -v k="$2" -v f="${3:-%s}" '$1 == k { printf f, $2 }' "$1"; }
 
 # save N: the rows of size N, for this and later runs' results.md
 save() {
-	for t in gen dens inc fric finc chain; do
+	for t in gen dens inc fric finc kern chain; do
 		eval "printf '%s\n' \"\$${t}_rows\"" | sed '/^$/d' >"$out/rows-$1.$t"
 	done
 	echo "$(date -u '+%Y-%m-%d %H:%M UTC'), commit $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)${BENCH_NOTE:+ ($BENCH_NOTE)}" >"$out/rows-$1.stamp"
 }
 
 for n in $sizes; do
-	gen_rows="" dens_rows="" inc_rows="" fric_rows="" finc_rows="" chain_rows=""
+	gen_rows="" dens_rows="" inc_rows="" fric_rows="" finc_rows="" kern_rows="" chain_rows=""
 	loose="$out/loose-$n.pack.gz"
 	# packgen: make the loose pack, or reuse the one an earlier run made
 	if [ "${BENCH_REGEN:-0}" = 1 ] || [ ! -s "$loose" ] || [ ! -s "$out/loose-$n.time" ]; then
@@ -148,6 +151,14 @@ $(awk -F '\t' '!/^#/ { printf "| %d | %s | %s | %d | %.1f | %.1f | %.4f | %.1f |
 | $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | | | | | |"
 			fi
 		done
+		# the frictional functional's cost per contact per evaluation, term by term
+		if [ -x "$frev" ] && "$frev" "$fric" 2 >"$tmp.kern" 2>"$tmp.err"; then
+			kern_rows="$kern_rows
+$(awk -F '\t' '!/^#/ { printf "| %d | %s | %d | %d | %.0f | %.1f |\n", $2, $1, $3, $4, $5 / 1e3, $6 }' "$tmp.kern")"
+		else
+			kern_rows="$kern_rows
+| $n | failed: $(tail -n 1 "$tmp.err" 2>/dev/null) | | | | |"
+		fi
 		# the rest of the chain: a 1 % uniaxial test (100 increments of 1e-4, loadtest's
 		# defaults) from the frictionalized pack, and moduli's fit of its curve
 		curve="$out/chain-$n.tsv"
@@ -261,6 +272,17 @@ rows() { for k in $all; do cat "$out/rows-$k.$1" 2>/dev/null; done; }
 	echo "| grains | friction | method | contacts | iterations | evaluations | s per increment | ns per evaluation per contact | largest residual | sliding ratio |"
 	echo "| ---: | :--- | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 	rows finc
+	echo
+	echo "## one evaluation of the frictional functional, term by term (build/bench/frevaluate)"
+	echo
+	echo "At the state of one uniaxial 1e-4 increment from the frictionalized pack minimised to the"
+	echo "residual 1e-3 (tangential displacements developed, some contacts sliding): the whole"
+	echo "functional (Hertz and friction, 6N unknowns) and each term alone, timed for 2 s each on"
+	echo "one thread; contacts are the friction term's reference contacts, Hertz's touching ones."
+	echo
+	echo "| grains | term | contacts | evaluations timed | us per evaluation | ns per evaluation per contact |"
+	echo "| ---: | :--- | ---: | ---: | ---: | ---: |"
+	rows kern
 	echo
 	echo "## the rest of the chain: a 1 % uniaxial test and its moduli"
 	echo

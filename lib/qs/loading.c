@@ -99,6 +99,7 @@ load_params_default(struct load_params *lp)
 	lp->skin = 0.3;
 	lp->inc_tol = LOAD_INC_TOL;
 	qs_min_params_default(&lp->min);
+	lp->min.lbfgs_m = LOAD_LBFGS_M;
 }
 
 int

@@ -54,6 +54,15 @@ struct load_params {
  * at 1e4 (bench/settle.md). */
 #define LOAD_INC_TOL 1e-3
 
+/* L-BFGS's stored steps for the increments (densify keeps qs_min_params_default's 8).  An
+ * increment starts near an equilibrium, and 4 steps take as many iterations as 8 while the
+ * two-loop recursion's passes over the 6N-vectors halve (they were an eighth of a frictional
+ * increment's time): over make run's 9-20 MPa uniaxial curve of the 2740-grain pack 87.1
+ * iterations per increment against 86.7, 8.2 s against 8.8 s; 1e4 grains 264 against 261
+ * iterations, 11.2 s against 11.6 s for ten; frictionless from the same pack 707 against 778
+ * iterations (2026-12-04, bench/kernels.md). */
+#define LOAD_LBFGS_M 4
+
 /* The state after an increment (or at the start). */
 struct load_row {
 	long inc;
