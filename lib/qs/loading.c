@@ -32,17 +32,7 @@ int
 load_increment(struct qs_system *s, double *x, const double de[3], int nsub, long k_inc,
     const struct qs_min_params *mp, struct qs_min_report *rep)
 {
-	struct qs_minimizer *m = qs_minimizer_alloc(s, mp);
-	int st;
-
-	if (!m) {
-		memset(rep, 0, sizeof *rep);
-		rep->status = -1;
-		return -1;
-	}
-	st = load_increment_in(s, m, x, de, nsub, k_inc, mp, rep);
-	qs_minimizer_free(m);
-	return st;
+	return load_increment_in(s, NULL, x, de, nsub, k_inc, mp, rep);
 }
 
 int
@@ -63,7 +53,7 @@ load_increment_in(struct qs_system *s, struct qs_minimizer *m, double *x, const 
 	for (k = 0; k < nsub; k++) {
 		load_strain_box(s->p->box, x, s->n, part);
 		sub.max_iter = k + 1 < nsub ? k_inc : mp->max_iter;
-		st = qs_minimize_in(m, x, &sub, &r);
+		st = m ? qs_minimize_in(m, x, &sub, &r) : qs_minimize(s, x, &sub, &r);
 		iter += r.iter;
 		evals += r.evals;
 		if (st < 0)

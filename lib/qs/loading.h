@@ -25,7 +25,8 @@ void load_strain_box(double box[6], double *x, size_t n, const double de[3]);
 
 /* Apply the strain increment de in nsub sub-increments and minimise; x is updated, and the
  * box of s->p.  Returns the status of the last minimisation; rep sums iterations.
- * load_increment_in minimises with the caller's minimiser m (qs_minimize_in). */
+ * load_increment_in minimises with the caller's minimiser m (qs_minimize_in), or with a
+ * minimiser of its own when m is NULL (load_increment). */
 int load_increment_in(struct qs_system *s, struct qs_minimizer *m, double *x, const double de[3], int nsub, long k_inc,
     const struct qs_min_params *mp, struct qs_min_report *rep);
 int load_increment(struct qs_system *s, double *x, const double de[3], int nsub, long k_inc,
