@@ -24,6 +24,7 @@
 #include "contact/contacts.h"
 #include "qs/friction.h"
 #include "qs/functional.h"
+#include "qs/minimize.h"
 #include "contact/hertz.h"
 #include "base/msg.h"
 #include "pack/pack.h"
@@ -1337,6 +1338,64 @@ test_fd(gsl_rng *rng, size_t n, const char *tag)
 	pack_free(&p);
 }
 
+/* A commit without evaluating again (fr_commit_evaluated, where qs_minimizer_current says the
+ * minimiser's last evaluation was at its x) writes the same history and positions to the bit
+ * as fr_commit, which evaluates there first; and qs_minimizer_current turns false once
+ * something else is evaluated. */
+static void
+test_commit_evaluated(gsl_rng *rng)
+{
+	struct pack p;
+	struct qs_system s;
+	struct qs_friction f;
+	struct qs_minimizer *m = NULL;
+	struct qs_min_params mp;
+	struct qs_min_report rep;
+	struct pack_contact *lines = NULL;
+	double *x, *x2, *xs = NULL, sc;
+	size_t n = 35, nc = 0;
+	int rb, cur = 0, same = 0;
+
+	random_pack(&p, rng, n, 1e-4, PACK_PHI, 0.02);
+	p.mu = 0.3;
+	p.wall_mu = 0.4;
+	rb = contacts_store(&p, 0) || qs_init(&s, &p, 0.3);
+	random_history(&p, rng, 0.2, 1.2, 1.2);
+	x = malloc(6 * n * sizeof *x);
+	x2 = malloc(6 * n * sizeof *x2);
+	fr_init(&f, FR_RETURN_MAP);
+	rb = rb || begin(&f, &s, x, "commit_evaluated");
+	sc = slip_scale(&f);
+	random_move(x, n, rng, 0.7 * sc, 0.7 * sc);
+	qs_min_params_default(&mp);
+	mp.tol = 1e-6;
+	if (!rb && (m = qs_minimizer_alloc(&s, &mp)) && qs_minimize_in(m, x, &mp, &rep) == 0) {
+		cur = qs_minimizer_current(m);
+		memcpy(x2, x, 6 * n * sizeof *x);
+		rb = fr_commit_evaluated(&f, &s, x);
+		nc = p.nc;
+		lines = malloc((nc ? nc : 1) * sizeof *lines);
+		xs = malloc(3 * n * sizeof *xs);
+		memcpy(lines, p.c, nc * sizeof *lines);
+		memcpy(xs, p.x, 3 * n * sizeof *xs);
+		/* the same commit, evaluating first at the minimiser's final state */
+		rb = rb || fr_commit(&f, &s, x2);
+		same = !rb && p.nc == nc && memcmp(lines, p.c, nc * sizeof *lines) == 0 &&
+		    memcmp(xs, p.x, 3 * n * sizeof *xs) == 0;
+	}
+	CHECK(m && cur, "commit_evaluated: after the minimisation the functional's last evaluation is at the minimiser's x");
+	CHECK(same && nc > 0, "commit_evaluated: the same %zu history lines and positions to the bit as fr_commit", nc);
+	if (m) {
+		qs_energy(&s, x2, NULL, NULL);
+		CHECK(!qs_minimizer_current(m), "commit_evaluated: another evaluation makes the minimiser's state not current");
+	}
+	qs_minimizer_free(m);
+	free(lines), free(xs), free(x), free(x2);
+	fr_free(&f);
+	qs_free(&s);
+	pack_free(&p);
+}
+
 /* ---------- test 4: mu = 0 ---------- */
 
 /* With mu = wall_mu = 0 every Q_max and M_max is 0: every frictional term is an exact zero
@@ -1526,6 +1585,7 @@ main(void)
 	test_mu0(rng, FR_RETURN_MAP);
 	test_mu0(rng, FR_PAPER);
 	test_rigid(rng);
+	test_commit_evaluated(rng);
 	printf("     largest FD gradient error over all packs: %.3g of the mean contact force; work integral off %.3g of E_f\n",
 	    worst_fd_rel, worst_work);
 	CHECK(bnd.viol == 0, "bounds: |Q| <= Q_max and |M| <= M_max after all %ld evaluations (%ld contact checks; worst "
