@@ -89,7 +89,7 @@ load_params_default(struct load_params *lp)
 	lp->skin = 0.3;
 	lp->inc_tol = LOAD_INC_TOL;
 	qs_min_params_default(&lp->min);
-	lp->min.lbfgs_m = LOAD_LBFGS_M;
+	lp->min.lbfgs_m = 0;	/* loader_open: LOAD_LBFGS_M with friction, QS_LBFGS_M without */
 }
 
 int
@@ -98,6 +98,8 @@ loader_open(struct loader *L, struct pack *p, const struct load_params *lp)
 	memset(L, 0, sizeof *L);
 	L->p = p;
 	L->lp = *lp;
+	if (L->lp.min.lbfgs_m < 1)
+		L->lp.min.lbfgs_m = lp->friction ? LOAD_LBFGS_M : QS_LBFGS_M;
 	if (!p->has_refbox) {
 		msg_seterr("the pack has no reference box (run densify first)");
 		return -1;

@@ -55,13 +55,16 @@ struct load_params {
  * at 1e4 (bench/settle.md). */
 #define LOAD_INC_TOL 1e-3
 
-/* L-BFGS's stored steps for the increments (densify keeps qs_min_params_default's 8).  An
- * increment starts near an equilibrium, and 4 steps take as many iterations as 8 while the
- * two-loop recursion's passes over the 6N-vectors halve (they were an eighth of a frictional
- * increment's time): over make run's 9-20 MPa uniaxial curve of the 2740-grain pack 87.1
- * iterations per increment against 86.7, 8.2 s against 8.8 s; 1e4 grains 264 against 261
- * iterations, 11.2 s against 11.6 s for ten; frictionless from the same pack 707 against 778
- * iterations (2026-12-04, bench/kernels.md). */
+/* L-BFGS's stored steps in frictional increments, where load_params_default's lbfgs_m of 0
+ * (the tools' default --lbfgs-m) leaves the choice to the loader; frictionless increments
+ * and densify keep QS_LBFGS_M (8).  With friction 4 steps take as many iterations as 8 while
+ * the two-loop recursion's passes over the 6N-vectors halve (an eighth of a frictional
+ * increment's time): over the 2740-grain pack's 9-20 MPa uniaxial curve 87.1 iterations per
+ * increment against 86.7, 8.2 s against 8.8 s; 1e4 grains 264 against 261 iterations, 11.2 s
+ * against 11.6 s for ten (2026-12-04, bench/kernels.md).  Not without friction: there 4 steps
+ * led the frictionless probes of s-fig4 (G5036 at 20 MPa) and fig5-6's frictionless G5036
+ * curve to other equilibria, through rearrangements (K 0.93 against 1.15 GPa, G 0.022 against
+ * 0.139 GPa at 20 MPa), which the studies read as outliers. */
 #define LOAD_LBFGS_M 4
 
 /* The state after an increment (or at the start). */

@@ -24,7 +24,7 @@ qs_min_params_default(struct qs_min_params *mp)
 	mp->k_sd = 50;
 	mp->ls_sigma = 0.1;
 	mp->fire_dt = 1.0;
-	mp->lbfgs_m = 8;
+	mp->lbfgs_m = QS_LBFGS_M;
 	mp->precond_shift = 0.1;
 	mp->newton_eta = 0.1;
 	mp->newton_cg_max = 1000;
@@ -893,6 +893,8 @@ qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp)
 	}
 	w = &m->w;
 	m->mp = *mp;
+	if (m->mp.lbfgs_m < 1)
+		m->mp.lbfgs_m = QS_LBFGS_M;
 	w->s = s;
 	w->n3 = s->dim;
 	w->g = malloc(w->n3 * sizeof *w->g);
@@ -1029,12 +1031,15 @@ qs_minimizer_set_max_iter(struct qs_minimizer *m, long max_iter)
 int
 qs_minimizer_params(struct qs_minimizer *m, const struct qs_min_params *mp)
 {
-	if (mp->method != m->mp.method || mp->lbfgs_m != m->mp.lbfgs_m ||
+	long lm = mp->lbfgs_m > 0 ? mp->lbfgs_m : QS_LBFGS_M;
+
+	if (mp->method != m->mp.method || lm != m->mp.lbfgs_m ||
 	    (mp->precond_shift > 0) != (m->mp.precond_shift > 0)) {
 		msg_seterr("a kept minimiser's method, memory or preconditioning changed");
 		return -1;
 	}
 	m->mp = *mp;
+	m->mp.lbfgs_m = lm;
 	return 0;
 }
 

@@ -38,6 +38,8 @@
 #include "qs/functional.h"
 
 enum qs_method { QS_CG, QS_FIRE, QS_LBFGS, QS_NEWTON };
+/* L-BFGS's stored steps by default (qs_min_params_default), and where lbfgs_m is 0. */
+#define QS_LBFGS_M 8
 
 struct qs_min_params {
 	enum qs_method method;
@@ -49,7 +51,7 @@ struct qs_min_params {
 	long k_sd;		/* CG: steepest-descent restart period */
 	double ls_sigma;	/* CG: stop the line search at |dPi/dalpha| <= sigma |dPi/dalpha(0)| */
 	double fire_dt;		/* FIRE: dt_max in units of 1/sqrt(k bound) */
-	long lbfgs_m;		/* L-BFGS: stored steps */
+	long lbfgs_m;		/* L-BFGS: stored steps; 0: QS_LBFGS_M (the loader: LOAD_LBFGS_M with friction) */
 	double precond_shift;	/* L-BFGS's H0, FIRE's force: the grains' stiffness blocks, shifted by this
 				 * times the mean (0: the scalar H0 of plain L-BFGS) */
 	double newton_eta;	/* Newton: CG stops at |H d + g| <= eta |g| */

@@ -24,8 +24,8 @@ qs_min_opts_check(struct qs_min_params *mp)
 		cli_usage_error("--ls-sigma: must be in (0, 1)");
 	if (!(mp->eps1 >= 0) || !(mp->eps2 >= 0))
 		cli_usage_error("--eps1, --eps2: must be non-negative");
-	if (mp->lbfgs_m < 1 || mp->lbfgs_m > 100)
-		cli_usage_error("--lbfgs-m: must be in [1, 100]");
+	if (mp->lbfgs_m < 0 || mp->lbfgs_m > 100)
+		cli_usage_error("--lbfgs-m: must be in [0, 100] (0: the tool's choice)");
 	if (!(mp->precond_shift >= 0 && mp->precond_shift <= 100))
 		cli_usage_error("--precond: must be in [0, 100]");
 	if (!(mp->fire_dt > 0 && mp->fire_dt <= 10))

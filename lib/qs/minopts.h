@@ -22,7 +22,7 @@ extern const char *qs_method_arg;
 	{"eps1", 0, CLI_DOUBLE, &(mp).eps1, "E", "papers' criterion: stop when Pi falls by less than E |Pi| (0: off)", NULL}, \
 	{"eps2", 0, CLI_DOUBLE, &(mp).eps2, "E", "papers' criterion: stop when |grad Pi|^2 < E N (E R^2)^2 (0: off)", NULL}, \
 	{"fire-dt", 0, CLI_DOUBLE, &(mp).fire_dt, "T", "fire: largest time step / (1/sqrt(stiffness bound)); with --precond in the preconditioned units", NULL}, \
-	{"lbfgs-m", 0, CLI_LONG, &(mp).lbfgs_m, "M", "lbfgs: number of stored steps", NULL},                      \
+	{"lbfgs-m", 0, CLI_LONG, &(mp).lbfgs_m, "M", "lbfgs: number of stored steps (0: 4 in frictional increments, 8 otherwise)", NULL},                      \
 	{"precond", 0, CLI_DOUBLE, &(mp).precond_shift, "S", "lbfgs, fire: scale each grain's step by its stiffness block, shifted by S x the mean (0: off)", NULL}
 
 /* Validate the values and resolve --method; reports through cli_usage_error. */
