@@ -232,6 +232,7 @@ loader_measure(struct loader *L, struct load_row *row)
  * grains, to the same stresses and sliding contacts (bench/settle.md).  The passes
  * themselves are cheap then, so there may be more of them. */
 #define SETTLE_PASSES 60
+#define SETTLE_CUT 0.3
 
 /* Commit the friction term at L->x, without evaluating again where the minimiser's last
  * evaluation was there (one evaluation per pass, 6 % of an increment's). */
@@ -240,7 +241,6 @@ commit(struct loader *L)
 {
 	return qs_minimizer_current(L->min) ? fr_commit_evaluated(&L->f, &L->s, L->x) : fr_commit(&L->f, &L->s, L->x);
 }
-#define SETTLE_CUT 0.3
 
 static int
 settle(struct loader *L, struct qs_min_report *rep)
