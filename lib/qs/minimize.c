@@ -959,8 +959,7 @@ qs_minimizer_set(struct qs_minimizer *m, double *x)
 	m->evals0 = m->w.s->evals;
 	m->step = 0;
 	m->head = m->count = 0;
-	if (!m->mp.keep_precond)
-		m->precond_age = -1;
+	m->precond_age = -1;
 	m->lambda = 0;
 	m->gnorm_prev = 0;
 	if (evaluate(m))

@@ -56,7 +56,6 @@ struct qs_min_params {
 				 * times the mean (0: the scalar H0 of plain L-BFGS) */
 	double newton_eta;	/* Newton: CG stops at |H d + g| <= eta |g| */
 	long newton_cg_max;	/* Newton: CG iterations per Newton step at most */
-	int keep_precond;	/* qs_minimizer_set keeps the preconditioner's blocks and their age */
 };
 
 struct qs_min_report {
