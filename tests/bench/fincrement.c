@@ -10,7 +10,8 @@
  * and the row's measures included), time per evaluation per contact, the largest residual,
  * and last the process's CPU time per evaluation per contact (CLOCK_PROCESS_CPUTIME_ID: on a
  * shared machine with one thread, steadier than the wall time).  METHOD (lbfgs, fire, cg or newton)
- * runs that minimiser alone, both cases.
+ * runs that minimiser alone, both cases; FINCREMENT_CASE=mu or none in the environment runs
+ * only the frictional or the frictionless case (for profiling one of them).
  * Exit 1 if a case fails or stops at its iteration limit. */
 #include "qs/loading.h"
 #include "base/msg.h"
@@ -31,6 +32,7 @@ main(int argc, char **argv)
 	enum qs_method only = QS_LBFGS;
 	size_t m;
 	int fr, bad = 0;
+	const char *only_case = getenv("FINCREMENT_CASE");
 
 	msg_init(argv[0]);
 	msg_gsl_handler_install();
@@ -59,6 +61,8 @@ main(int argc, char **argv)
 			int st = 0;
 
 			if (argc == 5 && methods[m] != only)
+				continue;
+			if (only_case && strcmp(only_case, fr ? "mu" : "none"))
 				continue;
 			/* a fresh copy of the start: read it again */
 			if (pack_read_path(argv[1], &p))
