@@ -7,6 +7,7 @@
 #include "base/msg.h"
 #include "base/par.h"
 #include "base/vec3.h"
+#include "base/lanes.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -16,21 +17,6 @@
 /* doubles per grain in f->gs: x - x0 (3), w = R Omega (3) */
 #define FR_GS 6
 
-/* q0 = a0 / b0 and q1 = a1 / b1: with GCC and clang as one two-lane division (each lane the
- * correctly rounded quotient, so the same bytes as two divisions, at the cost of one). */
-#if defined(__GNUC__)
-typedef double fr_v2 __attribute__((vector_size(16)));
-#define FR_DIV2(q0, q1, a0, a1, b0, b1) do { \
-		fr_v2 fr_n_ = {(a0), (a1)}, fr_d_ = {(b0), (b1)}, fr_q_ = fr_n_ / fr_d_; \
-		(q0) = fr_q_[0]; \
-		(q1) = fr_q_[1]; \
-	} while (0)
-#else
-#define FR_DIV2(q0, q1, a0, a1, b0, b1) do { \
-		(q0) = (a0) / (b0); \
-		(q1) = (a1) / (b1); \
-	} while (0)
-#endif
 
 void
 fr_init(struct qs_friction *f, enum fr_rule rule)
@@ -405,75 +391,116 @@ fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double 
 		es = qn * qn - c->pp;
 	} else {
 		/* the return map: Q = Q_max q / |q| */
-		FR_DIV2(Q[0], Q[1], c->qmax * q[0], c->qmax * q[1], qn, qn);
+		V2_DIV2(Q[0], Q[1], c->qmax * q[0], c->qmax * q[1], qn, qn);
 		Q[2] = c->qmax * q[2] / qn;
 		es = clamp_potential(qn, c->qmax) - c->pp;
 	}
 	/* E = es / (2 k*) + et / (2 k*_t), in that order */
-	FR_DIV2(E, Et, es, et, 2 * c->k, 2 * c->kt);
+	V2_DIV2(E, Et, es, et, 2 * c->k, 2 * c->kt);
 	return E + Et;
 }
 
-#if defined(__GNUC__)
-#define FR_V2_CROSS(a, b, c) do { \
-		(c)[0] = (a)[1] * (b)[2] - (a)[2] * (b)[1]; \
-		(c)[1] = (a)[2] * (b)[0] - (a)[0] * (b)[2]; \
-		(c)[2] = (a)[0] * (b)[1] - (a)[1] * (b)[0]; \
-	} while (0)
+#if LANES_OK
 
 /* fr_contact_eval of two pairs under the return map at once, contact c0 in lane 0 and c1 in
- * lane 1: lane by lane the same operations in the same order (IEEE arithmetic on each
- * lane, no contraction), so the same bytes; both branches of the clamp are computed and one
- * chosen.  Their energies into E. */
+ * lane 1, and with g their gradients (fr_add_ij, or fr_add_i where j >= g1): lane by lane the
+ * same operations in the same order (IEEE arithmetic on each lane, no contraction), so the
+ * same bytes; both branches of each clamp are computed and one chosen by a mask, and the
+ * square roots are one two-lane instruction.  The scatter adds lane 0 then lane 1, as two
+ * calls of fr_add_ij would.  Their energies into E. */
 CONTACT_INLINE void
-fr_pair2(const struct qs_friction *f, struct fr_contact *c0, struct fr_contact *c1, double E[2])
+fr_pair2(const struct qs_friction *f, const struct qs_system *s, double *g, size_t g1, struct fr_contact *c0,
+    struct fr_contact *c1, double E[2])
 {
 	const double *g0i = f->gs + FR_GS * c0->i, *g0j = f->gs + FR_GS * (size_t)c0->j;
 	const double *g1i = f->gs + FR_GS * c1->i, *g1j = f->gs + FR_GS * (size_t)c1->j;
-	fr_v2 du[3], wi[3], wj[3], n[3], v[3], us[3], t[3], q[3], sq[3], dn, qq, qn, Ot, m, es, et, e;
-	fr_v2 k = {c0->k, c1->k}, kt = {c0->kt, c1->kt}, qmax = {c0->qmax, c1->qmax}, mp = {c0->mp, c1->mp};
-	fr_v2 ai = {c0->ai, c1->ai}, aj = {c0->aj, c1->aj}, bi = {c0->bi, c1->bi}, bj = {c0->bj, c1->bj};
+	v2d du[3], wi[3], wj[3], n[3], v[3], us[3], t[3], q[3], sq[3], Q[3], x[3], dn, qq, qn, Ot, m, am, M, es, et, e;
+	v2d k = {c0->k, c1->k}, kt = {c0->kt, c1->kt}, qmax = {c0->qmax, c1->qmax}, mp = {c0->mp, c1->mp};
+	v2d mmax = {c0->mmax, c1->mmax}, pp = {c0->pp, c1->pp}, mpp = {c0->mpp, c1->mpp};
+	v2d ai = {c0->ai, c1->ai}, aj = {c0->aj, c1->aj}, bi = {c0->bi, c1->bi}, bj = {c0->bj, c1->bj};
+	v2m stick, tstick, mpos;
 	struct fr_contact *c;
 	int a, L;
 
 	VEC3_UNROLL
 	for (a = 0; a < 3; a++) {
-		fr_v2 xi = {g0i[a], g1i[a]}, xj = {g0j[a], g1j[a]};
+		v2d xi = {g0i[a], g1i[a]}, xj = {g0j[a], g1j[a]};
 		du[a] = xi - xj;
-		wi[a] = (fr_v2){g0i[3 + a], g1i[3 + a]};
-		wj[a] = (fr_v2){g0j[3 + a], g1j[3 + a]};
-		n[a] = (fr_v2){c0->n[a], c1->n[a]};
+		wi[a] = (v2d){g0i[3 + a], g1i[3 + a]};
+		wj[a] = (v2d){g0j[3 + a], g1j[3 + a]};
+		n[a] = (v2d){c0->n[a], c1->n[a]};
 		v[a] = ai * wi[a] + aj * wj[a];
 	}
 	dn = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
-	FR_V2_CROSS(v, n, t);
+	V2_CROSS(v, n, t);
 	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
 		us[a] = du[a] - dn * n[a] - t[a];
 	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
-		q[a] = (fr_v2){c0->qp[a], c1->qp[a]} - k * us[a];
+		q[a] = (v2d){c0->qp[a], c1->qp[a]} - k * us[a];
 	qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-	qn = (fr_v2){sqrt(qq[0]), sqrt(qq[1])};
+	qn = V2_SQRT(qq);
 	VEC3_UNROLL
 	for (a = 0; a < 3; a++)
 		sq[a] = qmax * q[a] / qn;
+	/* the clamps: Q = q while it sticks, else Q_max q / |q|; M = m within its limit, else
+	 * the limit with m's sign; the energies' clamp_potential */
+	stick = qn <= qmax;
+	VEC3_UNROLL
+	for (a = 0; a < 3; a++)
+		Q[a] = V2_SELECT(stick, q[a], sq[a]);
+	es = V2_SELECT(stick, qn * qn, 2 * qmax * qn - qmax * qmax) - pp;
 	Ot = bi * (wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2]) - bj * (wj[0] * n[0] + wj[1] * n[1] + wj[2] * n[2]);
 	m = mp - kt * Ot;
+	am = V2_ABS(m);
+	tstick = am <= mmax;
+	mpos = m > 0;
+	M = V2_SELECT(tstick, m, V2_SELECT(mpos, mmax, -mmax));
+	et = V2_SELECT(tstick, am * am, 2 * mmax * am - mmax * mmax) - mpp;
+	e = es / (2 * k) + et / (2 * kt);
+	E[0] = e[0];
+	E[1] = e[1];
 	for (L = 0; L < 2; L++) {
-		int stick = qn[L] <= qmax[L];
 		c = L ? c1 : c0;
 		c->qtrial = qn[L];
 		VEC3_UNROLL
 		for (a = 0; a < 3; a++)
-			c->Q[a] = stick ? q[a][L] : sq[a][L];
-		es[L] = clamp_potential(qn[L], c->qmax) - c->pp;
-		c->M = fabs(m[L]) <= c->mmax ? m[L] : (m[L] > 0 ? c->mmax : -c->mmax);
-		et[L] = clamp_potential(fabs(m[L]), c->mmax) - c->mpp;
+			c->Q[a] = Q[a][L];
+		c->M = M[L];
 	}
-	e = es / (2 * k) + et / (2 * kt);
-	E[0] = e[0];
-	E[1] = e[1];
+	if (!g)
+		return;
+	/* the gradient (fr_add_ij's): n x Q, then on i ai (n x Q) - bi M n and -Q, on j
+	 * aj (n x Q) + bj M n and Q */
+	V2_CROSS(n, Q, x);
+	{
+		v2d mi = M * bi, mj = M * bj, gwi[3], gwj[3];
+		double *gw = g + 3 * s->n;
+
+		VEC3_UNROLL
+		for (a = 0; a < 3; a++) {
+			gwi[a] = ai * x[a] - mi * n[a];
+			gwj[a] = aj * x[a] + mj * n[a];
+		}
+		for (L = 0; L < 2; L++) {
+			size_t i = L ? c1->i : c0->i, j = (size_t)(L ? c1->j : c0->j);
+			VEC3_UNROLL
+			for (a = 0; a < 3; a++)
+				g[3 * i + a] -= Q[a][L];
+			VEC3_UNROLL
+			for (a = 0; a < 3; a++)
+				gw[3 * i + a] += gwi[a][L];
+			if (j < g1) {
+				VEC3_UNROLL
+				for (a = 0; a < 3; a++)
+					g[3 * j + a] += Q[a][L];
+				VEC3_UNROLL
+				for (a = 0; a < 3; a++)
+					gw[3 * j + a] += gwj[a][L];
+			}
+		}
+	}
 }
 #endif
 
@@ -571,24 +598,14 @@ fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0,
 	double Eb = 0;
 	size_t k = f->row_first[i0];
 
-#if defined(__GNUC__)
+#if LANES_OK
 	if (rule == FR_RETURN_MAP)
 		for (; k + 1 < f->row_first[i1]; k += 2) {
 			struct fr_contact *c = &f->c[k], *c1 = c + 1;
 			double E2[2];
-			fr_pair2(f, c, c1, E2);
+			fr_pair2(f, s, g, g1, c, c1, E2);
 			Eb += E2[0];
 			Eb += E2[1];
-			if (g) {
-				if ((size_t)c->j < g1)
-					fr_add_ij(s, g, c, c->Q, c->M);
-				else
-					fr_add_i(s, g, c, c->Q, c->M);
-				if ((size_t)c1->j < g1)
-					fr_add_ij(s, g, c1, c1->Q, c1->M);
-				else
-					fr_add_i(s, g, c1, c1->Q, c1->M);
-			}
 		}
 #endif
 	for (; k < f->row_first[i1]; k++) {
@@ -646,6 +663,33 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 	}
 	for (q = 0; q < nb; q++)
 		E += f->blk[q];
+	return E;
+}
+
+double
+fr_energy_scalar(struct qs_friction *f, const struct qs_system *s, const double *x, double *g)
+{
+	size_t n = s->n, bl = par_block(n), nb = n ? (n + bl - 1) / bl : 0, b, k;
+	double E = 0;
+
+	fr_grains(f, s, x, 0, n);
+	for (b = 0; b < nb; b++) {
+		size_t i0 = b * bl, i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
+		double Eb = 0;
+		for (k = f->row_first[i0]; k < f->row_first[i1]; k++) {
+			struct fr_contact *c = &f->c[k];
+			Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 0, f->rule);
+			if (g)
+				fr_add_ij(s, g, c, c->Q, c->M);
+		}
+		for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
+			struct fr_contact *c = &f->c[k];
+			Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 1, f->rule);
+			if (g)
+				fr_add_i(s, g, c, c->Q, c->M);
+		}
+		E += Eb;
+	}
 	return E;
 }
 
@@ -759,16 +803,90 @@ own_blocks(struct qs_hessian *H, double *cpl, size_t n, size_t g, const double K
  * gradient).  The unknowns are 2N nodes of three: the centres, then the rotations at N + i;
  * the blocks coupling a grain's own centre and rotation are summed per grain first, one
  * block each. */
+/* The diagonal blocks alone (the preconditioner's, H->diag_only), in closed form.  With the
+ * lever arms along n, C_i = ai [n]x and C_j = aj [n]x, so the rotation block C^T K C is
+ * a^2 [n]x^T K [n]x: for K = k* T (stick) that is a^2 k* T, and for the sliding
+ * K = sc (T - qh qh^T) it is a^2 sc (T - p p^T) with p = qh x n, K turned a quarter about n.
+ * The same blocks as friction_hessian's products to rounding, at a fifth of the cost: they
+ * are assembled at each of a frictional increment's six or seven minimisations. */
+static void
+friction_diag(struct qs_friction *f, struct qs_system *s, struct qs_hessian *H)
+{
+	size_t n = s->n, q;
+
+	for (q = 0; q < f->n; q++) {
+		const struct fr_contact *c = &f->c[q];
+		const int wall = PACK_IS_WALL(c->j);
+		double Q[3], M, qt, K[9], Kr[9], nn[9], sc, qh[3], p[3], kti, ktj;
+		double *Di = H->diag + 9 * c->i, *Ri = H->diag + 9 * (n + c->i);
+		int u, v;
+
+		if (wall)
+			fr_contact_eval(f, c, Q, &M, &qt, 1, FR_RETURN_MAP);
+		else
+			fr_contact_eval(f, c, Q, &M, &qt, 0, FR_RETURN_MAP);
+		VEC3_UNROLL
+		for (u = 0; u < 3; u++)
+			VEC3_UNROLL
+			for (v = 0; v < 3; v++)
+				nn[3 * u + v] = c->n[u] * c->n[v];
+		if (!(c->qmax > 0)) {
+			memset(K, 0, sizeof K);	/* no limit, no tangential force */
+			memset(Kr, 0, sizeof Kr);
+		} else if (qt <= c->qmax) {
+			VEC3_UNROLL
+			for (u = 0; u < 9; u++)
+				K[u] = Kr[u] = c->k * ((u % 4 == 0) - nn[u]);
+		} else {
+			sc = c->k * c->qmax / qt;
+			VEC3_UNROLL
+			for (u = 0; u < 3; u++)
+				qh[u] = Q[u] / c->qmax;
+			vec3_cross(qh, c->n, p);
+			VEC3_UNROLL
+			for (u = 0; u < 3; u++)
+				VEC3_UNROLL
+				for (v = 0; v < 3; v++) {
+					K[3 * u + v] = sc * ((u == v) - nn[3 * u + v] - qh[u] * qh[v]);
+					Kr[3 * u + v] = sc * ((u == v) - nn[3 * u + v] - p[u] * p[v]);
+				}
+		}
+		kti = fabs(M) < c->mmax ? c->kt * c->bi * c->bi : 0;
+		ktj = fabs(M) < c->mmax ? c->kt * c->bj * c->bj : 0;
+		VEC3_UNROLL
+		for (u = 0; u < 9; u++) {
+			Di[u] += K[u];
+			Ri[u] += c->ai * c->ai * Kr[u] + kti * nn[u];
+		}
+		if (wall)
+			continue;
+		{
+			double *Dj = H->diag + 9 * (size_t)c->j, *Rj = H->diag + 9 * (n + (size_t)c->j);
+			VEC3_UNROLL
+			for (u = 0; u < 9; u++) {
+				Dj[u] += K[u];
+				Rj[u] += c->aj * c->aj * Kr[u] + ktj * nn[u];
+			}
+		}
+	}
+}
+
 static int
 friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H)
 {
 	struct qs_friction *f = t->data;
 	size_t n = s->n, q, i;
 	const double *r = s->p->r;
-	double *cpl = H->diag_only ? NULL : calloc(9 * (n ? n : 1), sizeof *cpl);
+	double *cpl;
 	int st = 0;
 
-	if (!cpl && !H->diag_only) {
+	if (H->diag_only) {
+		fr_grains(f, s, x, 0, n);
+		friction_diag(f, s, H);
+		return 0;
+	}
+	cpl = calloc(9 * (n ? n : 1), sizeof *cpl);
+	if (!cpl) {
 		msg_seterr("out of memory for the Hessian");
 		return -1;
 	}
@@ -809,8 +927,6 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 			continue;
 		cross_matrix(lj, 1 / rj, Cj);
 		own_blocks(H, cpl, n, cj, K, Cj, -1, kt, c->n, rj, KC);
-		if (H->diag_only)
-			continue;
 		/* the pair: (i, j) = -K, (i, N+j) = K C_j, (N+i, j) = -C_i^T K,
 		 * (N+i, N+j) = C_i^T K C_j - kt n n^T / (R_i R_j) */
 		for (u = 0; u < 9; u++)

@@ -120,6 +120,10 @@ int fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x);
 /* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
  * |Q| >= Q_max (1 - 1e-9)). */
 size_t fr_sliding(const struct qs_friction *f);
+/* The friction term's energy at x (6N), its gradient added into g (unless NULL) and each
+ * contact's Q, M and trial force, one contact at a time on one thread: the reference that
+ * the evaluation's two-lane kernel must equal to the bit (tests/unit/test_friction.c). */
+double fr_energy_scalar(struct qs_friction *f, const struct qs_system *s, const double *x, double *g);
 /* The increment's frictional term, once fr_begin has added it to the functional: its
  * energy at x (6N) with the gradient (updating each contact's Q and M), and each grain's
  * stiffness k* + k*_t / R_i^2 in the minimisers' bound.  fr_detach removes it and makes the

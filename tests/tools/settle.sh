@@ -4,7 +4,11 @@
 # uniaxial 1e-4 increments of the 200-grain pack.  Both end each increment at the residual
 # 1e-4, so, as in newton.sh, the wall stresses may differ by a few 1e-4 relative and no more
 # (5e-4 allowed; measured: below 1e-6), the coordination by one contact in the 200 grains
-# (0.01) and the sliding ratio by three of the 640 contacts (0.005).  The looser increment
+# (0.01) and the sliding ratio by five of the 646 contacts it counts (0.008).  The sliding
+# count is the most path-dependent of them: on this pack the two runs differ by up to 4
+# contacts (row 5: 56 against 60), and rounding alone (the preconditioner's blocks in closed
+# form, 2026-12-04) moved the loose run's counts by up to 2 at the same --inc-tol; three
+# contacts had been allowed from the pack of an earlier build.  The looser increment
 # is there to save iterations: the count is checked, not a time.  A few seconds.
 . "$TOP/tests/tools/lib.sh"
 
@@ -21,7 +25,7 @@ expect_num "--inc-tol 1e-3 wrote every row" "$(wc -l <a.rows)" "==" 7
 paste a.rows b.rows | awk -F '\t' '
     { for (a = 6; a <= 8; a++) { d = $a - $(a + 22); if (d < 0) d = -d; r = d / $(a + 22); if (r > worst) worst = r }
       d = $15 - $(15 + 22); if (d < 0) d = -d; if (d > 0.0100001) bad = "row " NR ": coordination " $15 " vs " $(15 + 22)
-      d = $16 - $(16 + 22); if (d < 0) d = -d; if (d > 0.005) bad = "row " NR ": sliding ratio " $16 " vs " $(16 + 22)
+      d = $16 - $(16 + 22); if (d < 0) d = -d; if (d > 0.008) bad = "row " NR ": sliding ratio " $16 " vs " $(16 + 22)
       if (NR > 1 && !($19 <= 1e-4 && $18 > 0)) bad = "row " NR ": residual " $19 " after " $18 " iterations" }
     END { printf "%.3g\n", worst; if (bad) { print bad > "/dev/stderr"; exit 1 } }' >worst 2>why &&
     pass "the loose increment settles to the residual with the same contacts and sliding" ||

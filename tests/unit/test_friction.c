@@ -19,6 +19,7 @@
  *  6. History: commit and begin (Q0 turned into the new tangent plane, magnitude kept),
  *     stale lines, opened contacts, clamping, fr_check_history's limit, and the orientation
  *     of a line listed as "j i" (which the pack format allows: Q0 is then the force on j).
+ *     The evaluation's two-lane kernel equals the one-contact walk to the bit.
  *  7. A rigid translation and a rigid rotation of a wall-free pack change no tangential
  *     force or couple. */
 #include "contact/contacts.h"
@@ -1262,6 +1263,40 @@ fd_check(struct qs_system *s, struct qs_friction *f, double *x, const char *tag)
 	free(excl);
 }
 
+/* The evaluation's two-lane kernel (two contacts at a time, the clamps by masks) against
+ * fr_energy_scalar (one contact at a time through fr_contact_eval): the same energy, gradient,
+ * forces, couples and trial forces to the bit, at a point where contacts stick, slide and
+ * twist at their limits. */
+static void
+lanes_check(struct qs_system *s, struct qs_friction *f, const double *x, const char *tag)
+{
+	struct qs_term *term = NULL;
+	size_t dim = s->dim, k, slide, twist = 0, differ = 0;
+	double *g2 = calloc(dim, sizeof *g2), *g1 = calloc(dim, sizeof *g1), *c1 = malloc(5 * f->n * sizeof *c1), E2, E1;
+	int q;
+
+	for (q = 0; q < s->nterms; q++)
+		if (strcmp(s->term[q].name, "friction") == 0)
+			term = &s->term[q];
+	E2 = term ? term->energy(term, s, x, g2, NULL) : NAN;
+	for (k = 0; k < f->n; k++) {
+		memcpy(c1 + 5 * k, f->c[k].Q, 3 * sizeof *c1);
+		c1[5 * k + 3] = f->c[k].M;
+		c1[5 * k + 4] = f->c[k].qtrial;
+	}
+	slide = fr_sliding(f);
+	for (k = 0; k < f->n; k++)
+		twist += f->c[k].mmax > 0 && fabs(f->c[k].M) >= f->c[k].mmax * (1 - 1e-9);
+	E1 = fr_energy_scalar(f, s, x, g1);
+	for (k = 0; k < f->n; k++)
+		differ += memcmp(c1 + 5 * k, f->c[k].Q, 3 * sizeof *c1) != 0 || c1[5 * k + 3] != f->c[k].M ||
+		    c1[5 * k + 4] != f->c[k].qtrial;
+	CHECK(term && slide > 0 && twist > 0 && slide < f->n && E1 == E2 && memcmp(g1, g2, dim * sizeof *g1) == 0 &&
+	    differ == 0, "%s: the two-lane kernel equals the scalar walk to the bit (energy, gradient, %zu contacts: "
+	    "%zu sliding, %zu twisting; %zu differ)", tag, f->n, slide, twist, differ);
+	free(g1), free(g2), free(c1);
+}
+
 static void
 test_fd(gsl_rng *rng, size_t n, const char *tag)
 {
@@ -1297,6 +1332,7 @@ test_fd(gsl_rng *rng, size_t n, const char *tag)
 	random_move(x, n, rng, 0.7 * sc, 0.7 * sc);
 	snprintf(t, sizeof t, "fd %s return-map", tag);
 	fd_check(&s, &f, x, t);
+	lanes_check(&s, &f, x, t);
 
 	/* FR_PAPER at the same point: it runs, |Q| = the return map's |Q| (both are Q_max when
 	 * sliding, the same q when sticking), M identical, stick contacts identical */

@@ -10,6 +10,8 @@
  *    most its own stiffness sqrt(e / R) relative, 3e-4 of a typical one, on a few
  *    coordinates.  The tolerance is 1e-5 of |H v| in the norm over all coordinates, and the
  *    same Hessian scaled by 1.01 (an error of 1e-2) must fail it: the check can fail.
+ *  - The preconditioner's diagonal blocks alone (closed forms) against the full Hessian's
+ *    diagonal blocks, to rounding (diag_check), without and with friction.
  *  - A term without second derivatives makes qs_hessian fail with its name in the message.
  *  - Newton from the strained, perturbed equilibrium converges to the residual 1e-9 and
  *    reaches the same energy (1e-8 relative) and positions (1e-6 R, rattlers left out) as
@@ -75,6 +77,42 @@ fd_check(struct qs_system *s, const double *x0, gsl_rng *rng, const char *tag)
 	    sqrt(num_scaled / den));
 	qs_hessian_free(&H);
 	free(x), free(v), free(Hv), free(gp), free(gm);
+}
+
+/* The preconditioner's diagonal blocks alone (diag_only: closed forms in friction_diag and
+ * the Hertz coefficients of on_hertz_diag) against the diagonal blocks of the full Hessian
+ * (the 3x3 products C^T K C and the law's interface): the same to rounding.  Each block is a
+ * sum of some ten contacts' terms computed in a different order and form, so the tolerance is
+ * 1e-12 of the largest block entry of its kind (centres, rotations); a wrong sign, lever arm
+ * or slip branch is an error of order 1.  The same comparison with D scaled by 1 + 1e-9
+ * must fail: the check can fail. */
+static void
+diag_check(struct qs_system *s, const double *x, const char *tag)
+{
+	struct qs_hessian H, D;
+	size_t nodes = s->dim / 3, k, q;
+	double err[2] = {0, 0}, err_scaled[2] = {0, 0}, big[2] = {0, 0};
+	int ok;
+
+	ok = qs_hessian_init(&H, nodes) == 0 && qs_hessian_init(&D, nodes) == 0;
+	D.diag_only = 1;
+	qs_energy(s, x, NULL, NULL);
+	ok = ok && qs_hessian(s, x, &H) == 0 && qs_hessian(s, x, &D) == 0;
+	for (k = 0; k < nodes && ok; k++)
+		for (q = 0; q < 9; q++) {
+			int kind = k >= s->n;
+			double h = H.diag[9 * k + q], d = D.diag[9 * k + q];
+			big[kind] = fmax(big[kind], fabs(h));
+			err[kind] = fmax(err[kind], fabs(h - d));
+			err_scaled[kind] = fmax(err_scaled[kind], fabs(h - (1 + 1e-9) * d));
+		}
+	CHECK(ok && big[0] > 0 && err[0] <= 1e-12 * big[0] && (nodes == s->n || (big[1] > 0 && err[1] <= 1e-12 * big[1])),
+	    "%s: the diagonal blocks alone equal the full Hessian's to rounding (centres %.3g, rotations %.3g of the largest entry)",
+	    tag, err[0] / big[0], big[1] > 0 ? err[1] / big[1] : 0.0);
+	CHECK(ok && err_scaled[0] > 1e-12 * big[0], "%s: scaled by 1 + 1e-9 they do not (%.3g): the check can fail", tag,
+	    err_scaled[0] / big[0]);
+	qs_hessian_free(&H);
+	qs_hessian_free(&D);
 }
 
 static double
@@ -154,6 +192,7 @@ friction_fd(gsl_rng *rng)
 	CHECK(slide > f.n / 10 && slide < 9 * f.n / 10 && twist > f.n / 20 && twist < 9 * f.n / 10,
 	    "friction: both branches covered (%zu of %zu contacts sliding, %zu twisting at the limit)", slide, f.n, twist);
 	fd_check(&s, x, rng, "friction");
+	diag_check(&s, x, "friction");
 	fr_free(&f);
 	fr_init(&f, FR_PAPER);
 	fr_begin(&f, &s);
@@ -291,6 +330,7 @@ main(void)
 	}
 	CHECK(k >= 10, "the random pack has wall contacts (%zu)", k);
 	fd_check(&s, x0, rng, "random pack");
+	diag_check(&s, x0, "random pack");
 	for (k = 0; k < n3; k++)
 		x0[k] += 1e-3 * rmean * (2 * gsl_rng_uniform(rng) - 1);
 	fd_check(&s, x0, rng, "perturbed pack");

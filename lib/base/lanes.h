@@ -1,0 +1,48 @@
+/* lanes: two doubles side by side in one SSE register (GCC and clang vector extensions),
+ * for the hot kernels that evaluate two contacts at once (friction.c, functional.c).
+ * Every operation is IEEE arithmetic on each lane, with no contraction (ISO C mode), so a
+ * lane computes the bytes its scalar code would.  The point is the divider: on the AMD and
+ * Intel cores this runs on, a two-lane division or square root costs what one scalar does,
+ * and Hertz and the tangential term are bound by them.  LANES_OK says the extensions exist;
+ * without them the callers keep their scalar loops. */
+#ifndef QUSGM_LANES_H
+#define QUSGM_LANES_H
+
+#include <math.h>
+
+#if defined(__GNUC__)
+#define LANES_OK 1
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2m __attribute__((vector_size(16)));
+
+/* q0 = a0 / b0 and q1 = a1 / b1 as one two-lane division (each lane correctly rounded). */
+#define V2_DIV2(q0, q1, a0, a1, b0, b1) do { \
+		v2d v2_n_ = {(a0), (a1)}, v2_d_ = {(b0), (b1)}, v2_q_ = v2_n_ / v2_d_; \
+		(q0) = v2_q_[0]; \
+		(q1) = v2_q_[1]; \
+	} while (0)
+/* lane by lane: a where the mask m (a comparison's result: all ones or zero) is set, else b */
+#define V2_SELECT(m, a, b) ((v2d)(((v2m)(a) & (m)) | ((v2m)(b) & ~(m))))
+#define V2_ABS(a) ((v2d)((v2m)(a) & (v2m){0x7fffffffffffffffLL, 0x7fffffffffffffffLL}))
+#if defined(__SSE2__)
+#include <emmintrin.h>
+/* both lanes' square roots in one instruction, each correctly rounded (two sqrt calls' bytes) */
+#define V2_SQRT(a) ((v2d)_mm_sqrt_pd((__m128d)(a)))
+#else
+#define V2_SQRT(a) ((v2d){sqrt((a)[0]), sqrt((a)[1])})
+#endif
+/* c = a x b, lane by lane (three-vectors of v2d) */
+#define V2_CROSS(a, b, c) do { \
+		(c)[0] = (a)[1] * (b)[2] - (a)[2] * (b)[1]; \
+		(c)[1] = (a)[2] * (b)[0] - (a)[0] * (b)[2]; \
+		(c)[2] = (a)[0] * (b)[1] - (a)[1] * (b)[0]; \
+	} while (0)
+#else
+#define LANES_OK 0
+#define V2_DIV2(q0, q1, a0, a1, b0, b1) do { \
+		(q0) = (a0) / (b0); \
+		(q1) = (a1) / (b1); \
+	} while (0)
+#endif
+
+#endif
