@@ -110,7 +110,11 @@ disc_quadrant_area(double x, double y, double rho)
 		return x * y;
 	/* the columns below height y up to xc, the circle above it */
 	xc = sqrt((rho - y) * (rho + y));
-	return y * xc + disc_column(x, rho) - disc_column(xc, rho);
+	/* disc_column at X = rho and at X = 0 written out (asin(1) is pi/2 to the bit, asin(0)
+	 * is 0): the same bytes without the calls, which an edge's quadrature makes for each
+	 * corner beyond the disc */
+	return y * xc + (x == rho ? 0.5 * (rho * rho * M_PI_2) : disc_column(x, rho)) -
+	    (xc == 0 ? 0 : disc_column(xc, rho));
 }
 
 /* disc_quadrant_area of the rectangle between the origin and (x, y), signed: + in the first and

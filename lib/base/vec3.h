@@ -15,6 +15,15 @@
 #define VEC3_UNROLL
 #endif
 
+/* fmax(a, b) inline: the larger, and a NaN dropped for the other operand as fmax drops it
+ * (GCC calls libm's fmax at -O2, a call per grain in the residual's and the step cap's loops,
+ * 3 % of a frictional increment's instructions). */
+static inline double
+max_or_num(double a, double b)
+{
+	return a > b || b != b ? a : b;
+}
+
 static inline void
 vec3_cross(const double a[3], const double b[3], double c[3])
 {

@@ -808,9 +808,11 @@ own_blocks(struct qs_hessian *H, double *cpl, size_t n, size_t g, const double K
  * a^2 [n]x^T K [n]x: for K = k* T (stick) that is a^2 k* T, and for the sliding
  * K = sc (T - qh qh^T) it is a^2 sc (T - p p^T) with p = qh x n, K turned a quarter about n.
  * The same blocks as friction_hessian's products to rounding, at a fifth of the cost: they
- * are assembled at each of a frictional increment's six or seven minimisations. */
+ * are assembled at each of a frictional increment's six or seven minimisations.  With
+ * at_last_eval (hessian.h) each contact's force, couple and trial force are the last
+ * evaluation's, not evaluated again. */
 static void
-friction_diag(struct qs_friction *f, struct qs_system *s, struct qs_hessian *H)
+friction_diag(struct qs_friction *f, struct qs_system *s, struct qs_hessian *H, int at_last_eval)
 {
 	size_t n = s->n, q;
 
@@ -821,10 +823,16 @@ friction_diag(struct qs_friction *f, struct qs_system *s, struct qs_hessian *H)
 		double *Di = H->diag + 9 * c->i, *Ri = H->diag + 9 * (n + c->i);
 		int u, v;
 
-		if (wall)
+		if (at_last_eval) {
+			/* the evaluation at x left them (the kernel's bytes are fr_contact_eval's) */
+			memcpy(Q, c->Q, sizeof Q);
+			M = c->M;
+			qt = c->qtrial;
+		} else if (wall) {
 			fr_contact_eval(f, c, Q, &M, &qt, 1, FR_RETURN_MAP);
-		else
+		} else {
 			fr_contact_eval(f, c, Q, &M, &qt, 0, FR_RETURN_MAP);
+		}
 		VEC3_UNROLL
 		for (u = 0; u < 3; u++)
 			VEC3_UNROLL
@@ -881,8 +889,9 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 	int st = 0;
 
 	if (H->diag_only) {
-		fr_grains(f, s, x, 0, n);
-		friction_diag(f, s, H);
+		if (!H->at_last_eval)
+			fr_grains(f, s, x, 0, n);
+		friction_diag(f, s, H, H->at_last_eval);
 		return 0;
 	}
 	cpl = calloc(9 * (n ? n : 1), sizeof *cpl);

@@ -584,12 +584,13 @@ qs_residual(const struct qs_system *s, const double *g, const double *fbig, doub
 		size_t i, i1 = (q + 1) * bl < n ? (q + 1) * bl : n, c = 0;
 		double t = 0;
 		for (i = q * bl; i < i1; i++) {
-			double f;
+			double f, rel;
 			if (!(fbig[i] > 0))
 				continue;
 			f = layout_grain_len(&s->layout, g, i);
-			if (f / fmax(fbig[i], fl) > rmax)
-				rmax = f / fmax(fbig[i], fl);
+			rel = f / max_or_num(fbig[i], fl);
+			if (rel > rmax)
+				rmax = rel;
 			t += f;
 			c++;
 		}

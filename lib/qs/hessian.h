@@ -28,6 +28,10 @@ struct qs_hessian {
 	size_t *pi, *pj;	/* their nodes, i < j */
 	double *off;		/* 9 np: H_ij row-major */
 	int diag_only;		/* keep the diagonal blocks only (add_pair adds nothing) */
+	/* the caller's promise that the functional's last evaluation was at the x of
+	 * qs_hessian, so that a term may take its contacts' state (forces, stick or slip) from
+	 * it instead of evaluating them again (the preconditioner's assembly at an iterate) */
+	int at_last_eval;
 };
 
 /* 0 or -1 (out of memory, message set). */

@@ -8,6 +8,7 @@
 #define QUSGM_LAYOUT_H
 
 #include <math.h>
+#include "base/vec3.h"
 #include <stddef.h>
 
 struct qs_layout {
@@ -54,7 +55,7 @@ layout_grain_len(const struct qs_layout *l, const double *v, size_t i)
 	double len = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
 
 	if (o)
-		len = fmax(len, sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
+		len = max_or_num(len, sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
 	return len;
 }
 

@@ -596,6 +596,7 @@ diag_shift(struct qs_hessian *H, size_t n, double f)
 static void
 grain_precond(struct qs_minimizer *m)
 {
+	m->H.at_last_eval = qs_minimizer_current(m);
 	if (qs_hessian(m->w.s, m->x, &m->H)) {
 		m->precond = 0;
 		return;

@@ -11,7 +11,8 @@
  * and last the process's CPU time per evaluation per contact (CLOCK_PROCESS_CPUTIME_ID: on a
  * shared machine with one thread, steadier than the wall time).  METHOD (lbfgs, fire, cg or newton)
  * runs that minimiser alone, both cases; FINCREMENT_CASE=mu or none in the environment runs
- * only the frictional or the frictionless case (for profiling one of them).
+ * only the frictional or the frictionless case (for profiling one of them), and
+ * FINCREMENT_SKIN the Verlet skin (loadtest's --skin; default 0.3).
  * Exit 1 if a case fails or stops at its iteration limit. */
 #include "qs/loading.h"
 #include "base/msg.h"
@@ -72,6 +73,8 @@ main(int argc, char **argv)
 			load_params_default(&lp);
 			lp.friction = fr;
 			lp.min.method = methods[m];
+			if (getenv("FINCREMENT_SKIN"))
+				lp.skin = atof(getenv("FINCREMENT_SKIN"));
 			if (loader_open(&L, &p, &lp))
 				msg_die_err(EXIT_DATA);
 			t0 = bench_now();

@@ -11,7 +11,8 @@
  *    coordinates.  The tolerance is 1e-5 of |H v| in the norm over all coordinates, and the
  *    same Hessian scaled by 1.01 (an error of 1e-2) must fail it: the check can fail.
  *  - The preconditioner's diagonal blocks alone (closed forms) against the full Hessian's
- *    diagonal blocks, to rounding (diag_check), without and with friction.
+ *    diagonal blocks, to rounding (diag_check), without and with friction; and the same to
+ *    the bit when the contacts' forces come from the last evaluation (at_last_eval).
  *  - A term without second derivatives makes qs_hessian fail with its name in the message.
  *  - Newton from the strained, perturbed equilibrium converges to the residual 1e-9 and
  *    reaches the same energy (1e-8 relative) and positions (1e-6 R, rattlers left out) as
@@ -111,6 +112,14 @@ diag_check(struct qs_system *s, const double *x, const char *tag)
 	    tag, err[0] / big[0], big[1] > 0 ? err[1] / big[1] : 0.0);
 	CHECK(ok && err_scaled[0] > 1e-12 * big[0], "%s: scaled by 1 + 1e-9 they do not (%.3g): the check can fail", tag,
 	    err_scaled[0] / big[0]);
+	/* at_last_eval: the contacts' state taken from the evaluation at x, the same blocks */
+	qs_hessian_clear(&H);
+	H.diag_only = 1;
+	H.at_last_eval = 1;
+	qs_energy(s, x, NULL, NULL);
+	ok = ok && qs_hessian(s, x, &H) == 0;
+	CHECK(ok && memcmp(H.diag, D.diag, 9 * nodes * sizeof *H.diag) == 0,
+	    "%s: with the last evaluation's contact forces (at_last_eval) the same blocks to the bit", tag);
 	qs_hessian_free(&H);
 	qs_hessian_free(&D);
 }
