@@ -802,111 +802,42 @@ own_blocks(struct qs_hessian *H, double *cpl, size_t n, size_t g, const double K
  * away from the switches (tests/unit/test_hessian.c checks it by differences of the
  * gradient).  The unknowns are 2N nodes of three: the centres, then the rotations at N + i;
  * the blocks coupling a grain's own centre and rotation are summed per grain first, one
- * block each. */
-/* The diagonal blocks alone (the preconditioner's, H->diag_only), in closed form.  With the
- * lever arms along n, C_i = ai [n]x and C_j = aj [n]x, so the rotation block C^T K C is
- * a^2 [n]x^T K [n]x: for K = k* T (stick) that is a^2 k* T, and for the sliding
- * K = sc (T - qh qh^T) it is a^2 sc (T - p p^T) with p = qh x n, K turned a quarter about n.
- * The same blocks as friction_hessian's products to rounding, at a fifth of the cost: they
- * are assembled at each of a frictional increment's six or seven minimisations.  With
- * at_last_eval (hessian.h) each contact's force, couple and trial force are the last
- * evaluation's, not evaluated again. */
-static void
-friction_diag(struct qs_friction *f, struct qs_system *s, struct qs_hessian *H, int at_last_eval)
-{
-	size_t n = s->n, q;
-
-	for (q = 0; q < f->n; q++) {
-		const struct fr_contact *c = &f->c[q];
-		const int wall = PACK_IS_WALL(c->j);
-		double Q[3], M, qt, K[9], Kr[9], nn[9], sc, qh[3], p[3], kti, ktj;
-		double *Di = H->diag + 9 * c->i, *Ri = H->diag + 9 * (n + c->i);
-		int u, v;
-
-		if (at_last_eval) {
-			/* the evaluation at x left them (the kernel's bytes are fr_contact_eval's) */
-			memcpy(Q, c->Q, sizeof Q);
-			M = c->M;
-			qt = c->qtrial;
-		} else if (wall) {
-			fr_contact_eval(f, c, Q, &M, &qt, 1, FR_RETURN_MAP);
-		} else {
-			fr_contact_eval(f, c, Q, &M, &qt, 0, FR_RETURN_MAP);
-		}
-		VEC3_UNROLL
-		for (u = 0; u < 3; u++)
-			VEC3_UNROLL
-			for (v = 0; v < 3; v++)
-				nn[3 * u + v] = c->n[u] * c->n[v];
-		if (!(c->qmax > 0)) {
-			memset(K, 0, sizeof K);	/* no limit, no tangential force */
-			memset(Kr, 0, sizeof Kr);
-		} else if (qt <= c->qmax) {
-			VEC3_UNROLL
-			for (u = 0; u < 9; u++)
-				K[u] = Kr[u] = c->k * ((u % 4 == 0) - nn[u]);
-		} else {
-			sc = c->k * c->qmax / qt;
-			VEC3_UNROLL
-			for (u = 0; u < 3; u++)
-				qh[u] = Q[u] / c->qmax;
-			vec3_cross(qh, c->n, p);
-			VEC3_UNROLL
-			for (u = 0; u < 3; u++)
-				VEC3_UNROLL
-				for (v = 0; v < 3; v++) {
-					K[3 * u + v] = sc * ((u == v) - nn[3 * u + v] - qh[u] * qh[v]);
-					Kr[3 * u + v] = sc * ((u == v) - nn[3 * u + v] - p[u] * p[v]);
-				}
-		}
-		kti = fabs(M) < c->mmax ? c->kt * c->bi * c->bi : 0;
-		ktj = fabs(M) < c->mmax ? c->kt * c->bj * c->bj : 0;
-		VEC3_UNROLL
-		for (u = 0; u < 9; u++) {
-			Di[u] += K[u];
-			Ri[u] += c->ai * c->ai * Kr[u] + kti * nn[u];
-		}
-		if (wall)
-			continue;
-		{
-			double *Dj = H->diag + 9 * (size_t)c->j, *Rj = H->diag + 9 * (n + (size_t)c->j);
-			VEC3_UNROLL
-			for (u = 0; u < 9; u++) {
-				Dj[u] += K[u];
-				Rj[u] += c->aj * c->aj * Kr[u] + ktj * nn[u];
-			}
-		}
-	}
-}
-
+ * block each.  With H->at_last_eval (the preconditioner's assembly at an iterate the
+ * minimiser has just evaluated) each contact's force, couple and trial force are the last
+ * evaluation's, not evaluated again: the same bytes (test_hessian).
+ * (Closed forms of the diagonal blocks, C^T K C = a^2 k* T sticking and a^2 sc (T - p p^T),
+ * p = qh x n, sliding, were tried on 2026-12-04: a fifth of the cost, but rounding in the
+ * preconditioner moves every path, and s-fig4's frictionless G5036 probe at 2 MPa then
+ * collapsed to 1 MPa in a rearrangement; bench/kernels.md.) */
 static int
 friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H)
 {
 	struct qs_friction *f = t->data;
 	size_t n = s->n, q, i;
 	const double *r = s->p->r;
-	double *cpl;
+	double *cpl = H->diag_only ? NULL : calloc(9 * (n ? n : 1), sizeof *cpl);
 	int st = 0;
 
-	if (H->diag_only) {
-		if (!H->at_last_eval)
-			fr_grains(f, s, x, 0, n);
-		friction_diag(f, s, H, H->at_last_eval);
-		return 0;
-	}
-	cpl = calloc(9 * (n ? n : 1), sizeof *cpl);
-	if (!cpl) {
+	if (!cpl && !H->diag_only) {
 		msg_seterr("out of memory for the Hessian");
 		return -1;
 	}
-	fr_grains(f, s, x, 0, n);
+	if (!H->at_last_eval)
+		fr_grains(f, s, x, 0, n);
 	for (q = 0; q < f->n && !st; q++) {
 		const struct fr_contact *c = &f->c[q];
 		int wall = PACK_IS_WALL(c->j), u, v;
 		size_t ci = c->i, cj = wall ? 0 : (size_t)c->j;
 		double Q[3], M, qt, K[9], Ci[9], Cj[9], KC[9], B[9], kt, ri = r[ci], rj = wall ? 1 : r[cj], li[3], lj[3];
 
-		fr_contact_eval(f, c, Q, &M, &qt, wall, FR_RETURN_MAP);
+		if (H->at_last_eval) {
+			/* the evaluation at x left them (the kernel's bytes are fr_contact_eval's) */
+			memcpy(Q, c->Q, sizeof Q);
+			M = c->M;
+			qt = c->qtrial;
+		} else {
+			fr_contact_eval(f, c, Q, &M, &qt, wall, FR_RETURN_MAP);
+		}
 		if (!(c->qmax > 0)) {
 			memset(K, 0, sizeof K);	/* no limit, no tangential force */
 		} else if (qt <= c->qmax) {
@@ -936,6 +867,8 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 			continue;
 		cross_matrix(lj, 1 / rj, Cj);
 		own_blocks(H, cpl, n, cj, K, Cj, -1, kt, c->n, rj, KC);
+		if (H->diag_only)
+			continue;
 		/* the pair: (i, j) = -K, (i, N+j) = K C_j, (N+i, j) = -C_i^T K,
 		 * (N+i, N+j) = C_i^T K C_j - kt n n^T / (R_i R_j) */
 		for (u = 0; u < 9; u++)
@@ -961,6 +894,7 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 	free(cpl);
 	return st ? -1 : 0;
 }
+
 
 /* Hertz normal force of contact c at the pack's current positions (0 when it has opened). */
 static double

@@ -449,65 +449,12 @@ on_hessian(const struct contact *c, void *vacc)
 	return qs_hessian_add_pair(a->H, c->i, (size_t)c->j, B) ? 1 : 0;
 }
 
-/* The diagonal blocks alone (the preconditioner's, hessian.h's diag_only) under Hertz: the
- * same blocks as on_hessian's, with the pair's coefficient from the list
- * (hertz_coefficients: P = c h^3/2, dP/dh = 3/2 c h^1/2) instead of the law's interface, which
- * cost more than the blocks (the preconditioner is assembled at every minimisation's start,
- * six or seven times a frictional increment). */
-static void
-hertz_diag_block(struct qs_hessian *H, const struct contact *c, double k, double g)
-{
-	double n[3], B[9], *Di = H->diag + 9 * c->i, *Dj = H->diag + 9 * (PACK_IS_WALL(c->j) ? 0 : (size_t)c->j);
-	int u, v;
-
-	VEC3_UNROLL
-	for (u = 0; u < 3; u++)
-		n[u] = c->dx[u] / c->d;
-	VEC3_UNROLL
-	for (u = 0; u < 3; u++)
-		VEC3_UNROLL
-		for (v = u; v < 3; v++)
-			B[3 * u + v] = B[3 * v + u] = (k + g) * n[u] * n[v] - (u == v ? g : 0);
-	VEC3_UNROLL
-	for (u = 0; u < 9; u++)
-		Di[u] += B[u];
-	if (!PACK_IS_WALL(c->j))
-		VEC3_UNROLL
-		for (u = 0; u < 9; u++)
-			Dj[u] += B[u];
-}
-
-static int
-on_hertz_diag(const struct contact *c, void *vacc)
-{
-	struct hessian_acc *a = vacc;
-	const struct qs_system *s = a->s;
-	double sh = sqrt(c->h), P;
-
-	if (PACK_IS_WALL(c->j)) {
-		/* a wall is a plane: no geometric term */
-		double Es = 1.0 / (s->comp[c->i] + s->wall_comp);
-		hertz_diag_block(a->H, c, 2 * Es * sqrt(c->ri) * sh, 0);
-		return 0;
-	}
-	P = s->hertz_coef[c->k] * c->h * sh;
-	hertz_diag_block(a->H, c, 1.5 * s->hertz_coef[c->k] * sh, P / c->d);
-	return 0;
-}
-
 static int
 normal_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H)
 {
 	struct hessian_acc a = {s, H};
 
 	(void)t;
-	if (H->diag_only && s->law == &contact_law_hertz_mindlin) {
-		if (hertz_coefficients(s)) {	/* the list is the last evaluation's, as on_hessian's */
-			msg_seterr("out of memory");
-			return -1;
-		}
-		return contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_hertz_diag, &a) < 0 ? -1 : 0;
-	}
 	return contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_hessian, &a) < 0 ? -1 : 0;
 }
 

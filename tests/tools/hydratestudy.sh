@@ -56,10 +56,10 @@ done
 expect_num "p_ex 1 MPa: G at the last probed dS below half the undissociated pack's" "$lastG" "<" \
     "$(awk -v g="$(val hyd-d0-p0 G)" 'BEGIN { print g / 2 }')"
 # p_ex 1 MPa alone takes 1 of the 21 MPa: K ~ sigma'^(1/3) predicts K 1.6 % lower, which a
-# 1000-grain probe does not resolve (rounding alone, the preconditioner's blocks in closed
-# form on 2026-12-04, moved the undissociated K from 887 to 852 MPa, and K at p_ex 1 MPa came
-# out 0.9 % above it): checked is that it stays within 5 % of it, as a pore pressure
-# applied ten times over (K 20 % lower) would not.
+# 1000-grain probe does not resolve (rounding alone, in a build whose preconditioner's blocks
+# were in closed form, tried on 2026-12-04 and not kept, moved the undissociated K from 887
+# to 852 MPa, and K at p_ex 1 MPa came out 0.9 % above it): checked is that it stays within
+# 5 % of it, as a pore pressure applied ten times over (K 20 % lower) would not.
 expect_num "p_ex 1 MPa alone: K within 5 % of the undissociated pack's" "$(rel "$(val hyd-d0-p1 K)" "$(val hyd-d0-p0 K)")" "<" 0.05
 grep -q '^| hyd-d5-p1 | ' "$o/s-fig5/report.md" && pass "report.md has the runs' rows" || fail "report.md has the runs' rows" "$(head -c 300 "$o/s-fig5/report.md")"
 grep -q 'per 0.01 of -dS | -[0-9]' "$o/s-fig5/report.md" && pass "report.md gives the fall per 0.01 of dS" ||
