@@ -590,16 +590,18 @@ fr_gather(const struct qs_friction *f, const struct qs_system *s, double *g, siz
 		}
 }
 
-/* Block b's contacts (grains i0 <= i < i1): its pairs, then its walls; returns their energy. */
+/* Block b's contacts (grains i0 <= i < i1): its pairs, then its walls; returns their energy.
+ * lanes (a constant at each call): the pairs two at a time (fr_pair2) under the return map;
+ * without, one at a time, the reference the two-lane kernel must equal (fr_energy_scalar). */
 CONTACT_INLINE double
 fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0, size_t i1, size_t g1,
-    const enum fr_rule rule)
+    const enum fr_rule rule, const int lanes)
 {
 	double Eb = 0;
 	size_t k = f->row_first[i0];
 
 #if LANES_OK
-	if (rule == FR_RETURN_MAP)
+	if (lanes && rule == FR_RETURN_MAP)
 		for (; k + 1 < f->row_first[i1]; k += 2) {
 			struct fr_contact *c = &f->c[k], *c1 = c + 1;
 			double E2[2];
@@ -657,8 +659,8 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 		}
 		for (b = b0; b < b1; b++) {
 			size_t i0 = b * bl, i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
-			f->blk[b] = f->rule == FR_RETURN_MAP ? fr_block(f, s, g, i0, i1, g1, FR_RETURN_MAP) :
-			                                       fr_block(f, s, g, i0, i1, g1, FR_PAPER);
+			f->blk[b] = f->rule == FR_RETURN_MAP ? fr_block(f, s, g, i0, i1, g1, FR_RETURN_MAP, 1) :
+			                                       fr_block(f, s, g, i0, i1, g1, FR_PAPER, 1);
 		}
 	}
 	for (q = 0; q < nb; q++)
@@ -669,27 +671,12 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 double
 fr_energy_scalar(struct qs_friction *f, const struct qs_system *s, const double *x, double *g)
 {
-	size_t n = s->n, bl = par_block(n), nb = n ? (n + bl - 1) / bl : 0, b, k;
+	size_t n = s->n, bl = par_block(n), nb = n ? (n + bl - 1) / bl : 0, b;
 	double E = 0;
 
 	fr_grains(f, s, x, 0, n);
-	for (b = 0; b < nb; b++) {
-		size_t i0 = b * bl, i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
-		double Eb = 0;
-		for (k = f->row_first[i0]; k < f->row_first[i1]; k++) {
-			struct fr_contact *c = &f->c[k];
-			Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 0, f->rule);
-			if (g)
-				fr_add_ij(s, g, c, c->Q, c->M);
-		}
-		for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
-			struct fr_contact *c = &f->c[k];
-			Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 1, f->rule);
-			if (g)
-				fr_add_i(s, g, c, c->Q, c->M);
-		}
-		E += Eb;
-	}
+	for (b = 0; b < nb; b++)
+		E += fr_block(f, s, g, b * bl, (b + 1) * bl < n ? (b + 1) * bl : n, n, f->rule, 0);
 	return E;
 }
 
@@ -894,7 +881,6 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 	free(cpl);
 	return st ? -1 : 0;
 }
-
 
 /* Hertz normal force of contact c at the pack's current positions (0 when it has opened). */
 static double

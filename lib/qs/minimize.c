@@ -880,6 +880,13 @@ newton_iterate(struct qs_minimizer *m)
 
 /* --- the interface ------------------------------------------------------------------ */
 
+/* L-BFGS's stored steps: mp's, or QS_LBFGS_M where mp leaves the choice (0). */
+static long
+lbfgs_memory(const struct qs_min_params *mp)
+{
+	return mp->lbfgs_m > 0 ? mp->lbfgs_m : QS_LBFGS_M;
+}
+
 struct qs_minimizer *
 qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp)
 {
@@ -894,8 +901,7 @@ qs_minimizer_alloc(struct qs_system *s, const struct qs_min_params *mp)
 	}
 	w = &m->w;
 	m->mp = *mp;
-	if (m->mp.lbfgs_m < 1)
-		m->mp.lbfgs_m = QS_LBFGS_M;
+	m->mp.lbfgs_m = lbfgs_memory(mp);
 	w->s = s;
 	w->n3 = s->dim;
 	w->g = malloc(w->n3 * sizeof *w->g);
@@ -1031,7 +1037,7 @@ qs_minimizer_set_max_iter(struct qs_minimizer *m, long max_iter)
 int
 qs_minimizer_params(struct qs_minimizer *m, const struct qs_min_params *mp)
 {
-	long lm = mp->lbfgs_m > 0 ? mp->lbfgs_m : QS_LBFGS_M;
+	long lm = lbfgs_memory(mp);
 
 	if (mp->method != m->mp.method || lm != m->mp.lbfgs_m ||
 	    (mp->precond_shift > 0) != (m->mp.precond_shift > 0)) {
