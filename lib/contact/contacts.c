@@ -76,7 +76,10 @@ contact_enum_init(struct contact_enum *e, size_t n, const double *r, const doubl
 	nlist_init(&e->prev);
 	if (hsize) {
 		e->hwall = calloc((n ? n : 1) * NWALLS * hsize, sizeof *e->hwall);
-		if (!e->hwall) {
+		e->hwall_set = calloc(n ? n : 1, 1);
+		if (!e->hwall || !e->hwall_set) {
+			free(e->hwall), free(e->hwall_set);
+			e->hwall = NULL, e->hwall_set = NULL;
 			msg_seterr("out of memory for the contact history");
 			return -1;
 		}
@@ -89,7 +92,7 @@ contact_enum_free(struct contact_enum *e)
 {
 	nlist_free(&e->nl);
 	nlist_free(&e->prev);
-	free(e->hpair[0]), free(e->hpair[1]), free(e->hwall);
+	free(e->hpair[0]), free(e->hpair[1]), free(e->hwall), free(e->hwall_set);
 	free(e->full_first), free(e->full_nbr);
 	free(e->col_first), free(e->col_nbr);
 	memset(e, 0, sizeof *e);

@@ -169,6 +169,38 @@ test_history(gsl_rng *rng)
 		}
 		CHECK(nonzero == 0, "history: the slots of a grain moved apart read zero (%ld not)", nonzero);
 	}
+	/* a wall's slot: marked while the grain touches the wall, zero once it is apart (the walk
+	 * zeroes only slots that went to a callback, contacts.h's hwall_set), and zero again when
+	 * the grain comes back: a new contact starts from an empty spring */
+	{
+		size_t g = p.n;
+		double *hw, x0;
+
+		for (i = 0; i < p.n && g == p.n; i++)
+			if (p.x[3 * i] - p.box[0] < p.r[i])
+				g = i;
+		CHECK(g < p.n, "history: a grain touches the x-low wall");
+		if (g < p.n) {
+			long wrong = 0;
+			hw = e.hwall + 3 * NWALLS * g;	/* wall 0 (x low) of grain g */
+			x0 = p.x[3 * g];
+			contact_foreach(&e, p.x, CONTACT_TOUCHING, on_mark, NULL);
+			wrong += hw[0] != (double)g + 1;
+			p.x[3 * g] = p.box[0] + 2 * p.r[g];
+			contact_enum_update(&e, p.x, 1);
+			contact_foreach(&e, p.x, CONTACT_TOUCHING, on_mark, NULL);
+			wrong += hw[0] != 0 || hw[1] != 0;
+			contact_foreach(&e, p.x, CONTACT_TOUCHING, on_mark, NULL);	/* apart twice: still zero */
+			wrong += hw[0] != 0 || hw[1] != 0;
+			p.x[3 * g] = x0;
+			contact_enum_update(&e, p.x, 1);
+			wrong += hw[0] != 0 || hw[1] != 0;	/* what the callback of the new contact will read */
+			contact_foreach(&e, p.x, CONTACT_TOUCHING, on_mark, NULL);
+			wrong += hw[0] != (double)g + 1;
+			CHECK(wrong == 0, "history: a wall's slot is marked, reads zero apart, and zero when the contact "
+			    "comes back (%ld wrong)", wrong);
+		}
+	}
 	contact_enum_free(&e);
 	pack_free(&p);
 }
