@@ -1,5 +1,5 @@
 /* lanes: two doubles side by side in one SSE register (GCC and clang vector extensions),
- * for the hot kernels that evaluate two contacts at once (friction.c, functional.c).
+ * for the hot kernels that evaluate two contacts at once (friction.c; dem.c, the DEM pair force).
  * Every operation is IEEE arithmetic on each lane, with no contraction (ISO C mode), so a
  * lane computes the bytes its scalar code would.  The point is the divider: on the AMD and
  * Intel cores this runs on, a two-lane division or square root costs what one scalar does,

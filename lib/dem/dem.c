@@ -5,6 +5,7 @@
 #include "contact/contacts.h"
 #include "contact/law.h"
 #include "base/msg.h"
+#include "base/lanes.h"
 #include "base/par.h"
 #include "base/vec3.h"
 
@@ -21,9 +22,11 @@
 struct dem {
 	size_t n;
 	double *x, *v, *w, *f, *t, *r, *m, *I;
+	double *mob, mob_dt;	/* dt / m and dt / I per grain (interleaved), made for the step mob_dt */
 	double lo[3], hi[3];
 	double rmax, skin, dt, dt_safety, mu, damping, rate, viscous;
-	int unloading;		/* slow, quasi-static expansion towards the final stress */
+	int unloading;
+	int pair_lanes;		/* dem_params.pair_lanes (and LANES_OK) */		/* slow, quasi-static expansion towards the final stress */
 	/* the contacts, with the tangential spring of every listed pair and grain-wall pair
 	 * as their history, carried over a rebuild of the list */
 	struct contact_enum ce;
@@ -45,7 +48,7 @@ struct dem {
 static void
 dem_free(struct dem *d)
 {
-	free(d->x), free(d->v), free(d->w), free(d->f), free(d->t), free(d->r), free(d->m), free(d->I);
+	free(d->x), free(d->v), free(d->w), free(d->f), free(d->t), free(d->r), free(d->m), free(d->I), free(d->mob);
 	free(d->blk), free(d->xslot), free(d->xin_first), free(d->xrec);
 	contact_enum_free(&d->ce);
 	cell_free(&d->grid);
@@ -76,6 +79,7 @@ dem_params_default(struct dem_params *dp)
 	dp->viscous = 0;
 	dp->preload = 200;
 	dp->max_steps = 2000000;
+	dp->pair_lanes = 1;
 }
 
 /* Random sequential placement without overlap, largest grains first. */
@@ -235,12 +239,92 @@ struct dem_block {
 };
 
 /* What the walk of one block carries: the grains from jend on are a later thread's, whose
- * share of a pair's force that thread gathers (the pair's record, dem.xrec). */
+ * share of a pair's force that thread gathers (the pair's record, dem.xrec); and a touching
+ * pair waiting for a second, with which it shares the lanes of contact_force2. */
 struct dem_walk {
 	struct dem *d;
 	size_t jend;
 	struct dem_block b;
+	int npend;
+	struct contact pend;
 };
+
+#if LANES_OK
+/* contact_force of two grain-grain contacts at once, each in one lane of the same
+ * arithmetic (lanes.h: the same bytes as contact_force, tests/unit/test_dem.c checks it).
+ * A pair's force costs six square roots and five divisions, in one dependent chain; the
+ * divider does two lanes in the time of one, and the two chains overlap. */
+CONTACT_INLINE void
+contact_force2(const struct dem *d, const struct contact *A, const struct contact *B, double F[2][3], double cr[2][3])
+{
+	const struct contact_law *law = DEM_LAW;
+	size_t i0 = A->i, i1 = B->i, j0 = (size_t)A->j, j1 = (size_t)B->j;
+	const double *v = d->v, *w = d->w;
+	double *hA = A->hist, *hB = B->hist;
+	v2d dd = {A->d, B->d}, h = {A->h, B->h}, ri = {d->r[i0], d->r[i1]}, rj = {d->r[j0], d->r[j1]};
+	v2d mi = {d->m[i0], d->m[i1]}, mj = {d->m[j0], d->m[j1]}, zero = {0, 0}, one = {1, 1};
+	v2d n[3], wi[3], wj[3], wr[3], ca[3], cb[3], vr[3], vt[3], xi[3], ft[3], Fv[3], cv[3];
+	v2d Rs, meff, kn, fn0, vn, fn, kt, fmaxt, xn, old, now, sc;
+	v2m m;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		n[a] = (v2d){A->dx[a], B->dx[a]} / dd;
+		wi[a] = (v2d){w[3 * i0 + a], w[3 * i1 + a]};
+		wj[a] = (v2d){w[3 * j0 + a], w[3 * j1 + a]};
+		xi[a] = (v2d){hA[a], hB[a]};
+	}
+	Rs = ri * rj / (ri + rj);
+	for (a = 0; a < 3; a++)
+		wr[a] = -ri * n[a];
+	V2_CROSS(wi, wr, ca);
+	meff = mi * mj / (mi + mj);
+	for (a = 0; a < 3; a++)
+		wr[a] = rj * n[a];
+	V2_CROSS(wj, wr, cb);
+	for (a = 0; a < 3; a++)
+		vr[a] = (v2d){v[3 * i0 + a], v[3 * i1 + a]} + ca[a] - (v2d){v[3 * j0 + a], v[3 * j1 + a]} - cb[a];
+	/* law_hertz_dem_force and law_dem_damped (E* = 1 between grains) */
+	kn = 2 * 1.0 * V2_SQRT(Rs * h);
+	fn0 = kn * h * (2.0 / 3.0);
+	vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
+	fn = fn0 - 2 * law->zeta * V2_SQRT(meff * kn) * vn;
+	fn = V2_SELECT(fn < 0, zero, fn);
+	for (a = 0; a < 3; a++)
+		vt[a] = vr[a] - vn * n[a];
+	kt = law->kt_ratio * kn;
+	fmaxt = d->mu * fn;
+	/* law_dem_spring */
+	xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
+	old = V2_SQRT(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+	for (a = 0; a < 3; a++)
+		xi[a] -= xn * n[a];
+	now = V2_SQRT(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+	m = now > 0;
+	sc = V2_SELECT(m, old / V2_SELECT(m, now, one), zero);
+	for (a = 0; a < 3; a++) {
+		xi[a] = xi[a] * sc + vt[a] * d->dt;
+		ft[a] = -kt * xi[a];
+	}
+	now = V2_SQRT(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+	m = (now > fmaxt) & (now > 0);
+	if (m[0] | m[1]) {
+		sc = fmaxt / V2_SELECT(m, now, one);
+		for (a = 0; a < 3; a++) {
+			ft[a] = V2_SELECT(m, ft[a] * sc, ft[a]);
+			xi[a] = V2_SELECT(m, -ft[a] / kt, xi[a]);
+		}
+	}
+	for (a = 0; a < 3; a++)
+		Fv[a] = fn * n[a] + ft[a];
+	V2_CROSS(n, ft, cv);
+	for (a = 0; a < 3; a++) {
+		hA[a] = xi[a][0], hB[a] = xi[a][1];
+		F[0][a] = Fv[a][0], F[1][a] = Fv[a][1];
+		cr[0][a] = cv[a][0], cr[1][a] = cv[a][1];
+	}
+}
+#endif
 
 /* A pair whose j is a later thread's: its force, computed before the walk by its row's
  * thread (pass 1 of forces()), for i to add and j's thread to gather. */
@@ -271,25 +355,67 @@ add_to_j(struct dem *d, size_t j, const double F[3], const double cr[3])
 	}
 }
 
+/* A computed pair's force into both grains and the block's sums. */
+CONTACT_INLINE void
+pair_add(struct dem_walk *w, const struct contact *c, const double F[3], const double cr[3])
+{
+	add_to_i(w->d, c->i, F, cr);
+	add_to_j(w->d, (size_t)c->j, F, cr);
+	w->b.nc++;
+	w->b.sum_cf += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+}
+
+/* The waiting pair alone, before anything else is added (so every grain's sum keeps the
+ * walk's order). */
+CONTACT_INLINE void
+pend_flush(struct dem_walk *w)
+{
+	double F[3], cr[3], fel;
+
+	if (!w->npend)
+		return;
+	contact_force(w->d, &w->pend, F, cr, &fel);
+	pair_add(w, &w->pend, F, cr);
+	w->npend = 0;
+}
+
 CONTACT_INLINE int
 on_pair(const struct contact *c, void *vw)
 {
 	struct dem_walk *w = vw;
 	struct dem *d = w->d;
 	size_t j = (size_t)c->j;
-	double F[3], cr[3], fel;
 
-	if (j < w->jend) {
+	if (j < w->jend && d->pair_lanes) {
+#if LANES_OK
+		double F2[2][3], cr2[2][3];
+
+		if (!w->npend) {	/* wait for a second pair */
+			/* what contact_force reads, not the whole record */
+			w->pend.i = c->i, w->pend.j = c->j, w->pend.hist = c->hist;
+			w->pend.dx[0] = c->dx[0], w->pend.dx[1] = c->dx[1], w->pend.dx[2] = c->dx[2];
+			w->pend.d = c->d, w->pend.h = c->h;
+			w->npend = 1;
+			return 0;
+		}
+		contact_force2(d, &w->pend, c, F2, cr2);
+		pair_add(w, &w->pend, F2[0], cr2[0]);
+		pair_add(w, c, F2[1], cr2[1]);
+		w->npend = 0;
+#endif
+	} else if (j < w->jend) {
+		double F[3], cr[3], fel;
+
 		contact_force(d, c, F, cr, &fel);
-		add_to_i(d, c->i, F, cr);
-		add_to_j(d, j, F, cr);
+		pair_add(w, c, F, cr);
 	} else {
 		const struct dem_xrec *x = &d->xrec[d->xslot[contact_pair_index(&d->ce, c)]];
-		memcpy(F, x->F, sizeof F);
+
+		pend_flush(w);
 		add_to_i(d, c->i, x->F, x->cr);
+		w->b.nc++;
+		w->b.sum_cf += sqrt(x->F[0] * x->F[0] + x->F[1] * x->F[1] + x->F[2] * x->F[2]);
 	}
-	w->b.nc++;
-	w->b.sum_cf += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
 	return 0;
 }
 
@@ -297,8 +423,10 @@ CONTACT_INLINE int
 on_wall(const struct contact *c, void *vw)
 {
 	struct dem_walk *w = vw;
-	double F[3], cr[3], fel, fn = contact_force(w->d, c, F, cr, &fel);
+	double F[3], cr[3], fel, fn;
 
+	pend_flush(w);
+	fn = contact_force(w->d, c, F, cr, &fel);
 	w->b.wallf[PACK_WALL_INDEX(c->j)] += fel;	/* the servo reads the elastic wall force */
 	add_to_i(w->d, c->i, F, cr);
 	w->b.nc++;
@@ -419,7 +547,7 @@ forces(struct dem *d)
 		long calls = 0;
 
 		if (T > 1 && t + 1 < T) {
-			struct dem_walk cw = {d, g1, {0, {0}, 0}};
+			struct dem_walk cw = {d, g1, {0, {0}, 0}, 0, {0}};
 			for (i = g0; i < g1; i++)
 				if (e->nl.first[i + 1] > e->nl.first[i] && e->nl.nbr[e->nl.first[i + 1] - 1] >= g1)
 					contact_foreach_row(e, d->x, i, CONTACT_TOUCHING, 0, 3, on_cross_pair, on_no_wall, &cw, &calls);
@@ -433,11 +561,12 @@ forces(struct dem *d)
 					if (d->xrec[s].stamp == d->stamp)
 						add_to_j(d, i, d->xrec[s].F, d->xrec[s].cr);
 		for (b = b0; b < b1; b++) {
-			struct dem_walk dw = {d, g1, {0, {0}, 0}};
+			struct dem_walk dw = {d, g1, {0, {0}, 0}, 0, {0}};
 			size_t i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
 
 			for (i = b * bl; i < i1; i++)
 				contact_foreach_row(e, d->x, i, CONTACT_TOUCHING, 0, 3, on_pair, on_wall, &dw, &calls);
+			pend_flush(&dw);
 			d->blk[b] = dw.b;
 		}
 	}
@@ -453,18 +582,27 @@ forces(struct dem *d)
 	return 0;
 }
 
-/* One explicit step of every grain's velocity, spin and centre, grain by grain (one
- * division per grain for the translational and one for the rotational mobility: this loop
- * was a fifth of packgen's time with a division and an index division per component). */
+/* One explicit step of every grain's velocity, spin and centre, grain by grain.  The
+ * mobilities dt / m and dt / I are made once per time step length (it changes at most every
+ * 100 steps): two divisions per grain and step were a tenth of packgen's time, and an index
+ * division per component once a fifth. */
 static void
 integrate(struct dem *d)
 {
 	size_t i, n = d->n;
 	double dt = d->dt, al = d->damping, keep = 1 - d->viscous;
 
+	if (dt != d->mob_dt) {
+#pragma omp parallel for schedule(static) if (n >= PAR_MIN)
+		for (i = 0; i < n; i++) {
+			d->mob[2 * i] = dt / d->m[i];
+			d->mob[2 * i + 1] = dt / d->I[i];
+		}
+		d->mob_dt = dt;
+	}
 #pragma omp parallel for schedule(static) if (n >= PAR_MIN)
 	for (i = 0; i < n; i++) {
-		double am = dt / d->m[i], aI = dt / d->I[i];
+		double am = d->mob[2 * i], aI = d->mob[2 * i + 1];
 		int a;
 
 		for (a = 0; a < 3; a++) {
@@ -542,9 +680,11 @@ dem_setup(struct dem *d, const struct pack *p, size_t *order, double *rmean, dou
 	d->r = malloc(n * sizeof *d->r);
 	d->m = malloc(n * sizeof *d->m);
 	d->I = malloc(n * sizeof *d->I);
+	d->mob = malloc(2 * n * sizeof *d->mob);
+	d->mob_dt = 0;
 	cell_init(&d->grid);
 	tmp = malloc(n * sizeof *tmp);
-	if (!d->x || !d->v || !d->w || !d->f || !d->t || !d->r || !d->m || !d->I || !tmp) {
+	if (!d->x || !d->v || !d->w || !d->f || !d->t || !d->r || !d->m || !d->I || !d->mob || !tmp) {
 		free(tmp);
 		msg_seterr("out of memory for %zu grains", n);
 		return -1;
@@ -740,6 +880,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	d.rate = dp->rate;
 	d.dt_safety = dp->dt_safety;
 	d.viscous = dp->viscous;
+	d.pair_lanes = dp->pair_lanes && LANES_OK;
 	d.skin = 0.3 * rmin;
 	if (contact_enum_init(&d.ce, n, d.r, d.lo, d.hi, NULL, d.skin, DEM_LAW->history))
 		goto out;

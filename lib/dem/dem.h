@@ -30,6 +30,8 @@ struct dem_params {
 	double rate;		/* largest strain of the box per step */
 	double dt_safety;	/* time step over sqrt(m_eff / k) of the stiffest likely contact */
 	long max_steps;
+	int pair_lanes;		/* 1 (default): grain pairs' forces two at a time in lanes; 0: one at
+				 * a time.  The same bytes either way (tests/unit/test_dem.c) */
 };
 
 struct dem_status {
