@@ -47,16 +47,24 @@ layout_rotation_c(const struct qs_layout *l, const double *v, size_t i)
 }
 
 /* Grain i's part of v as one length: its translation, or with rotations the larger of its
- * translation and its scaled rotation. */
+ * translation and its scaled rotation.  One square root, of the larger square: a correctly
+ * rounded sqrt is monotone, so this is the larger of the two lengths to the bit (and a NaN
+ * square is dropped for the other as max_or_num drops a NaN length). */
+static inline double
+layout_grain_len_sq(const struct qs_layout *l, const double *v, size_t i)
+{
+	const double *t = v + 3 * i, *o = layout_rotation_c(l, v, i);
+	double sq = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];
+
+	if (o)
+		sq = max_or_num(sq, o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+	return sq;
+}
+
 static inline double
 layout_grain_len(const struct qs_layout *l, const double *v, size_t i)
 {
-	const double *t = v + 3 * i, *o = layout_rotation_c(l, v, i);
-	double len = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-
-	if (o)
-		len = max_or_num(len, sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
-	return len;
+	return sqrt(layout_grain_len_sq(l, v, i));
 }
 
 /* x += f v on grain i's unknowns. */

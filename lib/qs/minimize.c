@@ -1,5 +1,6 @@
 /* minimize: the papers' modified CG and FIRE (see minimize.h). */
 #include "qs/minimize.h"
+#include "base/lanes.h"
 #include "qs/hessian.h"
 #include "base/par.h"
 #include "base/msg.h"
@@ -118,14 +119,36 @@ static double
 alpha_cap(const struct work *w, const double *d, double cap)
 {
 	double amax = INFINITY;
-	size_t i;
+	const double *r = w->s->p->r;
+	size_t i = 0, n = w->s->n;
 
-	/* a smallest value is exact in any order (base/par.h) */
-#pragma omp parallel for schedule(static) reduction(min : amax) if (w->s->n >= PAR_MIN)
-	for (i = 0; i < w->s->n; i++) {
+#if LANES_OK
+	/* two grains at a time, their square roots and divisions in one instruction each
+	 * (lanes.h: each lane the scalar loop's bytes); a smallest value is exact in any order
+	 * (base/par.h) */
+	{
+		const struct qs_layout *lay = &w->s->layout;
+		size_t q, np = n / 2;
+
+#pragma omp parallel for schedule(static) reduction(min : amax) if (n >= PAR_MIN)
+		for (q = 0; q < np; q++) {
+			size_t k = 2 * q;
+			v2d l = V2_SQRT(((v2d){layout_grain_len_sq(lay, d, k), layout_grain_len_sq(lay, d, k + 1)}));
+			v2m pos = l > 0;
+			v2d a = cap * (v2d){r[k], r[k + 1]} / V2_SELECT(pos, l, ((v2d){1, 1}));
+
+			if (pos[0] && a[0] < amax)
+				amax = a[0];
+			if (pos[1] && a[1] < amax)
+				amax = a[1];
+		}
+		i = 2 * np;
+	}
+#endif
+	for (; i < n; i++) {
 		double l = grain_len(w, d, i);
-		if (l > 0 && cap * w->s->p->r[i] / l < amax)
-			amax = cap * w->s->p->r[i] / l;
+		if (l > 0 && cap * r[i] / l < amax)
+			amax = cap * r[i] / l;
 	}
 	return amax;
 }

@@ -16,6 +16,8 @@
  *    four contacts stays, and so does one squeezed between opposite walls; on random packs
  *    every moved grain ends without contacts and Pi falls. */
 #include "qs/functional.h"
+#include "base/par.h"
+#include "qs/layout.h"
 #include "contact/hertz.h"
 #include "qs/loading.h"
 #include "pack/pack.h"
@@ -663,6 +665,80 @@ test_release(gsl_rng *rng)
 	}
 }
 
+/* qs_residual walks two grains at a time in lanes; here the scalar walk it replaced, the
+ * larger of a grain's two lengths from two square roots, by the same blocks of grains. */
+static void
+residual_scalar(const struct qs_system *s, const double *g, const double *fbig, double floor_rel, double *res_max,
+    double *res_mean)
+{
+	double rmax = 0, sum = 0, fl = s->ncontacts ? floor_rel * s->sum_force / s->ncontacts : 0;
+	size_t n = s->n, bl = par_block(n), i, q, nf = 0;
+
+	if (s->force_floor > fl)
+		fl = s->force_floor;
+	for (q = 0; q * bl < n; q++) {
+		double t = 0;
+		for (i = q * bl; i < n && i < (q + 1) * bl; i++) {
+			const double *a = g + 3 * i, *o = s->layout.rotations ? g + 3 * n + 3 * i : NULL;
+			double f = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), rel;
+			if (!(fbig[i] > 0))
+				continue;
+			if (o)
+				f = max_or_num(f, sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
+			rel = f / max_or_num(fbig[i], fl);
+			if (rel > rmax)
+				rmax = rel;
+			t += f;
+			nf++;
+		}
+		sum += t;
+	}
+	*res_max = rmax;
+	*res_mean = nf && s->ncontacts ? (sum / nf) / (s->sum_force / s->ncontacts) : 0;
+}
+
+/* The residual in lanes to the bit: random vectors over 7 orders of magnitude, with and
+ * without rotations, odd and even counts, grains with no contact (fbig 0 or NaN), forces
+ * below the floor, a translation and rotation of equal squares, NaNs in the vector. */
+static void
+test_residual(gsl_rng *rng)
+{
+	size_t sizes[] = {1, 2, 7, 300, 301}, z;
+	long bad = 0, cases = 0;
+
+	for (z = 0; z < sizeof sizes / sizeof sizes[0]; z++) {
+		int rot;
+		for (rot = 0; rot < 2; rot++) {
+			struct qs_system s;
+			size_t n = sizes[z], k;
+			double *g = malloc(6 * n * sizeof *g), *fb = malloc(n * sizeof *fb), a1, b1, a2, b2;
+
+			memset(&s, 0, sizeof s);
+			s.n = n;
+			layout_set(&s.layout, n, rot);
+			s.ncontacts = 3 * n;
+			s.sum_force = 1.7 * (double)s.ncontacts;
+			s.force_floor = rot ? 0 : 0.05;
+			for (k = 0; k < 6 * n; k++)
+				g[k] = (gsl_rng_uniform(rng) - 0.5) * pow(10, -7 * gsl_rng_uniform(rng));
+			for (k = 0; k < n; k++)
+				fb[k] = k % 5 == 1 ? 0 : k % 11 == 3 ? NAN : k % 7 == 2 ? 1e-9 : gsl_rng_uniform(rng);
+			if (n > 4 && rot) {	/* equal squares: translation and rotation of the same length */
+				memcpy(g + 3 * n + 3 * 4, g + 3 * 4, 3 * sizeof *g);
+				g[3 * 2 + 1] = NAN;
+				g[3 * n + 3 * 3] = NAN;
+			}
+			qs_residual(&s, g, fb, 1e-3, &a1, &b1);
+			residual_scalar(&s, g, fb, 1e-3, &a2, &b2);
+			bad += memcmp(&a1, &a2, sizeof a1) != 0 || memcmp(&b1, &b2, sizeof b1) != 0;
+			cases++;
+			free(g), free(fb);
+		}
+	}
+	CHECK(bad == 0, "residual: the two-grain lanes give the scalar walk's largest and mean to the bit (%ld of %ld cases differ)",
+	    bad, cases);
+}
+
 int
 main(void)
 {
@@ -675,6 +751,7 @@ main(void)
 	test_fd(rng, 120, 1e-3, 0.64, "1 mm, n=120");
 	test_nlist(rng);
 	test_release(rng);
+	test_residual(rng);
 	gsl_rng_free(rng);
 	return unit_summary();
 }
