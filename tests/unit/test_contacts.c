@@ -11,6 +11,7 @@
 #include "contact/contacts.h"
 #include "contact/law.h"
 #include "qs/functional.h"
+#include "qs/hessian.h"
 #include "qs/minimize.h"
 
 #include <float.h>
@@ -231,6 +232,24 @@ test_laws(gsl_rng *rng)
 	CHECK(memcmp(g, g2, n3 * sizeof *g) == 0, "laws: Hertz through the interface gives the fast path's gradient to the bit");
 	CHECK(fabs(E1 - E2) <= (double)s.ncontacts * DBL_EPSILON * E1 && E1 > 0,
 	    "laws: and its energy to the rounding of the sum's order (Pi %.17g, %.17g, %zu contacts)", E1, E2, s.ncontacts);
+	{	/* and its Hessian blocks, which the fast path assembles without the interface */
+		struct qs_hessian H1, H2;
+		int same;
+
+		qs_hessian_init(&H1, p.n);
+		qs_hessian_init(&H2, p.n);
+		s.law = &contact_law_hertz_mindlin;
+		qs_energy(&s, x, g, NULL);
+		qs_hessian(&s, x, &H1);
+		s.law = &hertz_copy;
+		qs_hessian(&s, x, &H2);
+		same = H1.np == H2.np && H1.np > 0 && memcmp(H1.diag, H2.diag, 9 * p.n * sizeof *H1.diag) == 0 &&
+		    memcmp(H1.off, H2.off, 9 * H1.np * sizeof *H1.off) == 0 && memcmp(H1.pi, H2.pi, H1.np * sizeof *H1.pi) == 0 &&
+		    memcmp(H1.pj, H2.pj, H1.np * sizeof *H1.pj) == 0;
+		CHECK(same, "laws: Hertz's Hessian through the interface is the fast path's to the bit (%zu pair blocks)", H1.np);
+		qs_hessian_free(&H1);
+		qs_hessian_free(&H2);
+	}
 	lin.kn = 2e4;
 	s.law = &lin;
 	E2 = qs_energy(&s, x, g, NULL);
