@@ -14,7 +14,10 @@ DESTDIR  ?=
 CC       ?= cc
 OPT      ?= -O2 -g
 WARN      = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
-STD       = -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+# -ffp-contract=off: no fused multiply-adds the source does not write (GCC's ISO C mode already
+# implies it, clang's default does not), so the bytes do not depend on the compiler's choice
+# and a lane computes what its scalar code does (lib/base/lanes.h)
+STD       = -std=c11 -ffp-contract=off -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 PKGS      = gsl ccd zlib
 # The shared library: libqusgm.so.$(VERSION), soname libqusgm.so.$(SOMAJOR).  Version 0: no
 # ABI stability promised yet (share/doc/library.md, "Using the library").

@@ -99,7 +99,9 @@ law_dem_spring(double *xi, const double n[3], const double vt[3], double dt, dou
 	}
 }
 
-/* The DEM force for normal stiffness kn and elastic normal force fn0. */
+/* The DEM force for normal stiffness kn and elastic normal force fn0.  (lib/dem/dem.c's
+ * contact_force2 repeats this and law_dem_spring, two contacts at a time in lanes: a change
+ * here goes there too; tests/unit/test_dem.c's test_lanes catches a difference.) */
 LAW_INLINE double
 law_dem_damped(const struct contact_law *law, const struct law_dem_in *in, double kn, double fn0, double *hist,
     double ft[3], double *fel)

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define E_GRAIN 1.0			/* the scaled grain-grain E* (dem.h) */
 #define E_WALL 2.0			/* grain-wall E* over grain-grain E* for rigid walls */
 /* The contact law of the settling: Hertz-Mindlin's DEM force (law.h: tangential spring
  * 2(1-nu)/(2-nu) = 0.889 of the normal stiffness at nu = 0.2, viscous damping ratio 0.3),
@@ -25,8 +26,8 @@ struct dem {
 	double *mob, mob_dt;	/* dt / m and dt / I per grain (interleaved), made for the step mob_dt */
 	double lo[3], hi[3];
 	double rmax, skin, dt, dt_safety, mu, damping, rate, viscous;
-	int unloading;
-	int pair_lanes;		/* dem_params.pair_lanes (and LANES_OK) */		/* slow, quasi-static expansion towards the final stress */
+	int unloading;		/* slow, quasi-static expansion towards the final stress */
+	int pair_lanes;		/* dem_params.pair_lanes (and LANES_OK) */
 	/* the contacts, with the tangential spring of every listed pair and grain-wall pair
 	 * as their history, carried over a rebuild of the list */
 	struct contact_enum ce;
@@ -203,7 +204,7 @@ contact_force(const struct dem *d, const struct contact *c, double F[3], double 
 	struct law_dem_in in;
 
 	contact_normal(c, in.n);
-	lp.Es = wall ? E_WALL : 1.0;
+	lp.Es = wall ? E_WALL : E_GRAIN;
 	lp.Rs = contact_Rstar(c, d->r);
 	in.h = c->h;
 	in.dt = d->dt;
@@ -284,8 +285,8 @@ contact_force2(const struct dem *d, const struct contact *A, const struct contac
 	V2_CROSS(wj, wr, cb);
 	for (a = 0; a < 3; a++)
 		vr[a] = (v2d){v[3 * i0 + a], v[3 * i1 + a]} + ca[a] - (v2d){v[3 * j0 + a], v[3 * j1 + a]} - cb[a];
-	/* law_hertz_dem_force and law_dem_damped (E* = 1 between grains) */
-	kn = 2 * 1.0 * V2_SQRT(Rs * h);
+	/* law_hertz_dem_force and law_dem_damped, E* = E_GRAIN */
+	kn = 2 * E_GRAIN * V2_SQRT(Rs * h);
 	fn0 = kn * h * (2.0 / 3.0);
 	vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
 	fn = fn0 - 2 * law->zeta * V2_SQRT(meff * kn) * vn;
@@ -355,14 +356,21 @@ add_to_j(struct dem *d, size_t j, const double F[3], const double cr[3])
 	}
 }
 
+/* A pair's force F in the block's count and force sum. */
+CONTACT_INLINE void
+pair_sums(struct dem_walk *w, const double F[3])
+{
+	w->b.nc++;
+	w->b.sum_cf += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+}
+
 /* A computed pair's force into both grains and the block's sums. */
 CONTACT_INLINE void
 pair_add(struct dem_walk *w, const struct contact *c, const double F[3], const double cr[3])
 {
 	add_to_i(w->d, c->i, F, cr);
 	add_to_j(w->d, (size_t)c->j, F, cr);
-	w->b.nc++;
-	w->b.sum_cf += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+	pair_sums(w, F);
 }
 
 /* The waiting pair alone, before anything else is added (so every grain's sum keeps the
@@ -386,8 +394,8 @@ on_pair(const struct contact *c, void *vw)
 	struct dem *d = w->d;
 	size_t j = (size_t)c->j;
 
-	if (j < w->jend && d->pair_lanes) {
 #if LANES_OK
+	if (j < w->jend && d->pair_lanes) {
 		double F2[2][3], cr2[2][3];
 
 		if (!w->npend) {	/* wait for a second pair */
@@ -402,8 +410,10 @@ on_pair(const struct contact *c, void *vw)
 		pair_add(w, &w->pend, F2[0], cr2[0]);
 		pair_add(w, c, F2[1], cr2[1]);
 		w->npend = 0;
+		return 0;
+	}
 #endif
-	} else if (j < w->jend) {
+	if (j < w->jend) {
 		double F[3], cr[3], fel;
 
 		contact_force(d, c, F, cr, &fel);
@@ -413,8 +423,7 @@ on_pair(const struct contact *c, void *vw)
 
 		pend_flush(w);
 		add_to_i(d, c->i, x->F, x->cr);
-		w->b.nc++;
-		w->b.sum_cf += sqrt(x->F[0] * x->F[0] + x->F[1] * x->F[1] + x->F[2] * x->F[2]);
+		pair_sums(w, x->F);
 	}
 	return 0;
 }
@@ -681,7 +690,7 @@ dem_setup(struct dem *d, const struct pack *p, size_t *order, double *rmean, dou
 	d->m = malloc(n * sizeof *d->m);
 	d->I = malloc(n * sizeof *d->I);
 	d->mob = malloc(2 * n * sizeof *d->mob);
-	d->mob_dt = 0;
+	d->mob_dt = NAN;	/* made at the first step, whatever its length (even 0) */
 	cell_init(&d->grid);
 	tmp = malloc(n * sizeof *tmp);
 	if (!d->x || !d->v || !d->w || !d->f || !d->t || !d->r || !d->m || !d->I || !d->mob || !tmp) {

@@ -570,7 +570,7 @@ qs_residual(const struct qs_system *s, const double *g, const double *fbig, doub
 		 * (lanes.h), the sums then in grain order (the scalar loop's bytes) */
 		for (; i + 1 < i1; i += 2) {
 			v2m on = {fbig[i] > 0 ? -1LL : 0, fbig[i + 1] > 0 ? -1LL : 0};
-			v2d f = V2_SQRT(((v2d){layout_grain_len_sq(&s->layout, g, i), layout_grain_len_sq(&s->layout, g, i + 1)}));
+			v2d f = layout_grain_len_pair(&s->layout, g, i);
 			v2d den = {max_or_num(fbig[i], fl), max_or_num(fbig[i + 1], fl)};
 			v2d rel = f / V2_SELECT(on, den, ((v2d){1, 1}));
 			int b;

@@ -8,6 +8,7 @@
 #define QUSGM_LAYOUT_H
 
 #include <math.h>
+#include "base/lanes.h"
 #include "base/vec3.h"
 #include <stddef.h>
 
@@ -66,6 +67,15 @@ layout_grain_len(const struct qs_layout *l, const double *v, size_t i)
 {
 	return sqrt(layout_grain_len_sq(l, v, i));
 }
+
+#if LANES_OK
+/* The lengths of grains i and i + 1, one square root instruction for both (lanes.h). */
+static inline v2d
+layout_grain_len_pair(const struct qs_layout *l, const double *v, size_t i)
+{
+	return V2_SQRT(((v2d){layout_grain_len_sq(l, v, i), layout_grain_len_sq(l, v, i + 1)}));
+}
+#endif
 
 /* x += f v on grain i's unknowns. */
 static inline void

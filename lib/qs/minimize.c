@@ -133,7 +133,7 @@ alpha_cap(const struct work *w, const double *d, double cap)
 #pragma omp parallel for schedule(static) reduction(min : amax) if (n >= PAR_MIN)
 		for (q = 0; q < np; q++) {
 			size_t k = 2 * q;
-			v2d l = V2_SQRT(((v2d){layout_grain_len_sq(lay, d, k), layout_grain_len_sq(lay, d, k + 1)}));
+			v2d l = layout_grain_len_pair(lay, d, k);
 			v2m pos = l > 0;
 			v2d a = cap * (v2d){r[k], r[k + 1]} / V2_SELECT(pos, l, ((v2d){1, 1}));
 

@@ -1,13 +1,17 @@
 /* test_dem: packgen's sphere DEM (lib/dem/dem.c): a small pack comes to rest at the target
  * overlap with every grain inside the box and no pair overlapping by more than the servo
- * allows; the pair forces in lanes give the bytes of one pair at a time; a time step far beyond the stability limit is caught as a divergence (one clear
- * error, well before the step limit) instead of stepping NaNs to max_steps. */
+ * allows; the pair forces in lanes give the bytes of one pair at a time, on one thread and on
+ * two; a time step far beyond the stability limit is caught as a divergence (one clear error,
+ * well before the step limit) instead of stepping NaNs to max_steps.  Blocks of 16 grains
+ * (QUSGM_PAR_BLOCK, base/par.h) put the 300 grains on the threads' path. */
 #include "unit.h"
 #include "dem/dem.h"
 #include "base/msg.h"
+#include "base/par.h"
 #include "pack/pack.h"
 
 #include <gsl/gsl_rng.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* 300 grains with radii uniform in [0.7, 1.3] mm (the default psd's spread), glass. */
@@ -52,32 +56,38 @@ test_rest(void)
 }
 
 /* The pair forces two at a time in lanes (dem_params.pair_lanes, the default) against one at a
- * time: a DEM run amplifies any difference in the last bit of one force into different
- * positions within a few hundred steps, so the same packs and step counts mean the same
- * arithmetic for every pair of the run, sticking and sliding. */
+ * time, and in lanes on two threads (where the pairs that cross to the other thread's grains
+ * come from records, and the waiting pair is added before them): a DEM run amplifies a
+ * difference in the last bit of one force into different positions within a few hundred
+ * steps, so the same packs and step counts say the same arithmetic in the same order. */
 static void
 test_lanes(void)
 {
-	struct pack p[2];
-	struct dem_status st[2];
-	int k, rc[2];
+	static const char *const what[3] = {"lanes", "one pair at a time", "lanes on 2 threads"};
+	struct pack p[3];
+	struct dem_status st[3];
+	int k, rc[3];
 
-	for (k = 0; k < 2; k++) {
+	for (k = 0; k < 3; k++) {
 		struct dem_params dp;
 		gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
 
 		gsl_rng_set(rng, 5);
 		grains(&p[k], rng);
 		dem_params_default(&dp);
-		dp.pair_lanes = k == 0;
+		dp.pair_lanes = k != 1;
+		par_set_threads(k == 2 ? 2 : 1);
 		rc[k] = dem_loose_pack(&p[k], &dp, rng, NULL, NULL, &st[k]);
 		gsl_rng_free(rng);
 	}
-	CHECK(rc[0] == 0 && rc[1] == 0 && st[0].step == st[1].step && p[0].n == p[1].n &&
-	    memcmp(p[0].x, p[1].x, 3 * p[0].n * sizeof *p[0].x) == 0 && memcmp(p[0].box, p[1].box, sizeof p[0].box) == 0,
-	    "dem: pair forces in lanes give the bytes of one pair at a time (%ld and %ld steps)", st[0].step, st[1].step);
-	pack_free(&p[0]);
-	pack_free(&p[1]);
+	par_set_threads(0);
+	for (k = 1; k < 3; k++)
+		CHECK(rc[0] == 0 && rc[k] == 0 && st[0].step == st[k].step && p[0].n == p[k].n &&
+		    memcmp(p[0].x, p[k].x, 3 * p[0].n * sizeof *p[0].x) == 0 &&
+		    memcmp(p[0].box, p[k].box, sizeof p[0].box) == 0,
+		    "dem: %s gives the bytes of %s (%ld and %ld steps)", what[k], what[0], st[k].step, st[0].step);
+	for (k = 0; k < 3; k++)
+		pack_free(&p[k]);
 }
 
 static void
@@ -105,6 +115,7 @@ test_divergence(void)
 int
 main(void)
 {
+	setenv("QUSGM_PAR_BLOCK", "16", 1);	/* before any use of base/par.h */
 	test_rest();
 	test_lanes();
 	test_divergence();

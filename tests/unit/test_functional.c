@@ -723,10 +723,13 @@ test_residual(gsl_rng *rng)
 				g[k] = (gsl_rng_uniform(rng) - 0.5) * pow(10, -7 * gsl_rng_uniform(rng));
 			for (k = 0; k < n; k++)
 				fb[k] = k % 5 == 1 ? 0 : k % 11 == 3 ? NAN : k % 7 == 2 ? 1e-9 : gsl_rng_uniform(rng);
-			if (n > 4 && rot) {	/* equal squares: translation and rotation of the same length */
+			if (n > 9 && rot) {
+				/* equal squares: translation and rotation of the same length */
 				memcpy(g + 3 * n + 3 * 4, g + 3 * 4, 3 * sizeof *g);
+				/* grains with contacts (fbig > 0): a NaN translation, a NaN rotation, both */
 				g[3 * 2 + 1] = NAN;
-				g[3 * n + 3 * 3] = NAN;
+				g[3 * n + 3 * 8] = NAN;
+				g[3 * 9] = g[3 * n + 3 * 9 + 2] = NAN;
 			}
 			qs_residual(&s, g, fb, 1e-3, &a1, &b1);
 			residual_scalar(&s, g, fb, 1e-3, &a2, &b2);
