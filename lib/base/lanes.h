@@ -3,9 +3,8 @@
  * DEM pair force; functional.c's residual and minimize.c's step cap).  Every operation is IEEE
  * arithmetic on each lane, with no contraction (the Makefile's -ffp-contract=off, which GCC's
  * ISO C mode implies and clang's default is not), so a lane computes the bytes its scalar code
- * would.  The point is the divider: on the AMD and
- * Intel cores this runs on, a two-lane division or square root costs what one scalar does,
- * and Hertz and the tangential term are bound by them.  LANES_OK says the extensions exist;
+ * would.  The point is the divider: on the AMD and Intel cores this runs on, a two-lane
+ * division or square root costs what one scalar does, and these kernels are bound by them.  LANES_OK says the extensions exist;
  * without them the callers keep their scalar loops. */
 #ifndef QUSGM_LANES_H
 #define QUSGM_LANES_H

@@ -17,7 +17,6 @@
 /* doubles per grain in f->gs: x - x0 (3), w = R Omega (3) */
 #define FR_GS 6
 
-
 void
 fr_init(struct qs_friction *f, enum fr_rule rule)
 {

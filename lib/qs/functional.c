@@ -156,17 +156,24 @@ normal_add(struct normal_acc *a, const struct contact *c, double P, double U)
 		normal_add_pair(a, c, P, U);
 }
 
+/* Contact c through s's law's interface: its energy, normal force *P and, unless k is NULL,
+ * stiffness *k (every law; Hertz's fast paths below give the same bytes). */
+static double
+law_normal_at(const struct qs_system *s, const struct contact *c, double *P, double *k)
+{
+	struct law_pair lp;
+
+	s->law->pair(s->law, s->p, c->i, c->j, &lp);
+	return s->law->normal(s->law, &lp, c->h, P, k);
+}
+
 /* Any other law, through its interface. */
 static int
 on_law(const struct contact *c, void *vacc)
 {
 	struct normal_acc *a = vacc;
-	const struct contact_law *law = a->s->law;
-	struct law_pair lp;
-	double P, U;
+	double P, U = law_normal_at(a->s, c, &P, NULL);
 
-	law->pair(law, a->s->p, c->i, c->j, &lp);
-	U = law->normal(law, &lp, c->h, &P, NULL);
 	normal_add(a, c, P, U);
 	return 0;
 }
@@ -382,10 +389,9 @@ on_stiffness(const struct contact *c, void *vacc)
 	const double *r = s->p->r;
 
 	if (s->law != &contact_law_hertz_mindlin) {
-		struct law_pair lp;
 		double P, kk;
-		s->law->pair(s->law, s->p, c->i, c->j, &lp);
-		s->law->normal(s->law, &lp, c->h, &P, &kk);
+
+		law_normal_at(s, c, &P, &kk);
 		a->k[c->i] += PACK_IS_WALL(c->j) ? kk : 1.5 * kk;
 		if (!PACK_IS_WALL(c->j))
 			a->k[c->j] += 1.5 * kk;
@@ -451,12 +457,9 @@ static int
 on_hessian(const struct contact *c, void *vacc)
 {
 	struct hessian_acc *a = vacc;
-	const struct contact_law *law = a->s->law;
-	struct law_pair lp;
 	double P, k;
 
-	law->pair(law, a->s->p, c->i, c->j, &lp);
-	law->normal(law, &lp, c->h, &P, &k);
+	law_normal_at(a->s, c, &P, &k);
 	return hessian_add(a, c, P, k);
 }
 
