@@ -448,6 +448,12 @@ contacts_store(struct pack *p, int keep_history)
 int
 contacts_store_in(struct pack *p, struct contact_enum *e, int keep_history)
 {
+	return contacts_store_found(p, e, keep_history, NULL);
+}
+
+int
+contacts_store_found(struct pack *p, struct contact_enum *e, int keep_history, struct geo_contacts *found)
+{
 	struct geo_contacts gc;
 	struct pack_contact *old = NULL;
 	size_t k, nold = 0;
@@ -476,6 +482,14 @@ contacts_store_in(struct pack *p, struct contact_enum *e, int keep_history)
 			goto fail;
 	}
 	free(old);
+	if (found) {
+		/* line k is contact k's: what match_history finds in the lines just written */
+		for (k = 0; k < gc.n; k++)
+			gc.c[k].hist = (long)k;
+		contacts_free(found);
+		*found = gc;
+		return 0;
+	}
 	contacts_free(&gc);
 	return 0;
 fail:

@@ -357,6 +357,11 @@ int contacts_find_in(const struct pack *p, struct contact_enum *e, struct geo_co
 int contacts_store(struct pack *p, int keep_history);
 /* contacts_store through the caller's enumerator e (contacts_find_in); NULL: a new one. */
 int contacts_store_in(struct pack *p, struct contact_enum *e, int keep_history);
+/* contacts_store_in that also hands the contacts it found to the caller (found, freed first):
+ * the list contacts_find_in would give at the same positions now, each contact's hist its
+ * new line.  A frictional increment's commit and the start of the next settle pass, at the
+ * same positions, then walk the contacts once instead of twice.  0 or -1. */
+int contacts_store_found(struct pack *p, struct contact_enum *e, int keep_history, struct geo_contacts *found);
 /* The E* and R* of contact c. */
 void contacts_moduli(const struct pack *p, const struct geo_contact *c, double *Es, double *Rs);
 

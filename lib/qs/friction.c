@@ -31,7 +31,18 @@ fr_free(struct qs_friction *f)
 	free(f->x0);
 	free(f->gs);
 	free(f->row_first), free(f->wall_first), free(f->col_first), free(f->col_k), free(f->blk);
+	contacts_free(&f->found);
 	memset(f, 0, sizeof *f);
+}
+
+void
+fr_keep_found(struct qs_friction *f, int on)
+{
+	f->keep_found = on;
+	if (!on) {
+		contacts_free(&f->found);
+		f->found_ok = 0;
+	}
 }
 
 int
@@ -64,7 +75,9 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	struct law_pair lp;
 	struct law_tangent t;
 
-	memset(c, 0, sizeof *c);
+	/* every field is set below (no memset: 224 bytes of stores a contact and pass) */
+	c->qp[0] = c->qp[1] = c->qp[2] = 0;
+	c->qtrial = 0;
 	c->i = i;
 	c->j = g->j;
 	memcpy(c->n, g->n, sizeof c->n);
@@ -280,9 +293,16 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 	struct geo_contacts gc;
 	size_t k, matched = 0;
 
-	contacts_init(&gc);
-	if (contacts_find_in(p, &s->ce, &gc))
-		return -1;
+	/* the last commit's contacts when it kept them (fr_keep_found), else found here */
+	if (f->found_ok) {
+		gc = f->found;
+		contacts_init(&f->found);
+		f->found_ok = 0;
+	} else {
+		contacts_init(&gc);
+		if (contacts_find_in(p, &s->ce, &gc))
+			return -1;
+	}
 	if (gc.n > f->cap) {
 		struct fr_contact *c = realloc(f->c, gc.n * sizeof *c);
 		if (!c) {
@@ -914,8 +934,10 @@ fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x)
 			return -1;
 	}
 	memcpy(p->x, x, n3 * sizeof *x);
-	if (contacts_store_in(p, &s->ce, 1))
+	f->found_ok = 0;
+	if (contacts_store_found(p, &s->ce, 1, f->keep_found ? &f->found : NULL))
 		return -1;
+	f->found_ok = f->keep_found;
 	memset(x + n3, 0, n3 * sizeof *x);
 	/* A commit far from equilibrium (a minimisation stopped at its iteration limit, kept
 	 * with --allow-limit) can leave a line whose normal force fell by far more than one

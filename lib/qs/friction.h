@@ -32,6 +32,7 @@
 #ifndef QUSGM_FRICTION_H
 #define QUSGM_FRICTION_H
 
+#include "contact/contacts.h"
 #include "qs/functional.h"
 #include "pack/pack.h"
 
@@ -80,6 +81,9 @@ struct qs_friction {
 	 * bound), slipped to their limit at P0 so that the pack reads back; nonzero only when
 	 * the increment ended far from equilibrium */
 	size_t ncommit_slipped;
+	/* fr_keep_found: a commit's contacts, kept for the next fr_begin at the same positions */
+	int keep_found, found_ok;
+	struct geo_contacts found;
 };
 
 void fr_init(struct qs_friction *f, enum fr_rule rule);
@@ -117,6 +121,13 @@ int fr_commit(struct qs_friction *f, struct qs_system *s, double *x);
 /* fr_commit of a state where the functional was last evaluated (the contacts' forces are x's,
  * as a minimiser leaves them: qs_minimizer_current), without evaluating it again. */
 int fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x);
+/* With on, each commit keeps the contacts it found at its positions (contacts_store_found)
+ * and the next fr_begin starts from them instead of walking the contacts again: the caller
+ * promises that the pack (positions, radii, box, moduli, history) does not change between
+ * the two, as in a settle pass that begins where the last commit ended.  Off drops a kept
+ * list.  The list lives only between a commit and the next start, where fr_begin would
+ * hold one anyway, so the peak memory is unchanged. */
+void fr_keep_found(struct qs_friction *f, int on);
 /* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
  * |Q| >= Q_max (1 - 1e-9)). */
 size_t fr_sliding(const struct qs_friction *f);

@@ -313,14 +313,21 @@ loader_step(struct loader *L, const double de[3], struct load_row *row)
 	if (st < 0)
 		return -1;
 	if (L->lp.friction) {
-		if (commit(L))
+		/* each commit's contacts start the next settle pass, at the same positions */
+		fr_keep_found(&L->f, 1);
+		if (commit(L)) {
+			fr_keep_found(&L->f, 0);
 			return -1;
+		}
 		/* the increment's sliding contacts (fr_commit), before any settling: settling
 		 * slips contacts to the limits of their new normal forces, which would count
 		 * the relaxation of the commit, not the increment */
 		nsl = L->f.nlimit;
 		ntr = L->f.ntrial_slip;
-		if (st == 0 && (st = settle(L, &rep)) < 0)
+		if (st == 0)
+			st = settle(L, &rep);
+		fr_keep_found(&L->f, 0);
+		if (st < 0)
 			return -1;
 	} else {
 		memcpy(L->p->x, L->x, 3 * L->p->n * sizeof *L->x);

@@ -455,6 +455,17 @@ test_find_in(gsl_rng *rng)
 		    (c && !((c->i == b.c[k].i && c->j == b.c[k].j) || ((long)c->i == b.c[k].j && c->j == (long)b.c[k].i)));
 	}
 	CHECK(hist_diff == 0, "find_in: shuffled lines matched to the same pairs (%zu differ)", hist_diff);
+	/* a store that hands over what it found (a commit before the next settle pass, with the
+	 * shuffled lines as the old history): the list contacts_find_in gives at the same
+	 * positions, record for record and history index for index */
+	for (k = 0; k < p.nc; k++)
+		p.c[k].Q0[0] = 1e-3 * (double)(k + 1);
+	CHECK(contacts_store_found(&p, &e, 1, &a) == 0 && contacts_find_in(&p, &e, &b) == 0,
+	    "store_found: stored, then found again");
+	for (diff = k = 0; k < a.n && k < b.n; k++)
+		diff += memcmp(&a.c[k], &b.c[k], sizeof a.c[k]) != 0 || a.c[k].hist != (long)k;
+	CHECK(a.n == b.n && a.n == p.nc && diff == 0, "store_found: %zu contacts as found again (%zu), %zu differ", a.n,
+	    b.n, diff);
 	contacts_free(&a);
 	contacts_free(&b);
 	contact_enum_free(&e);
