@@ -96,7 +96,7 @@ vec_block(size_t n)
  * each in turn, each chain still in its own order (the same bytes as one block after the
  * other, up to four times as fast).  op: y[k] (written first when op writes) and the term
  * z[k] y[k] of element k. */
-enum { OP_DOT, OP_NEG_DOT, OP_AXPY_DOT };
+enum { OP_DOT, OP_NEG_DOT, OP_AXPY_DOT, OP_QUAD3 };
 
 #if defined(__GNUC__)
 #define PAR_INLINE static inline __attribute__((always_inline))
@@ -109,6 +109,11 @@ op_term(const int op, size_t k, double *y, const double *x, const double *z, dou
 {
 	if (op == OP_DOT)
 		return x[k] * z[k];
+	if (op == OP_QUAD3) {	/* x: the 3x3 blocks M; z[k] (M z)[k], (M z)[k] as precond_apply */
+		size_t i = k / 3, u = k % 3;
+		const double *Mr = x + 9 * i + 3 * u, *zi = z + 3 * i;
+		return z[k] * (Mr[0] * zi[0] + Mr[1] * zi[1] + Mr[2] * zi[2]);
+	}
 	if (op == OP_NEG_DOT)
 		y[k] = -x[k];
 	else
@@ -165,6 +170,8 @@ op_sum(const int op, size_t n, double *y, const double *x, const double *z, doub
 		/* op as a constant in each call: OpenMP outlines the region before inlining */
 		if (op == OP_DOT)
 			op_blocks(OP_DOT, n, bl, q0, q1, part, y, x, z, f, c);
+		else if (op == OP_QUAD3)
+			op_blocks(OP_QUAD3, n, bl, q0, q1, part, y, x, z, f, c);
 		else if (op == OP_NEG_DOT)
 			op_blocks(OP_NEG_DOT, n, bl, q0, q1, part, y, x, z, f, c);
 		else
@@ -228,6 +235,12 @@ void
 par_copy(double *y, const double *x, size_t n)
 {
 	copy_pieces(y, x, n);
+}
+
+double
+par_quad3(const double *M, const double *y, size_t n)
+{
+	return op_sum(OP_QUAD3, n, NULL, M, y, 0, 0);
 }
 
 double

@@ -63,9 +63,14 @@ void par_copy(double *y, const double *x, size_t n);
  *    exactly), then par_dot(z, y, n);
  *  - par_diff_dots: s[k] = a[k] - b[k], y[k] = u[k] - v[k], then *sy = par_dot(s, y, n) and
  *    *yy = par_dot(y, y, n).
+ *  - par_quad3: the quadratic form y.(M y) of the block-diagonal M (n/3 blocks of 3x3 in
+ *    rows, 9 doubles apart), each (M y)[k] = M[3u] y0 + M[3u+1] y1 + M[3u+2] y2 of its node
+ *    in that order: the bytes of forming d = M y node by node, then par_dot(y, d, n),
+ *    without writing d.
  * z must not overlap y. */
 double par_neg_dot(double *y, const double *x, const double *z, size_t n);
 double par_axpy_scale_dot(double *y, double f, const double *x, double c, const double *z, size_t n);
+double par_quad3(const double *M, const double *y, size_t n);
 void par_diff_dots(double *s, const double *a, const double *b, double *y, const double *u, const double *v, size_t n,
     double *sy, double *yy);
 

@@ -363,6 +363,8 @@ cg_iterate(struct qs_minimizer *m)
 static void grain_precond(struct qs_minimizer *m);
 static void newton_precond(struct qs_minimizer *m);
 static void precond_apply(const struct qs_minimizer *m, const double *r, double *z);
+static void precond_scaled(const struct qs_minimizer *m, const double *v, double f, const double *y, double gamma,
+    double *z);
 
 /* The storage of lbfgs's and fire's preconditioner when precond_shift > 0: the diagonal
  * blocks, which newton_precond overwrites with their inverses, and a work vector. */
@@ -508,7 +510,8 @@ lbfgs_alloc(struct qs_minimizer *m)
 /* The two loops of L-BFGS's recursion over the stored pairs, each axpy fused with the dot
  * product that follows it (par.h: the same bytes as the plain passes).  lbfgs_loop1: v = -g,
  * then newest to oldest al_c = rho_c s_c.v, v -= al_c y_c; its last axpy scaled by scale and
- * dotted with last (returned), or plain when last is NULL.  lbfgs_loop2: oldest to newest
+ * dotted with last (returned), or, when last is NULL, left to the caller (al_c set: the
+ * preconditioner's pass takes it, precond_scaled).  lbfgs_loop2: oldest to newest
  * b = rho_c y_c.v (t the first of these dots), v += (al_c - b) s_c; returns v.g. */
 static double
 lbfgs_loop1(struct qs_minimizer *m, double *v, double scale, const double *last)
@@ -528,8 +531,6 @@ lbfgs_loop1(struct qs_minimizer *m, double *v, double scale, const double *last)
 			t = par_axpy_scale_dot(v, -m->al[c], m->Y + (size_t)c * n3, 1, m->S + (size_t)cn * n3, n3);
 		} else if (last) {
 			t = par_axpy_scale_dot(v, -m->al[c], m->Y + (size_t)c * n3, scale, last, n3);
-		} else {
-			par_axpy(v, -m->al[c], m->Y + (size_t)c * n3, n3);
 		}
 	}
 	return t;
@@ -649,13 +650,13 @@ lbfgs_direction_precond(struct qs_minimizer *m)
 	lbfgs_loop1(m, m->z, 1, NULL);
 	if (m->count > 0) {
 		c = (m->head - 1 + mm) % mm;
-		precond_apply(m, m->Y + (size_t)c * n3, w->d);
-		gamma = m->sy[c] / par_dot(m->Y + (size_t)c * n3, w->d, n3);
+		gamma = m->sy[c] / par_quad3(m->Minv, m->Y + (size_t)c * n3, n3);
 	}
-	precond_apply(m, m->z, w->d);
-	/* the scaling by gamma in the second loop's first dot's pass */
+	/* the first loop's last axpy (against the oldest y), P^-1 and the scaling by gamma in
+	 * one pass; then the second loop's first dot, against that same y */
 	cn = (m->head - m->count + mm) % mm;
-	t = par_axpy_scale_dot(w->d, 0, w->d, gamma, m->count ? m->Y + (size_t)cn * n3 : w->g, n3);
+	precond_scaled(m, m->z, m->count ? -m->al[cn] : 0, m->count ? m->Y + (size_t)cn * n3 : NULL, gamma, w->d);
+	t = par_dot(m->count ? m->Y + (size_t)cn * n3 : w->g, w->d, n3);
 	t = lbfgs_loop2(m, w->d, t);
 	m->dg = t;
 	if (!(m->dg < 0)) {	/* not downhill (or no stiffness at all): forget the history */
@@ -786,6 +787,32 @@ precond_apply(const struct qs_minimizer *m, const double *r, double *z)
 		zi[0] = M[0] * ri[0] + M[1] * ri[1] + M[2] * ri[2];
 		zi[1] = M[3] * ri[0] + M[4] * ri[1] + M[5] * ri[2];
 		zi[2] = M[6] * ri[0] + M[7] * ri[1] + M[8] * ri[2];
+	}
+}
+
+/* z = gamma P^-1 (v + f y) node by node (y NULL: P^-1 v), with the bytes of par_axpy(v, f, y),
+ * precond_apply(v, z) and par_axpy_scale_dot(z, 0, z, gamma, ...) one after the other, in one
+ * pass and without writing v. */
+static void
+precond_scaled(const struct qs_minimizer *m, const double *v, double f, const double *y, double gamma, double *z)
+{
+	size_t i;
+
+#pragma omp parallel for schedule(static) if (m->w.n3 >= PAR_MIN_VEC)
+	for (i = 0; i < m->H.n; i++) {
+		const double *M = m->Minv + 9 * i, *vi = v + 3 * i;
+		double r0 = vi[0], r1 = vi[1], r2 = vi[2], z0, z1, z2, *zi = z + 3 * i;
+
+		if (y) {
+			const double *yi = y + 3 * i;
+			r0 = r0 + f * yi[0], r1 = r1 + f * yi[1], r2 = r2 + f * yi[2];
+		}
+		z0 = M[0] * r0 + M[1] * r1 + M[2] * r2;
+		z1 = M[3] * r0 + M[4] * r1 + M[5] * r2;
+		z2 = M[6] * r0 + M[7] * r1 + M[8] * r2;
+		zi[0] = gamma * (z0 + 0 * z0);
+		zi[1] = gamma * (z1 + 0 * z1);
+		zi[2] = gamma * (z2 + 0 * z2);
 	}
 }
 

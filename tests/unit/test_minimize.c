@@ -12,6 +12,7 @@
  *    and stopped_by "max_iter";
  *  - the displacement cap: between successive iterations no grain moves more than cap R, and
  *    the cap is reached (so the check is not vacuous); FIRE likewise for its first step. */
+#include "base/par.h"
 #include "qs/functional.h"
 #include "qs/loading.h"
 #include "qs/minimize.h"
@@ -56,6 +57,50 @@ move_slack(const struct pack *p, const double *x)
 	return 4 * DBL_EPSILON * xm / rmin;
 }
 
+/* par's fused passes against the plain ones they stand for, to the bit: par_quad3 (the
+ * L-BFGS preconditioner's gamma) against d = M y node by node and par_dot(y, d), and
+ * par_axpy_scale_dot against par_axpy, par_scale and par_dot, on vectors of several
+ * blocks whose bounds fall inside a node (4096 is not a multiple of 3), on 1 and 2 threads. */
+static void
+test_fused_passes(gsl_rng *rng)
+{
+	size_t nn = 4001, n3 = 3 * nn, k, i;
+	double *M = malloc(9 * nn * sizeof *M), *y = malloc(n3 * sizeof *y), *d = malloc(n3 * sizeof *d);
+	double *a = malloc(n3 * sizeof *a), *b = malloc(n3 * sizeof *b), *e = malloc(n3 * sizeof *e);
+	int th;
+
+	for (k = 0; k < 9 * nn; k++)
+		M[k] = gsl_ran_gaussian(rng, 1.0);
+	for (i = 0; i < nn; i += 7)	/* rows where the order of a row's three products shows */
+		for (k = 0; k < 3; k++)
+			M[9 * i + 3 * k + 1] += 3e15, M[9 * i + 3 * k + 2] -= 3e15;
+	for (k = 0; k < n3; k++)
+		y[k] = gsl_ran_gaussian(rng, 1.0) * exp(8 * gsl_rng_uniform(rng)), a[k] = gsl_ran_gaussian(rng, 1.0);
+	for (i = 0; i < nn; i++) {
+		const double *Mi = M + 9 * i, *yi = y + 3 * i;
+		for (k = 0; k < 3; k++)
+			d[3 * i + k] = Mi[3 * k] * yi[0] + Mi[3 * k + 1] * yi[1] + Mi[3 * k + 2] * yi[2];
+	}
+	for (th = 1; th <= 2; th++) {
+		double q, ref = par_dot(y, d, n3), t1, t2;
+		par_set_threads(th);
+		q = par_quad3(M, y, n3);
+		CHECK(q == ref, "par_quad3 on %d thread(s): y.(M y) as d = M y then par_dot, to the bit (%.17g, %.17g)", th, q,
+		    ref);
+		memcpy(b, a, n3 * sizeof *b);
+		t1 = par_axpy_scale_dot(b, -0.37, y, 1.3, d, n3);
+		memcpy(e, a, n3 * sizeof *e);
+		par_axpy(e, -0.37, y, n3);
+		par_scale(e, 1.3, e, n3);
+		t2 = par_dot(d, e, n3);
+		CHECK(t1 == t2 && memcmp(b, e, n3 * sizeof *e) == 0,
+		    "par_axpy_scale_dot on %d thread(s): the plain passes' vector and sum to the bit (%.17g, %.17g)", th, t1,
+		    t2);
+	}
+	par_set_threads(0);
+	free(M), free(y), free(d), free(a), free(b), free(e);
+}
+
 int
 main(void)
 {
@@ -73,6 +118,8 @@ main(void)
 	xb = malloc(n3 * sizeof *xb);
 	cc = malloc(n * sizeof *cc);
 	cf = malloc(n * sizeof *cf);
+
+	test_fused_passes(rng);
 
 	/* the common start: equilibrium of the generated pack, strained 1e-4 along z, perturbed */
 	nz = (unsigned)strained_start(&p, rng, x0, NULL, &rep, cc);
