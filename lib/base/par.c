@@ -1,5 +1,6 @@
 /* par: threads and thread-count-independent sums (see par.h). */
 #include "base/par.h"
+#include "base/lanes.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -121,6 +122,57 @@ op_term(const int op, size_t k, double *y, const double *x, const double *z, dou
 	return z[k] * y[k];
 }
 
+#if LANES_OK
+/* op_term on elements k and k + 1 in two lanes: the same operations on each (no
+ * contraction), so each lane's term has op_term's bytes. */
+PAR_INLINE v2d
+op_term2(const int op, size_t k, double *y, const double *x, const double *z, double f, double c)
+{
+	v2d X, Y, Z;
+
+	if (op == OP_DOT) {
+		memcpy(&X, x + k, sizeof X);
+		memcpy(&Z, z + k, sizeof Z);
+		return X * Z;
+	}
+	memcpy(&X, x + k, sizeof X);
+	if (op == OP_NEG_DOT) {
+		Y = -X;
+	} else {
+		memcpy(&Y, y + k, sizeof Y);
+		Y = (v2d){c, c} * (Y + (v2d){f, f} * X);
+	}
+	memcpy(y + k, &Y, sizeof Y);
+	memcpy(&Z, z + k, sizeof Z);
+	return Z * Y;
+}
+
+/* Four blocks' chains, elements k and k + 1 of each at a time: the terms come in two lanes
+ * per block, are regrouped (a 2x2 transpose) so that one register holds element k of blocks
+ * 0 and 1, the next element k + 1 of both, and are added to the chains (t0, t1) and (t2, t3)
+ * in that order: each chain still adds its block's terms one by one from its first element,
+ * the bytes of the scalar walk, with half its instructions.  Returns the elements done (an
+ * odd last one is left to the scalar walk). */
+PAR_INLINE size_t
+op_chains4(const int op, size_t bl, size_t k0, double t[4], double *y, const double *x, const double *z, double f,
+    double c)
+{
+	size_t k, k1 = k0 + bl, k2 = k1 + bl, k3 = k2 + bl;
+	v2d T01 = {0, 0}, T23 = {0, 0};
+
+	for (k = 0; k + 2 <= bl; k += 2) {
+		v2d p0 = op_term2(op, k0 + k, y, x, z, f, c), p1 = op_term2(op, k1 + k, y, x, z, f, c);
+		v2d p2 = op_term2(op, k2 + k, y, x, z, f, c), p3 = op_term2(op, k3 + k, y, x, z, f, c);
+		T01 += (v2d){p0[0], p1[0]};
+		T23 += (v2d){p2[0], p3[0]};
+		T01 += (v2d){p0[1], p1[1]};
+		T23 += (v2d){p2[1], p3[1]};
+	}
+	t[0] = T01[0], t[1] = T01[1], t[2] = T23[0], t[3] = T23[1];
+	return k;
+}
+#endif
+
 /* Blocks q0 <= q < q1 of n elements in blocks of bl into part[q]. */
 PAR_INLINE void
 op_blocks(const int op, size_t n, size_t bl, size_t q0, size_t q1, double *part, double *y, const double *x,
@@ -131,7 +183,15 @@ op_blocks(const int op, size_t n, size_t bl, size_t q0, size_t q1, double *part,
 	for (; q + 4 <= q1 && (q + 4) * bl <= n; q += 4) {
 		size_t k0 = q * bl, k1 = k0 + bl, k2 = k1 + bl, k3 = k2 + bl;
 		double t0 = 0, t1 = 0, t2 = 0, t3 = 0;
-		for (k = 0; k < bl; k++) {
+		k = 0;
+#if LANES_OK
+		if (op != OP_QUAD3) {
+			double t[4];
+			k = op_chains4(op, bl, k0, t, y, x, z, f, c);
+			t0 = t[0], t1 = t[1], t2 = t[2], t3 = t[3];
+		}
+#endif
+		for (; k < bl; k++) {
 			t0 += op_term(op, k0 + k, y, x, z, f, c);
 			t1 += op_term(op, k1 + k, y, x, z, f, c);
 			t2 += op_term(op, k2 + k, y, x, z, f, c);
@@ -255,28 +315,83 @@ par_axpy_scale_dot(double *y, double f, const double *x, double c, const double 
 	return op_sum(OP_AXPY_DOT, n, y, x, z, f, c);
 }
 
+#if LANES_OK
+/* par_diff_dots' elements k and k + 1 of block k0's run in lanes: s, y written, the terms
+ * s y and y y into *sy and *yy (each lane op for op as the scalar walk). */
+PAR_INLINE void
+diff_term2(size_t k, double *s, const double *a, const double *b, double *y, const double *u, const double *v,
+    v2d *sy, v2d *yy)
+{
+	v2d A, B, U, V, S, Y;
+
+	memcpy(&A, a + k, sizeof A), memcpy(&B, b + k, sizeof B);
+	memcpy(&U, u + k, sizeof U), memcpy(&V, v + k, sizeof V);
+	S = A - B, Y = U - V;
+	memcpy(s + k, &S, sizeof S), memcpy(y + k, &Y, sizeof Y);
+	*sy = S * Y, *yy = Y * Y;
+}
+#endif
+
 void
 par_diff_dots(double *s, const double *a, const double *b, double *y, const double *u, const double *v, size_t n,
     double *sy, double *yy)
 {
 	double p1[PAR_MAXBLOCKS], p2[PAR_MAXBLOCKS], s1 = 0, s2 = 0;
-	size_t bl = vec_block(n), nb = (n + bl - 1) / bl;
-	long q;
+	size_t bl = vec_block(n), nb = (n + bl - 1) / bl, q2;
 
-#pragma omp parallel for schedule(static) if (n >= PAR_MIN_VEC)
-	for (q = 0; q < (long)nb; q++) {
-		size_t k, k0 = (size_t)q * bl, k1 = k0 + bl < n ? k0 + bl : n;
-		double t1 = 0, t2 = 0;
-		for (k = k0; k < k1; k++) {
-			s[k] = a[k] - b[k];
-			y[k] = u[k] - v[k];
-			t1 += s[k] * y[k];
-			t2 += y[k] * y[k];
+#pragma omp parallel if (n >= PAR_MIN_VEC && nb > 1)
+	{
+		size_t T = (size_t)par_team(), t = (size_t)par_tid(), q0 = nb * t / T, q1 = nb * (t + 1) / T, q = q0, k;
+
+		/* four blocks' chains at a time in lanes, as op_chains4 (the same order per chain) */
+		for (; q + 4 <= q1 && (q + 4) * bl <= n; q += 4) {
+			size_t k0 = q * bl, kb[4] = {k0, k0 + bl, k0 + 2 * bl, k0 + 3 * bl};
+			double t1[4] = {0, 0, 0, 0}, t2[4] = {0, 0, 0, 0};
+			int w;
+			k = 0;
+#if LANES_OK
+			{
+				v2d A01 = {0, 0}, A23 = {0, 0}, B01 = {0, 0}, B23 = {0, 0};
+				for (; k + 2 <= bl; k += 2) {
+					v2d sy0, yy0, sy1, yy1, sy2, yy2, sy3, yy3;
+					diff_term2(kb[0] + k, s, a, b, y, u, v, &sy0, &yy0);
+					diff_term2(kb[1] + k, s, a, b, y, u, v, &sy1, &yy1);
+					diff_term2(kb[2] + k, s, a, b, y, u, v, &sy2, &yy2);
+					diff_term2(kb[3] + k, s, a, b, y, u, v, &sy3, &yy3);
+					A01 += (v2d){sy0[0], sy1[0]}, A23 += (v2d){sy2[0], sy3[0]};
+					B01 += (v2d){yy0[0], yy1[0]}, B23 += (v2d){yy2[0], yy3[0]};
+					A01 += (v2d){sy0[1], sy1[1]}, A23 += (v2d){sy2[1], sy3[1]};
+					B01 += (v2d){yy0[1], yy1[1]}, B23 += (v2d){yy2[1], yy3[1]};
+				}
+				t1[0] = A01[0], t1[1] = A01[1], t1[2] = A23[0], t1[3] = A23[1];
+				t2[0] = B01[0], t2[1] = B01[1], t2[2] = B23[0], t2[3] = B23[1];
+			}
+#endif
+			for (; k < bl; k++)
+				for (w = 0; w < 4; w++) {
+					size_t e = kb[w] + k;
+					s[e] = a[e] - b[e];
+					y[e] = u[e] - v[e];
+					t1[w] += s[e] * y[e];
+					t2[w] += y[e] * y[e];
+				}
+			for (w = 0; w < 4; w++)
+				p1[q + (size_t)w] = t1[w], p2[q + (size_t)w] = t2[w];
 		}
-		p1[q] = t1;
-		p2[q] = t2;
+		for (; q < q1; q++) {
+			size_t k1 = (q + 1) * bl < n ? (q + 1) * bl : n;
+			double t1 = 0, t2 = 0;
+			for (k = q * bl; k < k1; k++) {
+				s[k] = a[k] - b[k];
+				y[k] = u[k] - v[k];
+				t1 += s[k] * y[k];
+				t2 += y[k] * y[k];
+			}
+			p1[q] = t1;
+			p2[q] = t2;
+		}
 	}
-	for (size_t q2 = 0; q2 < nb; q2++) {
+	for (q2 = 0; q2 < nb; q2++) {
 		s1 += p1[q2];
 		s2 += p2[q2];
 	}

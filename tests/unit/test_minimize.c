@@ -101,6 +101,68 @@ test_fused_passes(gsl_rng *rng)
 	free(M), free(y), free(d), free(a), free(b), free(e);
 }
 
+/* par_dot against its definition written out: blocks of max(par_block(n), PAR_MIN_VEC)
+ * elements, each summed one term at a time from its first, the block sums then added in
+ * order; with an even block length (4096) and an odd one (4097, n = 1024 x 4097), n not a
+ * multiple of the block, on 1 and 2 threads.  The two-lane walk of four blocks at a time
+ * (par.c, op_chains4) must keep each chain's order. */
+static void
+test_dot_blocks(gsl_rng *rng)
+{
+	size_t sizes[] = {3 * 2740 * 2, 4 * 4096 + 7, 1024 * 4097}, z, k, q;
+	int th;
+
+	for (z = 0; z < sizeof sizes / sizeof *sizes; z++) {
+		size_t n = sizes[z], bl = par_block(n) < PAR_MIN_VEC ? PAR_MIN_VEC : par_block(n), nb = (n + bl - 1) / bl;
+		double *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b), ref = 0;
+
+		for (k = 0; k < n; k++)
+			a[k] = gsl_ran_gaussian(rng, 1.0) * exp(20 * gsl_rng_uniform(rng)), b[k] = gsl_ran_gaussian(rng, 1.0);
+		for (q = 0; q < nb; q++) {
+			double t = 0;
+			for (k = q * bl; k < (q + 1) * bl && k < n; k++)
+				t += a[k] * b[k];
+			ref += t;
+		}
+		for (th = 1; th <= 2; th++) {
+			double d;
+			par_set_threads(th);
+			d = par_dot(a, b, n);
+			CHECK(d == ref, "par_dot of %zu elements in blocks of %zu, %d thread(s): the blocks' sums in order, to the "
+			    "bit (%.17g, %.17g)", n, bl, th, d, ref);
+		}
+		/* par_diff_dots: s = a - b, y = b - a / 3 (stand-ins for the new pair), s.y and y.y */
+		{
+			double *c = malloc(n * sizeof *c), *sv = malloc(n * sizeof *sv), *yv = malloc(n * sizeof *yv), sy, yy;
+			double rsy = 0, ryy = 0;
+			size_t bad = 0;
+
+			for (k = 0; k < n; k++)
+				c[k] = a[k] / 3;
+			for (q = 0; q < nb; q++) {
+				double t1 = 0, t2 = 0;
+				for (k = q * bl; k < (q + 1) * bl && k < n; k++) {
+					double sk = a[k] - b[k], yk = b[k] - c[k];
+					t1 += sk * yk;
+					t2 += yk * yk;
+				}
+				rsy += t1, ryy += t2;
+			}
+			for (th = 1; th <= 2; th++) {
+				par_set_threads(th);
+				par_diff_dots(sv, a, b, yv, b, c, n, &sy, &yy);
+				for (bad = k = 0; k < n; k++)
+					bad += sv[k] != a[k] - b[k] || yv[k] != b[k] - c[k];
+				CHECK(sy == rsy && yy == ryy && bad == 0, "par_diff_dots of %zu elements, %d thread(s): the vectors "
+				    "(%zu differ) and both sums to the bit (%.17g %.17g, %.17g %.17g)", n, th, bad, sy, rsy, yy, ryy);
+			}
+			free(c), free(sv), free(yv);
+		}
+		par_set_threads(0);
+		free(a), free(b);
+	}
+}
+
 int
 main(void)
 {
@@ -120,6 +182,7 @@ main(void)
 	cf = malloc(n * sizeof *cf);
 
 	test_fused_passes(rng);
+	test_dot_blocks(rng);
 
 	/* the common start: equilibrium of the generated pack, strained 1e-4 along z, perturbed */
 	nz = (unsigned)strained_start(&p, rng, x0, NULL, &rep, cc);
