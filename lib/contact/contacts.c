@@ -143,11 +143,23 @@ carry_history(struct contact_enum *e)
 	return 0;
 }
 
+void
+contact_enum_skin_auto(struct contact_enum *e, double skin_max)
+{
+	e->skin_max = skin_max;
+	e->skin = skin_max / 6;
+}
+
 int
 contact_enum_update(struct contact_enum *e, const double *x, int force)
 {
+	e->updates++;
 	if (!force && !e->stale && e->nl.first && !nlist_stale(&e->nl, x, e->lo, e->hi))
 		return 0;
+	/* a list that went stale soon: the next one with twice the skin (contact_enum_skin_auto) */
+	if (!force && !e->stale && e->nl.first && e->skin < e->skin_max && e->updates - e->updates_built < CONTACT_SKIN_GROW)
+		e->skin = fmin(2 * e->skin, e->skin_max);
+	e->updates_built = e->updates;
 	if (e->hsize) {	/* the last list stays, for carrying the history over */
 		struct nlist t = e->prev;
 		e->prev = e->nl;

@@ -80,6 +80,10 @@ struct contact_enum {
 	size_t *col_first, *col_nbr;	/* per grain j, its listed lower neighbours m < j */
 	long col_builds;		/* rebuilds when col_* were made */
 	long rebuilds;			/* lists built so far (nl and prev swap: their own counts repeat) */
+	/* contact_enum_skin_auto: the skin's ceiling (0: the skin is fixed), the updates so far
+	 * and at the last build */
+	double skin_max;
+	long updates, updates_built;
 	long full_builds;		/* rebuilds when the full rows were made */
 };
 
@@ -93,6 +97,16 @@ void contact_enum_free(struct contact_enum *e);
  * built, or force is set).  0 or -1 (out of memory; a periodic axis shorter than three
  * interaction distances). */
 int contact_enum_update(struct contact_enum *e, const double *x, int force);
+/* A skin that follows the motion, up to skin_max: the next list is built with a sixth of it,
+ * and each list that goes stale within CONTACT_SKIN_GROW updates is followed by one with twice
+ * the skin.  The contacts and their order do not depend on the skin (only pairs within it are
+ * listed, touching ones always), so neither does anything computed from them: the skin
+ * trades the pairs each walk visits against the rebuilds.  Near equilibrium (a loading's
+ * increments, whose affine part the staleness test discounts) a list lasts hundreds of
+ * evaluations with a small skin, and the walks visit a third fewer pairs apart; a relaxation
+ * that moves grains far grows the skin back in a few rebuilds. */
+#define CONTACT_SKIN_GROW 100
+void contact_enum_skin_auto(struct contact_enum *e, double skin_max);
 /* The radii changed (grains grew): the list is rebuilt at the next update. */
 void contact_enum_radii_changed(struct contact_enum *e);
 /* Make col_first and col_nbr current for the list: the columns of the half list, i.e. for

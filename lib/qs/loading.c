@@ -111,6 +111,9 @@ loader_open(struct loader *L, struct pack *p, const struct load_params *lp)
 	}
 	if (qs_init(&L->s, p, lp->skin))
 		return -1;
+	/* --skin is the ceiling: increments near equilibrium keep a list with a sixth of it
+	 * (contacts.h; the same bytes, fewer pairs a walk) */
+	contact_enum_skin_auto(&L->s.ce, L->s.skin);
 	fr_init(&L->f, lp->rule);
 	L->x = calloc(6 * (p->n ? p->n : 1), sizeof *L->x);
 	if (!L->x) {

@@ -40,7 +40,7 @@ struct load_params {
 	enum fr_rule rule;
 	int nsub;		/* sub-increments per increment (affine guess each) */
 	long k_inc;		/* minimiser iterations between sub-increments */
-	double skin;		/* Verlet skin / smallest radius */
+	double skin;		/* the largest Verlet skin / smallest radius (contact_enum_skin_auto) */
 	double inc_tol;		/* with friction: the residual the increment is minimised to before
 				 * its commit (LOAD_INC_TOL; at most min.tol: min.tol), see settle */
 	struct qs_min_params min;

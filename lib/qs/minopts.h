@@ -33,7 +33,7 @@ void qs_min_opts_check(struct qs_min_params *mp);
 	{"rule", 0, CLI_STRING, &(rule), "NAME", "sliding rule: return-map (exact potential) or paper (F (6)-(7b))", NULL}, \
 	{"sub-increments", 0, CLI_LONG, &(nsub), "N", "sub-increments per increment (affine guess each)", NULL}, \
 	{"k-inc", 0, CLI_LONG, &(lp).k_inc, "N", "minimiser iterations between sub-increments", NULL},            \
-	{"skin", 0, CLI_DOUBLE, &(lp).skin, "RATIO", "Verlet skin / smallest radius", NULL},                   \
+	{"skin", 0, CLI_DOUBLE, &(lp).skin, "RATIO", "largest Verlet skin / smallest radius", NULL},           \
 	{"inc-tol", 0, CLI_DOUBLE, &(lp).inc_tol, "RATIO", "friction: residual of an increment before its commit; the settle passes then reach --tol", NULL}
 
 /* The loading options of loadtest, frictionalize and dissociate: --mu and --wall-mu in [0, 10]

@@ -472,6 +472,54 @@ test_find_in(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* A skin that follows the motion (contact_enum_skin_auto) finds what a fixed skin finds,
+ * record for record, after every move: small moves keep the small first skin (a sixth of
+ * the ceiling) and one list; moves of a few skins per update grow it to the ceiling. */
+static void
+test_skin_auto(gsl_rng *rng)
+{
+	struct pack p;
+	struct contact_enum fix, au;
+	struct geo_contacts a, b;
+	size_t i, k, diff = 0, compared = 0;
+	int step;
+	double skin = 0.3 * 1e-4;
+	long built = 0;
+
+	random_pack(&p, rng, 500, 1e-4, 0.6, 0.02);
+	contacts_init(&a);
+	contacts_init(&b);
+	CHECK(contact_enum_init(&fix, p.n, p.r, p.box, p.box + 3, p.periodic, skin, 0) == 0 &&
+	    contact_enum_init(&au, p.n, p.r, p.box, p.box + 3, p.periodic, skin, 0) == 0, "skin auto: enumerators made");
+	contact_enum_skin_auto(&au, skin);
+	for (step = 0; step < 400; step++) {
+		double u = step < 200 ? 1e-9 : 3e-6;	/* a hundredth, then a few skins (1/6 of 3e-5) */
+		for (i = 0; i < 3 * p.n; i++)
+			p.x[i] += u * (gsl_rng_uniform(rng) - 0.5);
+		if (contacts_find_in(&p, &fix, &a) || contacts_find_in(&p, &au, &b))
+			break;
+		diff += a.n != b.n;
+		for (k = 0; k < a.n && k < b.n; k++)
+			diff += memcmp(&a.c[k], &b.c[k], sizeof a.c[k]) != 0;
+		compared += a.n;
+		if (step == 199) {
+			CHECK(au.skin == skin / 6 && au.rebuilds == 1,
+			    "skin auto: 200 small moves kept the first skin (%.3g of the ceiling) and list (%ld built)",
+			    au.skin / skin, au.rebuilds);
+			built = au.rebuilds;
+		}
+	}
+	CHECK(step == 400 && diff == 0, "skin auto: the same records as a fixed skin after every move (%zu compared, %zu "
+	    "differ)", compared, diff);
+	CHECK(au.skin == skin && au.rebuilds > built + 2, "skin auto: large moves grew it to the ceiling (%.3g of it, %ld "
+	    "lists)", au.skin / skin, au.rebuilds);
+	contacts_free(&a);
+	contacts_free(&b);
+	contact_enum_free(&fix);
+	contact_enum_free(&au);
+	pack_free(&p);
+}
+
 /* Hertz's per-pair coefficients (functional.c, hertz_coefficients) follow the radii: after
  * grains grow (densify's rounds: contact_enum_radii_changed), an evaluation of the kept
  * system equals a new system's to the bit. */
@@ -520,6 +568,7 @@ main(void)
 	test_steppable(rng);
 	test_nan_energy(rng);
 	test_find_in(rng);
+	test_skin_auto(rng);
 	test_hertz_coefficients(rng);
 	gsl_rng_free(rng);
 	return unit_summary();
