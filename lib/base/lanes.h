@@ -1,6 +1,8 @@
 /* lanes: two doubles side by side in one SSE register (GCC and clang vector extensions),
  * for the hot kernels that evaluate two contacts or two grains at once (friction.c; dem.c, the
- * DEM pair force; functional.c's residual and minimize.c's step cap).  Every operation is IEEE
+ * DEM pair force; functional.c's residual and minimize.c's step cap; par.c's dot products),
+ * and four in an AVX2 register for the friction kernel where the processor has AVX2 (below:
+ * chosen at run time, so the build stays the baseline x86-64 one).  Every operation is IEEE
  * arithmetic on each lane, with no contraction (the Makefile's -ffp-contract=off, which GCC's
  * ISO C mode implies and clang's default is not), so a lane computes the bytes its scalar code
  * would.  The point is the divider: on the AMD and Intel cores this runs on, a two-lane
@@ -38,8 +40,36 @@ typedef long long v2m __attribute__((vector_size(16)));
 		(c)[1] = (a)[2] * (b)[0] - (a)[0] * (b)[2]; \
 		(c)[2] = (a)[0] * (b)[1] - (a)[1] * (b)[0]; \
 	} while (0)
+/* Four lanes (AVX2), for the friction kernel: code in functions marked AVX2_FN (or inlined
+ * into them, AVX2_INLINE), called only where lanes4_ok() says the processor has AVX2.  The
+ * same lane-by-lane IEEE arithmetic as v2d, so the same bytes. */
+#if defined(__x86_64__) && (defined(__clang__) || __GNUC__ >= 5)
+#define LANES4_OK 1
+#include <immintrin.h>
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4m __attribute__((vector_size(32)));
+#define AVX2_FN __attribute__((target("avx2")))
+#define AVX2_INLINE static inline __attribute__((always_inline, target("avx2")))
+#define V4_SELECT(m, a, b) ((v4d)(((v4m)(a) & (m)) | ((v4m)(b) & ~(m))))
+#define V4_ABS(a) ((v4d)((v4m)(a) & (v4m){0x7fffffffffffffffLL, 0x7fffffffffffffffLL, 0x7fffffffffffffffLL, \
+		0x7fffffffffffffffLL}))
+#define V4_SQRT(a) ((v4d)_mm256_sqrt_pd((__m256d)(a)))
+#define V4_CROSS(a, b, c) V2_CROSS(a, b, c)
+static inline int
+lanes4_ok(void)
+{
+	static int ok = -1;
+
+	if (ok < 0)
+		ok = __builtin_cpu_supports("avx2") ? 1 : 0;
+	return ok;
+}
+#else
+#define LANES4_OK 0
+#endif
 #else
 #define LANES_OK 0
+#define LANES4_OK 0
 #define V2_DIV2(q0, q1, a0, a1, b0, b1) do { \
 		(q0) = (a0) / (b0); \
 		(q1) = (a1) / (b1); \

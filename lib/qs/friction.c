@@ -420,107 +420,56 @@ fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double 
 }
 
 #if LANES_OK
-
-/* fr_contact_eval of two pairs under the return map at once, contact c0 in lane 0 and c1 in
- * lane 1, and with g their gradients (fr_add_ij, or fr_add_i where j >= g1): lane by lane the
- * same operations in the same order (IEEE arithmetic on each lane, no contraction), so the
- * same bytes; both branches of each clamp are computed and one chosen by a mask, and the
- * square roots are one two-lane instruction.  The scatter adds lane 0 then lane 1, as two
- * calls of fr_add_ij would.  Their energies into E. */
-CONTACT_INLINE void
-fr_pair2(const struct qs_friction *f, const struct qs_system *s, double *g, size_t g1, struct fr_contact *c0,
-    struct fr_contact *c1, double E[2])
-{
-	const double *g0i = f->gs + FR_GS * c0->i, *g0j = f->gs + FR_GS * (size_t)c0->j;
-	const double *g1i = f->gs + FR_GS * c1->i, *g1j = f->gs + FR_GS * (size_t)c1->j;
-	v2d du[3], wi[3], wj[3], n[3], v[3], us[3], t[3], q[3], sq[3], Q[3], x[3], dn, qq, qn, Ot, m, am, M, es, et, e;
-	v2d k = {c0->k, c1->k}, kt = {c0->kt, c1->kt}, qmax = {c0->qmax, c1->qmax}, mp = {c0->mp, c1->mp};
-	v2d mmax = {c0->mmax, c1->mmax}, pp = {c0->pp, c1->pp}, mpp = {c0->mpp, c1->mpp};
-	v2d ai = {c0->ai, c1->ai}, aj = {c0->aj, c1->aj}, bi = {c0->bi, c1->bi}, bj = {c0->bj, c1->bj};
-	v2m stick, tstick, mpos;
-	struct fr_contact *c;
-	int a, L;
-
-	VEC3_UNROLL
-	for (a = 0; a < 3; a++) {
-		v2d xi = {g0i[a], g1i[a]}, xj = {g0j[a], g1j[a]};
-		du[a] = xi - xj;
-		wi[a] = (v2d){g0i[3 + a], g1i[3 + a]};
-		wj[a] = (v2d){g0j[3 + a], g1j[3 + a]};
-		n[a] = (v2d){c0->n[a], c1->n[a]};
-		v[a] = ai * wi[a] + aj * wj[a];
-	}
-	dn = du[0] * n[0] + du[1] * n[1] + du[2] * n[2];
-	V2_CROSS(v, n, t);
-	VEC3_UNROLL
-	for (a = 0; a < 3; a++)
-		us[a] = du[a] - dn * n[a] - t[a];
-	VEC3_UNROLL
-	for (a = 0; a < 3; a++)
-		q[a] = (v2d){c0->qp[a], c1->qp[a]} - k * us[a];
-	qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-	qn = V2_SQRT(qq);
-	VEC3_UNROLL
-	for (a = 0; a < 3; a++)
-		sq[a] = qmax * q[a] / qn;
-	/* the clamps: Q = q while it sticks, else Q_max q / |q|; M = m within its limit, else
-	 * the limit with m's sign; the energies' clamp_potential */
-	stick = qn <= qmax;
-	VEC3_UNROLL
-	for (a = 0; a < 3; a++)
-		Q[a] = V2_SELECT(stick, q[a], sq[a]);
-	es = V2_SELECT(stick, qn * qn, 2 * qmax * qn - qmax * qmax) - pp;
-	Ot = bi * (wi[0] * n[0] + wi[1] * n[1] + wi[2] * n[2]) - bj * (wj[0] * n[0] + wj[1] * n[1] + wj[2] * n[2]);
-	m = mp - kt * Ot;
-	am = V2_ABS(m);
-	tstick = am <= mmax;
-	mpos = m > 0;
-	M = V2_SELECT(tstick, m, V2_SELECT(mpos, mmax, -mmax));
-	et = V2_SELECT(tstick, am * am, 2 * mmax * am - mmax * mmax) - mpp;
-	e = es / (2 * k) + et / (2 * kt);
-	E[0] = e[0];
-	E[1] = e[1];
-	for (L = 0; L < 2; L++) {
-		c = L ? c1 : c0;
-		c->qtrial = qn[L];
-		VEC3_UNROLL
-		for (a = 0; a < 3; a++)
-			c->Q[a] = Q[a][L];
-		c->M = M[L];
-	}
-	if (!g)
-		return;
-	/* the gradient (fr_add_ij's): n x Q, then on i ai (n x Q) - bi M n and -Q, on j
-	 * aj (n x Q) + bj M n and Q */
-	V2_CROSS(n, Q, x);
-	{
-		v2d mi = M * bi, mj = M * bj, gwi[3], gwj[3];
-		double *gw = g + 3 * s->n;
-
-		VEC3_UNROLL
-		for (a = 0; a < 3; a++) {
-			gwi[a] = ai * x[a] - mi * n[a];
-			gwj[a] = aj * x[a] + mj * n[a];
-		}
-		for (L = 0; L < 2; L++) {
-			size_t i = L ? c1->i : c0->i, j = (size_t)(L ? c1->j : c0->j);
-			VEC3_UNROLL
-			for (a = 0; a < 3; a++)
-				g[3 * i + a] -= Q[a][L];
-			VEC3_UNROLL
-			for (a = 0; a < 3; a++)
-				gw[3 * i + a] += gwi[a][L];
-			if (j < g1) {
-				VEC3_UNROLL
-				for (a = 0; a < 3; a++)
-					g[3 * j + a] += Q[a][L];
-				VEC3_UNROLL
-				for (a = 0; a < 3; a++)
-					gw[3 * j + a] += gwj[a][L];
-			}
-		}
-	}
-}
+/* The kernel on two contacts at once (SSE2), and on four (AVX2, where the processor has it:
+ * lanes4_ok): one text, fr_lanes.h. */
+#define FR_LN 2
+#define FR_VD v2d
+#define FR_VM v2m
+#define FR_SEL V2_SELECT
+#define FR_ABS V2_ABS
+#define FR_SQRT V2_SQRT
+#define FR_CROSS V2_CROSS
+#define FR_FIELD(fld) ((v2d){cs[0]->fld, cs[1]->fld})
+#define FR_AT(p, i) ((v2d){p[0][i], p[1][i]})
+#define FR_ATTR CONTACT_INLINE
+#define FR_NAME fr_pair2
+#include "qs/fr_lanes.h"
+#undef FR_LN
+#undef FR_VD
+#undef FR_VM
+#undef FR_SEL
+#undef FR_ABS
+#undef FR_SQRT
+#undef FR_CROSS
+#undef FR_FIELD
+#undef FR_AT
+#undef FR_ATTR
+#undef FR_NAME
+#if LANES4_OK
+#define FR_LN 4
+#define FR_VD v4d
+#define FR_VM v4m
+#define FR_SEL V4_SELECT
+#define FR_ABS V4_ABS
+#define FR_SQRT V4_SQRT
+#define FR_CROSS V4_CROSS
+#define FR_FIELD(fld) ((v4d){cs[0]->fld, cs[1]->fld, cs[2]->fld, cs[3]->fld})
+#define FR_AT(p, i) ((v4d){p[0][i], p[1][i], p[2][i], p[3][i]})
+#define FR_ATTR AVX2_INLINE
+#define FR_NAME fr_pair4
+#include "qs/fr_lanes.h"
+#undef FR_LN
+#undef FR_VD
+#undef FR_VM
+#undef FR_SEL
+#undef FR_ABS
+#undef FR_SQRT
+#undef FR_CROSS
+#undef FR_FIELD
+#undef FR_AT
+#undef FR_ATTR
+#undef FR_NAME
+#endif
 #endif
 
 /* Grains g0..g1 of f->gs at x: the translation x - x0 and the rotation w = R Omega, side by
@@ -622,9 +571,9 @@ fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0,
 #if LANES_OK
 	if (lanes && rule == FR_RETURN_MAP)
 		for (; k + 1 < f->row_first[i1]; k += 2) {
-			struct fr_contact *c = &f->c[k], *c1 = c + 1;
+			struct fr_contact *cs[2] = {&f->c[k], &f->c[k + 1]};
 			double E2[2];
-			fr_pair2(f, s, g, g1, c, c1, E2);
+			fr_pair2(f, s, g, g1, cs, E2);
 			Eb += E2[0];
 			Eb += E2[1];
 		}
@@ -648,6 +597,60 @@ fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0,
 	}
 	return Eb;
 }
+
+/* The widest kernel the build and processor have (4 lanes with AVX2), or 2 (fr_set_lanes). */
+static int fr_lanes = 4;
+
+void
+fr_set_lanes(int n)
+{
+	fr_lanes = n == 2 ? 2 : 4;
+}
+
+#if LANES4_OK
+/* fr_block's pairs four at a time (fr_pair4, AVX2), then two and one: the same contacts in
+ * the same order, each lane fr_contact_eval's bytes (test_friction's lanes check). */
+static AVX2_FN double
+fr_block4(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0, size_t i1, size_t g1)
+{
+	double Eb = 0;
+	size_t k = f->row_first[i0];
+
+	for (; k + 3 < f->row_first[i1]; k += 4) {
+		struct fr_contact *cs[4] = {&f->c[k], &f->c[k + 1], &f->c[k + 2], &f->c[k + 3]};
+		double E4[4];
+		fr_pair4(f, s, g, g1, cs, E4);
+		Eb += E4[0];
+		Eb += E4[1];
+		Eb += E4[2];
+		Eb += E4[3];
+	}
+	for (; k + 1 < f->row_first[i1]; k += 2) {
+		struct fr_contact *cs[2] = {&f->c[k], &f->c[k + 1]};
+		double E2[2];
+		fr_pair2(f, s, g, g1, cs, E2);
+		Eb += E2[0];
+		Eb += E2[1];
+	}
+	for (; k < f->row_first[i1]; k++) {
+		struct fr_contact *c = &f->c[k];
+		Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 0, FR_RETURN_MAP);
+		if (g) {
+			if ((size_t)c->j < g1)
+				fr_add_ij(s, g, c, c->Q, c->M);
+			else
+				fr_add_i(s, g, c, c->Q, c->M);
+		}
+	}
+	for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
+		struct fr_contact *c = &f->c[k];
+		Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 1, FR_RETURN_MAP);
+		if (g)
+			fr_add_i(s, g, c, c->Q, c->M);
+	}
+	return Eb;
+}
+#endif
 
 /* The friction term on threads, with the same bytes for any number of them (base/par.h):
  * the grains in blocks of par_block(n), each block's pairs (i in the block) then its walls,
@@ -678,6 +681,12 @@ fr_energy(struct qs_friction *f, const struct qs_system *s, const double *x, dou
 		}
 		for (b = b0; b < b1; b++) {
 			size_t i0 = b * bl, i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
+#if LANES4_OK
+			if (f->rule == FR_RETURN_MAP && fr_lanes == 4 && lanes4_ok()) {
+				f->blk[b] = fr_block4(f, s, g, i0, i1, g1);
+				continue;
+			}
+#endif
 			f->blk[b] = f->rule == FR_RETURN_MAP ? fr_block(f, s, g, i0, i1, g1, FR_RETURN_MAP, 1) :
 			                                       fr_block(f, s, g, i0, i1, g1, FR_PAPER, 1);
 		}

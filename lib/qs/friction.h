@@ -128,6 +128,10 @@ int fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x);
  * list.  The list lives only between a commit and the next start, where fr_begin would
  * hold one anyway, so the peak memory is unchanged. */
 void fr_keep_found(struct qs_friction *f, int on);
+/* The evaluation's kernel takes four contacts at a time where the processor has AVX2, else
+ * two (lanes.h), with the same bytes; n = 2 makes it take two (a test hook: the two-lane
+ * kernel is then checked on machines with AVX2 too), 4 restores the default. */
+void fr_set_lanes(int n);
 /* Contacts of the last evaluation at the sliding limit (Q_max > 0 and
  * |Q| >= Q_max (1 - 1e-9)). */
 size_t fr_sliding(const struct qs_friction *f);

@@ -1263,12 +1263,22 @@ fd_check(struct qs_system *s, struct qs_friction *f, double *x, const char *tag)
 	free(excl);
 }
 
-/* The evaluation's two-lane kernel (two contacts at a time, the clamps by masks) against
- * fr_energy_scalar (one contact at a time through fr_contact_eval): the same energy, gradient,
- * forces, couples and trial forces to the bit, at a point where contacts stick, slide and
- * twist at their limits. */
+/* The evaluation's kernels in lanes (four contacts at a time where the processor has AVX2,
+ * and two, fr_set_lanes; the clamps by masks) against fr_energy_scalar (one contact at a time
+ * through fr_contact_eval): the same energy, gradient, forces, couples and trial forces to
+ * the bit, at a point where contacts stick, slide and twist at their limits. */
+static void lanes_check_n(struct qs_system *s, struct qs_friction *f, const double *x, const char *tag, int lanes);
+
 static void
 lanes_check(struct qs_system *s, struct qs_friction *f, const double *x, const char *tag)
+{
+	lanes_check_n(s, f, x, tag, 4);
+	lanes_check_n(s, f, x, tag, 2);
+	fr_set_lanes(4);
+}
+
+static void
+lanes_check_n(struct qs_system *s, struct qs_friction *f, const double *x, const char *tag, int lanes)
 {
 	struct qs_term *term = NULL;
 	size_t dim = s->dim, k, slide, twist = 0, differ = 0;
@@ -1278,6 +1288,7 @@ lanes_check(struct qs_system *s, struct qs_friction *f, const double *x, const c
 	for (q = 0; q < s->nterms; q++)
 		if (strcmp(s->term[q].name, "friction") == 0)
 			term = &s->term[q];
+	fr_set_lanes(lanes);
 	E2 = term ? term->energy(term, s, x, g2, NULL) : NAN;
 	for (k = 0; k < f->n; k++) {
 		memcpy(c1 + 5 * k, f->c[k].Q, 3 * sizeof *c1);
@@ -1292,8 +1303,8 @@ lanes_check(struct qs_system *s, struct qs_friction *f, const double *x, const c
 		differ += memcmp(c1 + 5 * k, f->c[k].Q, 3 * sizeof *c1) != 0 || c1[5 * k + 3] != f->c[k].M ||
 		    c1[5 * k + 4] != f->c[k].qtrial;
 	CHECK(term && slide > 0 && twist > 0 && slide < f->n && E1 == E2 && memcmp(g1, g2, dim * sizeof *g1) == 0 &&
-	    differ == 0, "%s: the two-lane kernel equals the scalar walk to the bit (energy, gradient, %zu contacts: "
-	    "%zu sliding, %zu twisting; %zu differ)", tag, f->n, slide, twist, differ);
+	    differ == 0, "%s: the kernel in %d lanes equals the scalar walk to the bit (energy, gradient, %zu contacts: "
+	    "%zu sliding, %zu twisting; %zu differ)", tag, lanes, f->n, slide, twist, differ);
 	free(g1), free(g2), free(c1);
 }
 
