@@ -11,6 +11,7 @@
  * FR_FIELD(fld) (the vector of cs[L]->fld) and FR_AT(p, i) (of p[L][i]) written out lane by
  * lane (brace initialisers: GCC builds them better than a loop over the lanes, 5 % of the
  * increment), FR_ATTR (the function's attributes) and FR_NAME. */
+#ifdef FR_NAME	/* empty anywhere else (an installed header compiles alone) */
 FR_ATTR void
 FR_NAME(const struct qs_friction *f, const struct qs_system *s, double *g, size_t g1, struct fr_contact *const *cs,
     double *E)
@@ -107,3 +108,4 @@ FR_NAME(const struct qs_friction *f, const struct qs_system *s, double *g, size_
 		}
 	}
 }
+#endif
