@@ -43,6 +43,8 @@ struct load_params {
 	double skin;		/* the largest Verlet skin / smallest radius (contact_enum_skin_auto) */
 	double inc_tol;		/* with friction: the residual the increment is minimised to before
 				 * its commit (LOAD_INC_TOL; at most min.tol: min.tol), see settle */
+	int settle_fresh;	/* with friction: each settle pass starts L-BFGS afresh instead of
+				 * going on with the last pass's pairs and blocks (settle) */
 	struct qs_min_params min;
 };
 

@@ -84,6 +84,7 @@ struct qs_minimizer {
 	double *sy, *yy;	/* s.y and y.y of what each slot of S, Y holds */
 	double dg;		/* d.g of the direction lbfgs_direction made */
 	int head, count;
+	int keep;		/* qs_minimizer_keep: the next set keeps the pairs and the blocks */
 	int precond;		/* lbfgs's H0, fire's force from the diagonal blocks (grain_precond) */
 	long precond_age;	/* iterations since they were assembled; -1: not yet */
 	/* newton */
@@ -1007,6 +1008,12 @@ evaluate(struct qs_minimizer *m)
 	return isnan(m->w.e) ? -1 : 0;
 }
 
+void
+qs_minimizer_keep(struct qs_minimizer *m)
+{
+	m->keep = 1;
+}
+
 int
 qs_minimizer_set(struct qs_minimizer *m, double *x)
 {
@@ -1015,8 +1022,11 @@ qs_minimizer_set(struct qs_minimizer *m, double *x)
 	m->eprev = INFINITY;
 	m->evals0 = m->w.s->evals;
 	m->step = 0;
-	m->head = m->count = 0;
-	m->precond_age = -1;
+	if (!(m->keep && m->mp.method == QS_LBFGS)) {
+		m->head = m->count = 0;
+		m->precond_age = -1;
+	}
+	m->keep = 0;
 	m->lambda = 0;
 	m->gnorm_prev = 0;
 	if (evaluate(m))

@@ -36,3 +36,24 @@ a_it=$(awk -F '\t' 'NR > 1 { s += $18 } END { print s }' a.rows)
 b_it=$(awk -F '\t' 'NR > 1 { s += $18 } END { print s }' b.rows)
 expect_num "the loose increment takes fewer iterations" "$a_it" "<" "$b_it"
 expect_error "--inc-tol 0 refused" 2 "^loadtest: --inc-tol: must be in" loadtest --inc-tol 0 fr.pack
+
+# The settle passes' L-BFGS going on with the last pass's pairs and preconditioner blocks
+# (the default, loading.c settle) against starting each pass afresh (--settle-fresh, the
+# paths before 2026-12-05), from the same frictional pack: the same checks as above, both
+# runs ending every increment at the residual 1e-4.
+loadtest --steps 6 --settle-fresh -o fresh.pack fr.pack >fresh.tsv 2>fresh.err
+rc=$?
+if [ "$rc" -eq 0 ] && [ ! -s fresh.err ]; then pass "--settle-fresh: exit 0"; else fail "--settle-fresh: exit 0" "exit $rc: $(head -c 300 fresh.err)"; fi
+rows fresh.tsv >f.rows
+expect_num "--settle-fresh wrote every row" "$(wc -l <f.rows)" "==" 7
+paste a.rows f.rows | awk -F '\t' '
+    { for (a = 6; a <= 8; a++) { d = $a - $(a + 22); if (d < 0) d = -d; r = d / $(a + 22); if (r > worst) worst = r }
+      d = $15 - $(15 + 22); if (d < 0) d = -d; if (d > 0.0100001) bad = "row " NR ": coordination " $15 " vs " $(15 + 22)
+      d = $16 - $(16 + 22); if (d < 0) d = -d; if (d > 0.008) bad = "row " NR ": sliding ratio " $16 " vs " $(16 + 22)
+      if (NR > 1 && !($19 <= 1e-4 && $18 > 0 && $(19 + 22) <= 1e-4)) bad = "row " NR ": residuals " $19 ", " $(19 + 22) }
+    END { printf "%.3g\n", worst; if (bad) { print bad > "/dev/stderr"; exit 1 } }' >worst 2>why &&
+    pass "kept pairs and afresh settle to the residual with the same contacts and sliding" ||
+    fail "kept pairs and afresh settle to the residual with the same contacts and sliding" "$(cat why)"
+expect_num "kept pairs and afresh: the wall stresses agree to 5e-4" "$(head -n 1 worst)" "<=" 5e-4
+f_it=$(awk -F '\t' 'NR > 1 { s += $18 } END { print s }' f.rows)
+echo "settle: iterations over six increments, kept pairs $a_it, afresh $f_it" >&2
