@@ -10,7 +10,7 @@
  * FR_VD and FR_VM (the vector types), FR_SEL, FR_ABS, FR_SQRT, FR_CROSS (lanes.h's macros),
  * FR_FIELD(fld) (the vector of cs[L]->fld) and FR_AT(p, i) (of p[L][i]) written out lane by
  * lane (brace initialisers: GCC builds them better than a loop over the lanes, 5 % of the
- * increment), FR_ATTR (the function's attributes) and FR_NAME. */
+ * increment), FR_ATTR (the function's attributes) and FR_NAME; they are undefined at the end. */
 #ifdef FR_NAME	/* empty anywhere else (an installed header compiles alone) */
 FR_ATTR void
 FR_NAME(const struct qs_friction *f, const struct qs_system *s, double *g, size_t g1, struct fr_contact *const *cs,
@@ -108,4 +108,16 @@ FR_NAME(const struct qs_friction *f, const struct qs_system *s, double *g, size_
 		}
 	}
 }
+/* the parameters undefined, for the next inclusion */
+#undef FR_LN
+#undef FR_VD
+#undef FR_VM
+#undef FR_SEL
+#undef FR_ABS
+#undef FR_SQRT
+#undef FR_CROSS
+#undef FR_FIELD
+#undef FR_AT
+#undef FR_ATTR
+#undef FR_NAME
 #endif

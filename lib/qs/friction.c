@@ -434,17 +434,6 @@ fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double 
 #define FR_ATTR CONTACT_INLINE
 #define FR_NAME fr_pair2
 #include "qs/fr_lanes.h"
-#undef FR_LN
-#undef FR_VD
-#undef FR_VM
-#undef FR_SEL
-#undef FR_ABS
-#undef FR_SQRT
-#undef FR_CROSS
-#undef FR_FIELD
-#undef FR_AT
-#undef FR_ATTR
-#undef FR_NAME
 #if LANES4_OK
 #define FR_LN 4
 #define FR_VD v4d
@@ -458,17 +447,6 @@ fr_contact_eval(const struct qs_friction *f, const struct fr_contact *c, double 
 #define FR_ATTR AVX2_INLINE
 #define FR_NAME fr_pair4
 #include "qs/fr_lanes.h"
-#undef FR_LN
-#undef FR_VD
-#undef FR_VM
-#undef FR_SEL
-#undef FR_ABS
-#undef FR_SQRT
-#undef FR_CROSS
-#undef FR_FIELD
-#undef FR_AT
-#undef FR_ATTR
-#undef FR_NAME
 #endif
 #endif
 
@@ -558,16 +536,14 @@ fr_gather(const struct qs_friction *f, const struct qs_system *s, double *g, siz
 		}
 }
 
-/* Block b's contacts (grains i0 <= i < i1): its pairs, then its walls; returns their energy.
- * lanes (a constant at each call): the pairs two at a time (fr_pair2) under the return map;
- * without, one at a time, the reference the two-lane kernel must equal (fr_energy_scalar). */
+/* Block b's contacts (grains i0 <= i < i1) from its pair k on: its pairs, then its walls;
+ * returns Eb plus their energies, added one by one.  lanes (a constant at each call): the
+ * pairs two at a time (fr_pair2) under the return map; without, one at a time, the reference
+ * the kernels in lanes must equal (fr_energy_scalar). */
 CONTACT_INLINE double
-fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0, size_t i1, size_t g1,
-    const enum fr_rule rule, const int lanes)
+fr_block_from(struct qs_friction *f, const struct qs_system *s, double *g, size_t k, size_t i0, size_t i1, size_t g1,
+    const enum fr_rule rule, const int lanes, double Eb)
 {
-	double Eb = 0;
-	size_t k = f->row_first[i0];
-
 #if LANES_OK
 	if (lanes && rule == FR_RETURN_MAP)
 		for (; k + 1 < f->row_first[i1]; k += 2) {
@@ -598,6 +574,14 @@ fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0,
 	return Eb;
 }
 
+/* Block b's contacts, all of them (fr_block_from its first pair). */
+CONTACT_INLINE double
+fr_block(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0, size_t i1, size_t g1,
+    const enum fr_rule rule, const int lanes)
+{
+	return fr_block_from(f, s, g, f->row_first[i0], i0, i1, g1, rule, lanes, 0);
+}
+
 /* The widest kernel the build and processor have (4 lanes with AVX2), or 2 (fr_set_lanes). */
 static int fr_lanes = 4;
 
@@ -608,8 +592,9 @@ fr_set_lanes(int n)
 }
 
 #if LANES4_OK
-/* fr_block's pairs four at a time (fr_pair4, AVX2), then two and one: the same contacts in
- * the same order, each lane fr_contact_eval's bytes (test_friction's lanes check). */
+/* fr_block's pairs four at a time (fr_pair4, AVX2), then the rest as fr_block: the same
+ * contacts in the same order, each lane fr_contact_eval's bytes (test_friction's lanes
+ * check). */
 static AVX2_FN double
 fr_block4(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0, size_t i1, size_t g1)
 {
@@ -625,30 +610,8 @@ fr_block4(struct qs_friction *f, const struct qs_system *s, double *g, size_t i0
 		Eb += E4[2];
 		Eb += E4[3];
 	}
-	for (; k + 1 < f->row_first[i1]; k += 2) {
-		struct fr_contact *cs[2] = {&f->c[k], &f->c[k + 1]};
-		double E2[2];
-		fr_pair2(f, s, g, g1, cs, E2);
-		Eb += E2[0];
-		Eb += E2[1];
-	}
-	for (; k < f->row_first[i1]; k++) {
-		struct fr_contact *c = &f->c[k];
-		Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 0, FR_RETURN_MAP);
-		if (g) {
-			if ((size_t)c->j < g1)
-				fr_add_ij(s, g, c, c->Q, c->M);
-			else
-				fr_add_i(s, g, c, c->Q, c->M);
-		}
-	}
-	for (k = f->wall_first[i0]; k < f->wall_first[i1]; k++) {
-		struct fr_contact *c = &f->c[k];
-		Eb += fr_contact_eval(f, c, c->Q, &c->M, &c->qtrial, 1, FR_RETURN_MAP);
-		if (g)
-			fr_add_i(s, g, c, c->Q, c->M);
-	}
-	return Eb;
+	/* the rest (fewer than four pairs, the walls) as fr_block, the sum going on */
+	return fr_block_from(f, s, g, k, i0, i1, g1, FR_RETURN_MAP, 1, Eb);
 }
 #endif
 
