@@ -28,6 +28,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 #include "contact/nlist.h"
 #include "pack/pack.h"
 
@@ -161,6 +162,22 @@ row_clear(double *h, unsigned hs)
 		h[q] = 0;
 }
 
+/* Whether any of hs doubles of history has a bit set (-0.0 too: clearing it gives +0.0, as
+ * an unconditional clear would). */
+CONTACT_INLINE int
+row_nonzero(const double *h, unsigned hs)
+{
+	unsigned q;
+	unsigned long long b = 0;
+
+	for (q = 0; q < hs; q++) {
+		unsigned long long u;
+		memcpy(&u, h + q, sizeof u);
+		b |= u;
+	}
+	return b != 0;
+}
+
 /* Wall w of grain c->i (radius c->ri) at distance dist, in contact_foreach_row; hist is its
  * history slot or NULL, set the grain's hwall_set byte (bit w: the slot went to a callback
  * since it was last zeroed).  A slot apart from its wall is zeroed only when that bit is set:
@@ -220,7 +237,10 @@ contact_foreach_row(const struct contact_enum *e, const double *x, size_t i, int
 		if (hp)
 			c.hist = hp + (size_t)hs * k;
 		if (mode == CONTACT_TOUCHING && dd >= sum * sum) {
-			if (hp)
+			/* apart: its spring is zero, and stays so; most listed pairs are apart and
+			 * already zero, so look before storing (a store dirties the line, and at 1e5
+			 * grains the pairs' slots are tens of MB a DEM step) */
+			if (hp && row_nonzero(c.hist, hs))
 				row_clear(c.hist, hs);
 			continue;
 		}

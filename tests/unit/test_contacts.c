@@ -169,6 +169,38 @@ test_history(gsl_rng *rng)
 			nonzero += h[0] != 0 || h[1] != 0;
 		}
 		CHECK(nonzero == 0, "history: the slots of a grain moved apart read zero (%ld not)", nonzero);
+		/* slots of listed pairs apart holding -0.0 or a stray value: the walk leaves them
+		 * all bits zero, as an unconditional clear did (it looks before it stores) */
+		{
+			static const double zero[3];
+			size_t m, apart = 0;
+
+			for (m = 0; m < p.n; m++)
+				for (k = e.nl.first[m]; k < e.nl.first[m + 1]; k++) {
+					size_t j = e.nl.nbr[k];
+					double d0 = p.x[3 * m] - p.x[3 * j], d1 = p.x[3 * m + 1] - p.x[3 * j + 1];
+					double d2 = p.x[3 * m + 2] - p.x[3 * j + 2], sum = p.r[m] + p.r[j], *h;
+
+					if (d0 * d0 + d1 * d1 + d2 * d2 < sum * sum)
+						continue;
+					h = e.hpair[e.hcur] + 3 * k;
+					h[0] = -0.0, h[1] = apart % 2 ? 1e-300 : 0, h[2] = apart % 3 ? 0 : -1;
+					apart++;
+				}
+			contact_foreach(&e, p.x, CONTACT_TOUCHING, on_check, &bad);
+			for (nonzero = 0, m = 0; m < p.n; m++)
+				for (k = e.nl.first[m]; k < e.nl.first[m + 1]; k++) {
+					size_t j = e.nl.nbr[k];
+					double d0 = p.x[3 * m] - p.x[3 * j], d1 = p.x[3 * m + 1] - p.x[3 * j + 1];
+					double d2 = p.x[3 * m + 2] - p.x[3 * j + 2], sum = p.r[m] + p.r[j];
+
+					if (d0 * d0 + d1 * d1 + d2 * d2 >= sum * sum)
+						nonzero += memcmp(e.hpair[e.hcur] + 3 * k, zero, sizeof zero) != 0;
+				}
+			CHECK(apart > 0 && nonzero == 0,
+			    "history: -0.0 and stray values in the slots of listed pairs apart are cleared to zero bits "
+			    "(%ld not, of %zu)", nonzero, apart);
+		}
 	}
 	/* a wall's slot: marked while the grain touches the wall, zero once it is apart (the walk
 	 * zeroes only slots that went to a callback, contacts.h's hwall_set), and zero again when
