@@ -46,7 +46,7 @@ on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
 	if (c->pass == 0)
 		c->cnt[i]++;
 	else
-		c->nl->nbr[c->nl->first[i] + c->cnt[i]++] = j;
+		c->nl->nbr[c->nl->first[i] + c->cnt[i]++] = (uint32_t)j;
 	return 0;
 }
 
@@ -113,6 +113,10 @@ nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const 
 	size_t i, k;
 	int threads = n >= PAR_MIN ? par_threads() : 1;
 
+	if (n > UINT32_MAX) {
+		msg_seterr("%zu grains: the neighbour list holds at most 2^32 - 1", n);
+		return -1;
+	}
 	if (n != nl->n || !nl->first) {
 		free(nl->first), free(nl->xb);
 		nl->first = malloc((n + 1) * sizeof *nl->first);
@@ -139,7 +143,7 @@ nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const 
 				nl->nbr[q] = nl->nbr[q - 1];
 				q--;
 			}
-			nl->nbr[q] = v;
+			nl->nbr[q] = (uint32_t)v;
 		}
 	nl->npairs = nl->first[n];
 	memcpy(nl->xb, x, 3 * n * sizeof *x);

@@ -9,12 +9,15 @@
 #define QUSGM_NLIST_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "contact/cell.h"
 
 struct nlist {
 	size_t n;
 	size_t *first;		/* n + 1 row offsets */
-	size_t *nbr;		/* neighbour j of each pair, rows sorted */
+	uint32_t *nbr;		/* neighbour j of each pair, rows sorted (4 bytes: the walks over the
+				 * list read it every evaluation and DEM step; nlist_build refuses
+				 * packs of 2^32 grains or more) */
 	size_t npairs, cap;
 	double skin, rmax;
 	double *xb;		/* positions at the build */
