@@ -253,15 +253,16 @@ settle(struct loader *L, struct qs_min_report *rep)
 	int pass, st = 0;
 
 	for (pass = 0; pass <= SETTLE_PASSES; pass++) {
-		double rmax;
-		/* the committed state, evaluated by the minimiser's start (one evaluation for the
-		 * check and the pass) */
 		/* after the first pass, L-BFGS goes on with the last pass's pairs and blocks: the
 		 * commit moved the history, not the grains (bench/settle.md: a fifth fewer
 		 * iterations at 1e4 grains) */
-		if (pass > 0 && !L->lp.settle_fresh)
-			qs_minimizer_keep(L->min);
-		if (begin(L) || qs_minimizer_params(L->min, &mp) || qs_minimizer_set(L->min, L->x)) {
+		int resume = pass > 0 && !L->lp.settle_fresh;
+		double rmax;
+
+		/* the committed state, evaluated by the minimiser's start (one evaluation for the
+		 * check and the pass) */
+		if (begin(L) || qs_minimizer_params(L->min, &mp) ||
+		    (resume ? qs_minimizer_resume(L->min, L->x) : qs_minimizer_set(L->min, L->x))) {
 			st = -1;
 			break;
 		}

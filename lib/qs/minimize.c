@@ -84,7 +84,6 @@ struct qs_minimizer {
 	double *sy, *yy;	/* s.y and y.y of what each slot of S, Y holds */
 	double dg;		/* d.g of the direction lbfgs_direction made */
 	int head, count;
-	int keep;		/* qs_minimizer_keep: the next set keeps the pairs and the blocks */
 	int precond;		/* lbfgs's H0, fire's force from the diagonal blocks (grain_precond) */
 	long precond_age;	/* iterations since they were assembled; -1: not yet */
 	/* newton */
@@ -1008,25 +1007,19 @@ evaluate(struct qs_minimizer *m)
 	return isnan(m->w.e) ? -1 : 0;
 }
 
-void
-qs_minimizer_keep(struct qs_minimizer *m)
-{
-	m->keep = 1;
-}
-
-int
-qs_minimizer_set(struct qs_minimizer *m, double *x)
+/* qs_minimizer_set, and with keep qs_minimizer_resume. */
+static int
+minimizer_start(struct qs_minimizer *m, double *x, int keep)
 {
 	m->x = x;
 	m->it = 0;
 	m->eprev = INFINITY;
 	m->evals0 = m->w.s->evals;
 	m->step = 0;
-	if (!(m->keep && m->mp.method == QS_LBFGS)) {
+	if (!(keep && m->mp.method == QS_LBFGS)) {
 		m->head = m->count = 0;
 		m->precond_age = -1;
 	}
-	m->keep = 0;
 	m->lambda = 0;
 	m->gnorm_prev = 0;
 	if (evaluate(m))
@@ -1036,6 +1029,18 @@ qs_minimizer_set(struct qs_minimizer *m, double *x)
 	else if (m->mp.method == QS_FIRE)
 		return fire_restart(m);
 	return 0;
+}
+
+int
+qs_minimizer_set(struct qs_minimizer *m, double *x)
+{
+	return minimizer_start(m, x, 0);
+}
+
+int
+qs_minimizer_resume(struct qs_minimizer *m, double *x)
+{
+	return minimizer_start(m, x, 1);
 }
 
 int

@@ -93,11 +93,11 @@ struct qs_minimizer *qs_minimizer_alloc(struct qs_system *s, const struct qs_min
 void qs_minimizer_free(struct qs_minimizer *m);
 /* Start from x: evaluate, iteration count and method state reset.  0 or -1. */
 int qs_minimizer_set(struct qs_minimizer *m, double *x);
-/* Let the next qs_minimizer_set keep L-BFGS's stored pairs and its preconditioner's blocks
- * (their age counts on): for a start at the point where the last minimisation ended, whose
+/* qs_minimizer_set that keeps L-BFGS's stored pairs and its preconditioner's blocks (their
+ * age counts on): for a start at the point where the last minimisation ended, whose
  * functional changed little (a frictional settle pass after its commit: the same grains and
- * contacts, the history moved).  Other methods start afresh as ever. */
-void qs_minimizer_keep(struct qs_minimizer *m);
+ * contacts, the history moved).  Other methods start afresh as with qs_minimizer_set. */
+int qs_minimizer_resume(struct qs_minimizer *m, double *x);
 /* x was moved by the caller: evaluate there, keep the iteration count and memory.  0 or -1. */
 int qs_minimizer_moved(struct qs_minimizer *m);
 /* One iteration.  0 or -1 (msg_seterr). */
