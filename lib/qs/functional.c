@@ -120,6 +120,16 @@ normal_add_wall(struct normal_acc *a, const struct contact *c, double P, double 
 		a->fmax[i] = P;
 }
 
+/* The larger of a grain's largest contact force so far and P, without a branch: whether a
+ * pair's force is its grain's largest so far is a coin toss in a pack, and a mispredicted
+ * branch throws away the next pairs' square roots already in flight (2x the walk's time at
+ * 1e4 grains).  The same value as "if (P > m) m = P" (maxsd keeps m when P is NaN or equal). */
+static inline double
+force_max(double m, double P)
+{
+	return P > m ? P : m;
+}
+
 CONTACT_INLINE void
 normal_add_pair(struct normal_acc *a, const struct contact *c, double P, double U)
 {
@@ -140,10 +150,9 @@ normal_add_pair(struct normal_acc *a, const struct contact *c, double P, double 
 		}
 	}
 	if (a->fmax) {
-		if (P > a->fmax[i])
-			a->fmax[i] = P;
-		if (j < a->jend && P > a->fmax[j])
-			a->fmax[j] = P;
+		a->fmax[i] = force_max(a->fmax[i], P);
+		if (j < a->jend)
+			a->fmax[j] = force_max(a->fmax[j], P);
 	}
 }
 
@@ -290,8 +299,8 @@ hertz_gather(const struct qs_system *s, const double *x, double *g, double *fmax
 				g[3 * j + 1] += f * c.dx[1];
 				g[3 * j + 2] += f * c.dx[2];
 			}
-			if (fmax && P > fmax[j])
-				fmax[j] = P;
+			if (fmax)
+				fmax[j] = force_max(fmax[j], P);
 		}
 }
 

@@ -40,6 +40,7 @@ struct ref {
 	double E;		/* energy */
 	double *g;		/* gradient (3n) */
 	double *fsum;		/* sum of contact force magnitudes on each grain (n) */
+	double *fbig;		/* largest contact force on each grain (n) */
 	unsigned *cnt;		/* contacts per grain (n) */
 	double wf[NWALLS];	/* normal force on each wall */
 	size_t ngg, ngw;
@@ -52,6 +53,7 @@ ref_alloc(struct ref *rf, size_t n)
 	memset(rf, 0, sizeof *rf);
 	rf->g = malloc(3 * n * sizeof *rf->g);
 	rf->fsum = malloc(n * sizeof *rf->fsum);
+	rf->fbig = malloc(n * sizeof *rf->fbig);
 	rf->cnt = malloc(n * sizeof *rf->cnt);
 }
 
@@ -60,6 +62,7 @@ ref_free(struct ref *rf)
 {
 	free(rf->g);
 	free(rf->fsum);
+	free(rf->fbig);
 	free(rf->cnt);
 }
 
@@ -74,6 +77,7 @@ ref_eval(const struct pack *p, const double *x, struct ref *rf)
 	rf->ngg = rf->ngw = 0;
 	memset(rf->g, 0, 3 * n * sizeof *rf->g);
 	memset(rf->fsum, 0, n * sizeof *rf->fsum);
+	memset(rf->fbig, 0, n * sizeof *rf->fbig);
 	memset(rf->cnt, 0, n * sizeof *rf->cnt);
 	memset(rf->wf, 0, sizeof rf->wf);
 	for (i = 0; i < n; i++) {
@@ -91,6 +95,8 @@ ref_eval(const struct pack *p, const double *x, struct ref *rf)
 			}
 			rf->fsum[i] += P;
 			rf->fsum[j] += P;
+			rf->fbig[i] = fmax(rf->fbig[i], P);
+			rf->fbig[j] = fmax(rf->fbig[j], P);
 			rf->cnt[i]++;
 			rf->cnt[j]++;
 			rf->ngg++;
@@ -103,6 +109,7 @@ ref_eval(const struct pack *p, const double *x, struct ref *rf)
 			rf->E += hertz_energy(Es, p->r[i], h);
 			rf->g[3 * i + a] += w % 2 ? P : -P;
 			rf->fsum[i] += P;
+			rf->fbig[i] = fmax(rf->fbig[i], P);
 			rf->cnt[i]++;
 			rf->wf[w] += P;
 			rf->ngw++;
@@ -376,6 +383,7 @@ compare(struct qs_system *s, const double *x, struct ref *rf, const char *what, 
 	double *g = malloc(3 * n * sizeof *g), *fm = malloc(n * sizeof *fm), E, gdev = 0;
 	unsigned *cnt = malloc(n * sizeof *cnt);
 	long builds = s->ce.nl.builds;
+	size_t fbad = 0;
 	int a;
 
 	E = qs_energy(s, x, g, fm);
@@ -383,6 +391,10 @@ compare(struct qs_system *s, const double *x, struct ref *rf, const char *what, 
 	qs_coordination(s, x, cnt);
 	for (i = 0; i < n; i++) {
 		cdiff += cnt[i] != rf->cnt[i];
+		/* each grain's largest contact force (the residual's scale): the same Hertz force of
+		 * the same pair, so equal to a few ulps; a walk that kept the first or the last force
+		 * instead of the largest fails it */
+		fbad += !(fabs(fm[i] - rf->fbig[i]) <= 1e-12 * rf->fbig[i]);
 		for (a = 0; a < 3; a++)
 			gdev = fmax(gdev, fabs(g[3 * i + a] - rf->g[3 * i + a]) / fmax(rf->fsum[i], 1e-300));
 		for (j = i + 1; j < n; j++) {
@@ -398,6 +410,7 @@ compare(struct qs_system *s, const double *x, struct ref *rf, const char *what, 
 	    "%s: the same contacts as the O(N^2) search (%zu + %zu; %zu overlapping pairs missing from the list, %zu "
 	    "grains with other counts, %zu found)", what, rf->ngg, rf->ngw, missing, cdiff, s->ncontacts);
 	CHECK(gdev <= 1e-12, "%s: gradient = O(N^2) gradient (%.3g of the grain's force sum)", what, gdev);
+	CHECK(fbad == 0, "%s: every grain's largest contact force = the O(N^2) one (%zu differ)", what, fbad);
 	if (want_rebuild >= 0)
 		CHECK((s->ce.nl.builds > builds) == (want_rebuild > 0), "%s: the list was %s (as intended)", what,
 		    s->ce.nl.builds > builds ? "rebuilt" : "reused");
