@@ -102,6 +102,16 @@ struct normal_acc {
 	size_t jend;		/* grains from here on belong to another thread: no scatter */
 };
 
+/* The larger of a grain's largest contact force so far and P, without a branch: whether a
+ * pair's force is its grain's largest so far is a coin toss in a pack, and a mispredicted
+ * branch throws away the next pairs' square roots already in flight (2x the walk's time at
+ * 1e4 grains).  The same value as "if (P > m) m = P" (maxsd keeps m when P is NaN or equal). */
+static inline double
+force_max(double m, double P)
+{
+	return P > m ? P : m;
+}
+
 /* The normal force P of contact c on grain i (and j), with energy U: gradient, largest
  * force per grain, wall forces, sums; for a wall and for a grain pair. */
 CONTACT_INLINE void
@@ -116,18 +126,8 @@ normal_add_wall(struct normal_acc *a, const struct contact *c, double P, double 
 	a->s->wall_force[w] += P;
 	if (a->g)
 		a->g[3 * i + w / 2] += w % 2 ? P : -P;
-	if (a->fmax && P > a->fmax[i])
-		a->fmax[i] = P;
-}
-
-/* The larger of a grain's largest contact force so far and P, without a branch: whether a
- * pair's force is its grain's largest so far is a coin toss in a pack, and a mispredicted
- * branch throws away the next pairs' square roots already in flight (2x the walk's time at
- * 1e4 grains).  The same value as "if (P > m) m = P" (maxsd keeps m when P is NaN or equal). */
-static inline double
-force_max(double m, double P)
-{
-	return P > m ? P : m;
+	if (a->fmax)
+		a->fmax[i] = force_max(a->fmax[i], P);
 }
 
 CONTACT_INLINE void
@@ -265,8 +265,8 @@ on_hertz_wall(const struct contact *c, void *vacc)
 	a->wf[w] += P;
 	if (a->g)
 		a->g[3 * i + w / 2] += w % 2 ? P : -P;
-	if (a->fmax && P > a->fmax[i])
-		a->fmax[i] = P;
+	if (a->fmax)
+		a->fmax[i] = force_max(a->fmax[i], P);
 	return 0;
 }
 
