@@ -138,6 +138,16 @@ on_check(const struct contact *c, void *v)
 	return 0;
 }
 
+/* Whether grains m and j are apart (the walk's test: squared distance at least (r_m + r_j)^2). */
+static int
+listed_apart(const struct pack *p, size_t m, size_t j)
+{
+	double d0 = p->x[3 * m] - p->x[3 * j], d1 = p->x[3 * m + 1] - p->x[3 * j + 1];
+	double d2 = p->x[3 * m + 2] - p->x[3 * j + 2], sum = p->r[m] + p->r[j];
+
+	return d0 * d0 + d1 * d1 + d2 * d2 >= sum * sum;
+}
+
 static void
 test_history(gsl_rng *rng)
 {
@@ -177,11 +187,9 @@ test_history(gsl_rng *rng)
 
 			for (m = 0; m < p.n; m++)
 				for (k = e.nl.first[m]; k < e.nl.first[m + 1]; k++) {
-					size_t j = e.nl.nbr[k];
-					double d0 = p.x[3 * m] - p.x[3 * j], d1 = p.x[3 * m + 1] - p.x[3 * j + 1];
-					double d2 = p.x[3 * m + 2] - p.x[3 * j + 2], sum = p.r[m] + p.r[j], *h;
+					double *h;
 
-					if (d0 * d0 + d1 * d1 + d2 * d2 < sum * sum)
+					if (!listed_apart(&p, m, e.nl.nbr[k]))
 						continue;
 					h = e.hpair[e.hcur] + 3 * k;
 					h[0] = -0.0, h[1] = apart % 2 ? 1e-300 : 0, h[2] = apart % 3 ? 0 : -1;
@@ -190,11 +198,7 @@ test_history(gsl_rng *rng)
 			contact_foreach(&e, p.x, CONTACT_TOUCHING, on_check, &bad);
 			for (nonzero = 0, m = 0; m < p.n; m++)
 				for (k = e.nl.first[m]; k < e.nl.first[m + 1]; k++) {
-					size_t j = e.nl.nbr[k];
-					double d0 = p.x[3 * m] - p.x[3 * j], d1 = p.x[3 * m + 1] - p.x[3 * j + 1];
-					double d2 = p.x[3 * m + 2] - p.x[3 * j + 2], sum = p.r[m] + p.r[j];
-
-					if (d0 * d0 + d1 * d1 + d2 * d2 >= sum * sum)
+					if (listed_apart(&p, m, e.nl.nbr[k]))
 						nonzero += memcmp(e.hpair[e.hcur] + 3 * k, zero, sizeof zero) != 0;
 				}
 			CHECK(apart > 0 && nonzero == 0,
