@@ -12,7 +12,8 @@
  * shared machine with one thread, steadier than the wall time).  METHOD (lbfgs, fire, cg or newton)
  * runs that minimiser alone, both cases; FINCREMENT_CASE=mu or none in the environment runs
  * only the frictional or the frictionless case (for profiling one of them), and
- * FINCREMENT_SKIN the Verlet skin (loadtest's --skin; default 0.3).
+ * FINCREMENT_SKIN the Verlet skin (loadtest's --skin; default 0.3), FINCREMENT_LBFGS_M
+ * L-BFGS's stored steps (--lbfgs-m; default the loader's, 4 with friction and 8 without).
  * Exit 1 if a case fails or stops at its iteration limit. */
 #include "qs/loading.h"
 #include "base/msg.h"
@@ -75,6 +76,8 @@ main(int argc, char **argv)
 			lp.min.method = methods[m];
 			if (getenv("FINCREMENT_SKIN"))
 				lp.skin = atof(getenv("FINCREMENT_SKIN"));
+			if (getenv("FINCREMENT_LBFGS_M"))
+				lp.min.lbfgs_m = atol(getenv("FINCREMENT_LBFGS_M"));
 			if (loader_open(&L, &p, &lp))
 				msg_die_err(EXIT_DATA);
 			t0 = bench_now();
