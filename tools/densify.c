@@ -7,15 +7,20 @@
 #include "base/numfmt.h"
 #include "pack/packio.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
+#include <zlib.h>
 
 /* The options; the table below points into it. */
 static struct opts {
 	struct densify_params dp;
-	const char *log;
+	const char *log, *checkpoint;
+	double time_limit;
 	int allow_limit, full_steps;
 	long min_coord, nsub;
 } o = {
@@ -38,6 +43,8 @@ static struct cli_opt opt_table[] = {
 	{"sub-increments", 0, CLI_LONG, &o.nsub, "N", "sub-increments per strain step (affine guess each)", NULL},
 	{"k-inc", 0, CLI_LONG, &o.dp.k_inc, "N", "minimiser iterations between sub-increments", NULL},
 	{"skin", 0, CLI_DOUBLE, &o.dp.skin, "RATIO", "Verlet skin / smallest radius", NULL},
+	{"checkpoint", 0, CLI_STRING, &o.checkpoint, "FILE", "save the state to FILE after every stage; go on from FILE if it exists", NULL},
+	{"time-limit", 0, CLI_DOUBLE, &o.time_limit, "S", "with --checkpoint: stop (exit 75) before a stage would end past S seconds; 0: none", "s"},
 	{"allow-limit", 0, CLI_FLAG, &o.allow_limit, NULL, "write the pack even if a minimisation hit --max-iter (exit 0)", NULL},
 	QS_MIN_OPTS(o.dp.min),
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
@@ -49,9 +56,27 @@ static const struct cli_tool tool = {
 	opt_table, 1,
 };
 
+/* The log, and the checkpoint: its file, the rows so far (a memory stream), what identifies
+ * the run (options and input), the clock. */
 struct log_ctx {
 	FILE *fp;
+	FILE *rows;
+	char *rowbuf;
+	size_t rowlen;
+	const char *ckpath;
+	char *run;
+	struct timespec t0;
+	double longest, last;
 };
+
+static double
+since(const struct timespec *t0)
+{
+	struct timespec t;
+
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
+}
 
 static void
 on_stage(const struct densify_stage *st, void *vctx)
@@ -62,9 +87,87 @@ on_stage(const struct densify_stage *st, void *vctx)
 		densify_log_row(c->fp, st);
 		fflush(c->fp);	/* the temporary log can be followed while it runs */
 	}
+	if (c->rows)
+		densify_log_row(c->rows, st);
 	cli_progress("%s %ld  sigma_c %.4g Pa  porosity %.4f  coordination %.3f  under4 %zu  growth %.2e  iter %ld  residual %.2e",
 	    st->stage, st->round, st->sigma_c, st->porosity, st->coordination, st->under4, st->growth,
 	    st->iterations, st->res_max);
+}
+
+/* After every stage: the pack and the state to the checkpoint file (atomically), and, with
+ * --time-limit, stop when the next stage, taken as long as the longest so far, would end past
+ * it.  A stage cannot be cut short: its minimiser's state is not saved. */
+static int
+on_checkpoint(const struct pack *p, const struct densify_resume *at, void *vctx)
+{
+	struct log_ctx *c = vctx;
+	double now = since(&c->t0);
+
+	c->longest = fmax(c->longest, now - c->last);
+	c->last = now;
+	if (fflush(c->rows) || densify_resume_put((struct pack *)p, at, c->run, c->rowbuf) ||
+	    pack_write_path(p, c->ckpath))
+		return -1;
+	return o.time_limit > 0 && since(&c->t0) + c->longest > o.time_limit;
+}
+
+/* What a checkpoint must match to be gone on from: the options that change the result, and
+ * the input's grains (a CRC-32 of their ids, centres and radii). */
+static char *
+run_identity(const struct pack *p)
+{
+	const char *log = o.log, *ck = o.checkpoint;
+	double tl = o.time_limit;
+	uLong crc = crc32(0L, Z_NULL, 0);
+	char *res, *s, *q;
+	size_t len;
+
+	o.log = o.checkpoint = NULL;
+	o.time_limit = 0;
+	res = cli_resolved(&tool);
+	o.log = log, o.checkpoint = ck, o.time_limit = tl;
+	crc = crc32(crc, (const Bytef *)p->id, (uInt)(p->n * sizeof *p->id));
+	crc = crc32(crc, (const Bytef *)p->x, (uInt)(3 * p->n * sizeof *p->x));
+	crc = crc32(crc, (const Bytef *)p->r, (uInt)(p->n * sizeof *p->r));
+	len = strlen(res) + 64;
+	if (!(s = malloc(len)))
+		msg_die(EXIT_DATA, "out of memory");
+	snprintf(s, len, "grains %zu crc32 %08lx ; %s", p->n, (unsigned long)crc, res);
+	for (q = s; *q; q++)
+		if (*q == '\n' || *q == '\r')
+			*q = ' ';
+	free(res);
+	return s;
+}
+
+/* An existing checkpoint of this run replaces the input: 1 when there was one. */
+static int
+resume_from(const char *path, struct pack *p, struct densify_resume *at, struct log_ctx *c)
+{
+	struct pack q;
+	char *run, *rows;
+	int r;
+
+	if (access(path, F_OK) != 0) {
+		if (errno != ENOENT)
+			msg_die(EXIT_DATA, "%s: %s", path, strerror(errno));
+		return 0;
+	}
+	if (pack_read_path(path, &q))
+		msg_die_err(EXIT_DATA);
+	if ((r = densify_resume_get(&q, at, &run, &rows)) != 0)
+		msg_die(EXIT_DATA, "%s: %s", path, r > 0 ? "not a densify checkpoint (no meta densify-checkpoint)" : msg_geterr());
+	if (strcmp(run, c->run) != 0 || q.n != p->n)
+		msg_die(EXIT_DATA, "%s: the checkpoint of another run (other options or another input): remove it to start afresh",
+		    path);
+	if (c->fp)
+		fputs(rows, c->fp);
+	fputs(rows, c->rows);
+	msg_info(1, "going on from %s, after %s %ld", path, at->st.stage, at->round);
+	free(run), free(rows);
+	pack_free(p);
+	*p = q;
+	return 1;
 }
 
 static void
@@ -95,6 +198,10 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--max-rounds, --sub-increments (<= 1000) and --k-inc must be positive");
 	if (!(o.dp.skin > 0 && o.dp.skin <= 2))
 		cli_usage_error("--skin: must be in (0, 2]");
+	if (!(o.time_limit >= 0) || !isfinite(o.time_limit))
+		cli_usage_error("--time-limit: must be a number of seconds, 0 or more");
+	if (o.time_limit > 0 && !o.checkpoint)
+		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
 	cli_usage_done();
 	o.dp.loose_steps = !o.full_steps;
 	if (o.dp.onset == 0)
@@ -182,11 +289,13 @@ main(int argc, char **argv)
 	struct file_out logout = {0};
 	struct log_ctx lc = {NULL};
 	struct densify_stage last;
+	struct densify_resume at;
 	struct pack p;
 	char buf[40];
-	int r;
+	int r, resumed = 0;
 
 	msg_init(argv[0]);
+	clock_gettime(CLOCK_MONOTONIC, &lc.t0);
 	parse_args(argc, argv, &st);
 	read_pack(st.input, &p);
 	check_stress(&p);
@@ -196,15 +305,37 @@ main(int argc, char **argv)
 		lc.fp = logout.fp;
 		densify_log_header(lc.fp);
 	}
-	r = densify_run(&p, &o.dp, on_stage, &lc, &last);
+	if (o.checkpoint) {
+		if (!(lc.rows = open_memstream(&lc.rowbuf, &lc.rowlen)))
+			msg_die(EXIT_DATA, "out of memory");
+		lc.ckpath = o.checkpoint;
+		lc.run = run_identity(&p);
+		resumed = resume_from(o.checkpoint, &p, &at, &lc);
+	}
+	r = densify_run_resumable(&p, &o.dp, on_stage, &lc, o.checkpoint ? on_checkpoint : NULL, resumed ? &at : NULL,
+	    &last);
 	cli_progress_end();
+	if (r == 2) {
+		if (o.log)
+			file_out_abort(&logout);
+		msg_info(0, "stopped after %s %ld at the time limit (%.0f s); the same command goes on from %s", last.stage,
+		    last.round, since(&lc.t0), o.checkpoint);
+		return EXIT_STOPPED;
+	}
 	check_stop(r, &logout, &last, st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>");
+	densify_resume_clear(&p);
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
 	if (pack_write_tool(&p, &tool, &st))
 		msg_die_err(EXIT_DATA);
 	if (o.log && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);
+	/* the run is done: a rerun starts afresh */
+	if (o.checkpoint && unlink(o.checkpoint) != 0 && errno != ENOENT)
+		msg_warn("%s: %s (the checkpoint of a finished run)", o.checkpoint, strerror(errno));
+	if (lc.rows)
+		fclose(lc.rows);
+	free(lc.rowbuf), free(lc.run);
 	pack_free(&p);
 	return 0;
 }

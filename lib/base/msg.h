@@ -18,7 +18,9 @@
 #include <stdarg.h>
 #include <stdnoreturn.h>
 
-enum { EXIT_DATA = 1, EXIT_USAGE = 2 };
+/* EXIT_STOPPED: a run stopped on purpose with its state saved (a checkpoint at a time limit),
+ * to be rerun to go on; sysexits.h's EX_TEMPFAIL, which job schedulers read as "try again". */
+enum { EXIT_DATA = 1, EXIT_USAGE = 2, EXIT_STOPPED = 75 };
 
 extern const char *msg_progname;
 extern int msg_verbosity;	/* -1 quiet, 0 default, 1 -v, 2 -vv */

@@ -311,6 +311,21 @@ pack_get_meta(const struct pack *p, const char *key)
 	return NULL;
 }
 
+void
+pack_unset_meta(struct pack *p, const char *key)
+{
+	size_t k;
+
+	for (k = 0; k < p->nmeta; k++)
+		if (strcmp(p->meta[k].key, key) == 0) {
+			free(p->meta[k].key);
+			free(p->meta[k].value);
+			memmove(p->meta + k, p->meta + k + 1, (p->nmeta - k - 1) * sizeof *p->meta);
+			p->nmeta--;
+			return;
+		}
+}
+
 int
 pack_get_meta_double(const struct pack *p, const char *key, double *v)
 {

@@ -182,6 +182,8 @@ long pack_history_lookup(const long *keys, size_t n, size_t i, long j);
 int pack_add_history(struct pack *p, const char *line);
 int pack_set_meta(struct pack *p, const char *key, const char *value);
 const char *pack_get_meta(const struct pack *p, const char *key);
+/* Remove key's line (the others keep their order); nothing when it is absent. */
+void pack_unset_meta(struct pack *p, const char *key);
 /* The meta value of key as a finite number: 0 with *v set, or -1 (absent or not a number). */
 int pack_get_meta_double(const struct pack *p, const char *key, double *v);
 /* The convention for a plate's outer radius R (pack/shape.h) under which this pack's

@@ -289,8 +289,9 @@ record(struct densify_state *d, const char *name, long rnd)
 		d->fn(st, d->ctx);
 }
 
+/* r0sum: the input radii's sum, 0 to take it from p (a resumed run passes the original's) */
 static int
-state_alloc(struct densify_state *d)
+state_alloc(struct densify_state *d, double r0sum)
 {
 	size_t n = d->p->n, i;
 
@@ -308,6 +309,8 @@ state_alloc(struct densify_state *d)
 	memcpy(d->x, d->p->x, 3 * n * sizeof *d->x);
 	for (i = 0; i < n; i++)
 		d->r0sum += d->p->r[i];
+	if (r0sum > 0)
+		d->r0sum = r0sum;
 	/* Before the pack carries the onset stress there is no load to balance: judge forces
 	 * against what a contact carries at the onset, about onset x (2 r_mean)^2 (forces below
 	 * tol times that are balanced).  A floor 1e-3 times lower made unjammed rounds near
@@ -504,14 +507,53 @@ finish(struct densify_state *d)
 	return 0;
 }
 
+/* Hand the state after a stage to the checkpoint callback: 0 go on, 1 stop, -1 error. */
+static int
+checkpoint(struct densify_state *d, densify_checkpoint_fn ck, void *ctx, int phase, long round, double e_prev,
+    double y_prev)
+{
+	struct densify_resume at;
+	int r;
+
+	if (!ck)
+		return 0;
+	memcpy(d->p->x, d->x, 3 * d->p->n * sizeof *d->x);
+	at.phase = phase;
+	at.round = round;
+	at.scale = d->scale;
+	at.r0sum = d->r0sum;
+	at.e_prev = e_prev;
+	at.y_prev = y_prev;
+	at.full = d->full;
+	at.have_ref = d->have_ref;
+	at.limit_hit = d->limit_hit;
+	at.st = d->st;
+	r = ck(d->p, &at, ctx);
+	return r < 0 ? -1 : r != 0;
+}
+
+/* The compaction's end: the target stress, no grain under min_coord, a full equilibrium. */
+static int
+compaction_done(const struct densify_state *d)
+{
+	return !(fabs(d->st.sigma_c / d->dp->stress - 1) > d->dp->stress_tol || d->st.under4 > 0 || !d->full);
+}
+
 int
 densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx, struct densify_stage *last)
+{
+	return densify_run_resumable(p, dp, fn, ctx, NULL, NULL, last);
+}
+
+int
+densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx,
+    densify_checkpoint_fn ck, const struct densify_resume *from, struct densify_stage *last)
 {
 	struct densify_params dpl = *dp;
 	struct densify_state d;
 	double e_prev = NAN, y_prev = NAN;
-	long round;
-	int status = -1, r;
+	long round = 0;
+	int status = -1, r, phase = 0;
 
 	if (!(dpl.onset > 0))
 		dpl.onset = densify_onset_default(dpl.stress);
@@ -523,33 +565,233 @@ densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, 
 	d.scale = 1;
 	d.have_ref = p->has_refbox;
 	d.full = 1;
-	if (state_alloc(&d) || qs_minimize(&d.s, d.x, &dpl.min, &d.rep) < 0)
+	if (state_alloc(&d, from ? from->r0sum : 0))
 		goto out;
-	record(&d, "relax", 0);
-	for (round = 1; (r = phase_a_round(&d, round)) == 0; round++)
-		;
-	if (r < 0)
-		goto out;
-	if (!d.have_ref) {
-		memcpy(p->refbox, p->box, sizeof p->refbox);
-		d.have_ref = 1;
+	if (from) {
+		phase = from->phase;
+		round = from->round;
+		d.scale = from->scale;
+		d.full = from->full;
+		d.have_ref = from->have_ref;
+		d.limit_hit = from->limit_hit;
+		d.st = from->st;
+		e_prev = from->e_prev;
+		y_prev = from->y_prev;
+		/* the contact counts the next growth decides on, as the stage left them */
+		if (contact_enum_update(&d.s.ce, d.x, 0))
+			goto out;
+		qs_coordination(&d.s, d.x, d.cnt);
+	} else {
+		if (qs_minimize(&d.s, d.x, &dpl.min, &d.rep) < 0)
+			goto out;
+		record(&d, "relax", 0);
+		if ((r = checkpoint(&d, ck, ctx, 0, 0, e_prev, y_prev)) != 0)
+			goto stop;
 	}
-	p->has_refbox = 1;
+	if (phase < 2) {
+		for (round++; (r = phase_a_round(&d, round)) == 0; round++)
+			if ((r = checkpoint(&d, ck, ctx, 1, round, e_prev, y_prev)) != 0)
+				goto stop;
+		if (r < 0)
+			goto out;
+		if (!d.have_ref) {
+			memcpy(p->refbox, p->box, sizeof p->refbox);
+			d.have_ref = 1;
+		}
+		p->has_refbox = 1;
+		round = 0;
+	}
 	d.s.force_floor = 0;
-	for (round = 1; fabs(d.st.sigma_c / dpl.stress - 1) > dpl.stress_tol || d.st.under4 > 0 || !d.full; round++)
+	/* no checkpoint after the last step: nothing would be left to go on with */
+	for (round++; !compaction_done(&d); round++) {
 		if (compaction_step(&d, round, &e_prev, &y_prev))
 			goto out;
+		if (!compaction_done(&d) && (r = checkpoint(&d, ck, ctx, 2, round, e_prev, y_prev)) != 0)
+			goto stop;
+	}
 	if (finish(&d))
 		goto out;
 	status = d.limit_hit ? 1 : 0;
 	if (d.limit_hit)
 		msg_seterr("a minimisation stopped at its iteration limit (largest residual %.3g)", d.st.res_max);
+	goto out;
+stop:
+	status = r == 1 ? 2 : -1;
 out:
 	if (last)
 		*last = d.st;
 	qs_free(&d.s);
 	free(d.x), free(d.cnt), free(d.gp), free(d.xsave), free(d.rsave);
 	return status;
+}
+
+/* The checkpoint's meta keys.  Numbers as %.17g, which reads back to the same double. */
+#define CK_STATE "densify-checkpoint"
+#define CK_STAGE "densify-stage"
+#define CK_REFBOX "densify-refbox"
+#define CK_ROW "densify-log-"
+#define CK_RUN "densify-run"
+#define CK_VERSION 1
+
+static const char *const stage_names[] = {"relax", "grow", "retry", "compact"};
+
+int
+densify_resume_put(struct pack *p, const struct densify_resume *at, const char *run, const char *rows)
+{
+	char buf[640], key[40];
+	const struct densify_stage *st = &at->st;
+	const char *row = rows, *nl;
+	long k = 0;
+	int bad = 0;
+
+	densify_resume_clear(p);
+	snprintf(buf, sizeof buf, "%d %d %ld %.17g %.17g %.17g %.17g %d %d %d", CK_VERSION, at->phase, at->round,
+	    at->scale, at->r0sum, at->e_prev, at->y_prev, at->full, at->have_ref, at->limit_hit);
+	bad |= pack_set_meta(p, CK_STATE, buf);
+	snprintf(buf, sizeof buf, "%s %.17g %.17g %.17g %zu %.17g %ld %.17g %.17g %d", st->stage, st->sigma_c,
+	    st->porosity, st->coordination, st->under4, st->growth, st->iterations, st->res_max, st->res_mean,
+	    st->min_status);
+	bad |= pack_set_meta(p, CK_STAGE, buf);
+	bad |= pack_set_meta(p, CK_RUN, run);
+	if (at->have_ref && !p->has_refbox) {
+		snprintf(buf, sizeof buf, "%.17g %.17g %.17g %.17g %.17g %.17g", p->refbox[0], p->refbox[1],
+		    p->refbox[2], p->refbox[3], p->refbox[4], p->refbox[5]);
+		bad |= pack_set_meta(p, CK_REFBOX, buf);
+	}
+	for (; row && *row && !bad; row = *nl ? nl + 1 : nl) {
+		char *line;
+		nl = row + strcspn(row, "\n");
+		if (!(line = strndup(row, (size_t)(nl - row))))
+			bad = 1;
+		snprintf(key, sizeof key, CK_ROW "%ld", ++k);
+		bad |= !line || pack_set_meta(p, key, line);
+		free(line);
+	}
+	if (bad) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	return 0;
+}
+
+void
+densify_resume_clear(struct pack *p)
+{
+	char key[40];
+	long k;
+
+	pack_unset_meta(p, CK_STATE);
+	pack_unset_meta(p, CK_STAGE);
+	pack_unset_meta(p, CK_REFBOX);
+	pack_unset_meta(p, CK_RUN);
+	for (k = 1;; k++) {
+		snprintf(key, sizeof key, CK_ROW "%ld", k);
+		if (!pack_get_meta(p, key))
+			break;
+		pack_unset_meta(p, key);
+	}
+}
+
+/* The state and stage lines, and the reference box when there is one. */
+static int
+resume_parse(struct pack *p, struct densify_resume *at)
+{
+	const char *s = pack_get_meta(p, CK_STATE), *t = pack_get_meta(p, CK_STAGE), *rb = pack_get_meta(p, CK_REFBOX);
+	char name[16];
+	int version, end = -1;
+	unsigned k;
+
+	if (sscanf(s, "%d %d %ld %lg %lg %lg %lg %d %d %d %n", &version, &at->phase, &at->round, &at->scale,
+	        &at->r0sum, &at->e_prev, &at->y_prev, &at->full, &at->have_ref, &at->limit_hit, &end) != 10 ||
+	    end < 0 || s[end] || version != CK_VERSION || at->phase < 0 || at->phase > 2 || at->round < 0 ||
+	    !(at->scale > 0) || !(at->r0sum > 0)) {
+		msg_seterr("meta %s: not a densify checkpoint of version %d", CK_STATE, CK_VERSION);
+		return -1;
+	}
+	end = -1;
+	if (!t || sscanf(t, "%15s %lg %lg %lg %zu %lg %ld %lg %lg %d %n", name, &at->st.sigma_c, &at->st.porosity,
+	        &at->st.coordination, &at->st.under4, &at->st.growth, &at->st.iterations, &at->st.res_max,
+	        &at->st.res_mean, &at->st.min_status, &end) != 10 || end < 0 || t[end]) {
+		msg_seterr("meta %s: missing or malformed", CK_STAGE);
+		return -1;
+	}
+	for (k = 0; k < sizeof stage_names / sizeof *stage_names; k++)
+		if (strcmp(name, stage_names[k]) == 0)
+			at->st.stage = stage_names[k];
+	if (!at->st.stage) {
+		msg_seterr("meta %s: unknown stage '%s'", CK_STAGE, name);
+		return -1;
+	}
+	at->st.round = at->round;
+	if (rb) {
+		double *b = p->refbox;
+		end = -1;
+		if (sscanf(rb, "%lg %lg %lg %lg %lg %lg %n", b, b + 1, b + 2, b + 3, b + 4, b + 5, &end) != 6 ||
+		    end < 0 || rb[end]) {
+			msg_seterr("meta %s: expected six numbers", CK_REFBOX);
+			return -1;
+		}
+	} else if (at->have_ref && !p->has_refbox) {
+		msg_seterr("meta %s: missing", CK_REFBOX);
+		return -1;
+	}
+	if (!pack_get_meta(p, CK_RUN)) {
+		msg_seterr("meta %s: missing", CK_RUN);
+		return -1;
+	}
+	return 0;
+}
+
+/* The log rows, one per line. */
+static char *
+resume_rows(const struct pack *p)
+{
+	char key[40], *buf = malloc(1);
+	size_t len = 0;
+	long q;
+
+	if (buf)
+		*buf = 0;
+	for (q = 1; buf; q++) {
+		const char *row;
+		char *nb;
+		size_t l;
+		snprintf(key, sizeof key, CK_ROW "%ld", q);
+		if (!(row = pack_get_meta(p, key)))
+			break;
+		l = strlen(row);
+		if (!(nb = realloc(buf, len + l + 2)))
+			free(buf);
+		buf = nb;
+		if (buf) {
+			memcpy(buf + len, row, l);
+			len += l;
+			buf[len++] = '\n';
+			buf[len] = 0;
+		}
+	}
+	return buf;
+}
+
+int
+densify_resume_get(struct pack *p, struct densify_resume *at, char **run, char **rows)
+{
+	*rows = *run = NULL;
+	if (!pack_get_meta(p, CK_STATE))
+		return 1;
+	memset(at, 0, sizeof *at);
+	if (resume_parse(p, at))
+		return -1;
+	*run = strdup(pack_get_meta(p, CK_RUN));
+	*rows = resume_rows(p);
+	if (!*run || !*rows) {
+		free(*run), free(*rows);
+		*run = *rows = NULL;
+		msg_seterr("out of memory");
+		return -1;
+	}
+	densify_resume_clear(p);
+	return 0;
 }
 
 void

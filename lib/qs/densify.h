@@ -85,6 +85,27 @@ struct densify_stage {
 
 typedef void (*densify_log_fn)(const struct densify_stage *st, void *ctx);
 
+/* Where a run stands after a stage (a checkpoint): with the pack's centres, radii, box and
+ * reference box it is everything the run carries from one stage to the next, so a run
+ * resumed from it goes on exactly, to the bit, as the run that wrote it would have (every
+ * stage starts its minimiser afresh and rebuilds what it needs from the positions).  Long
+ * runs (1e6 grains: hours) can so be split into jobs that fit a cluster's time limit. */
+struct densify_resume {
+	int phase;		/* the stage just ended: 0 the relaxation, 1 a growth round, 2 a compaction step */
+	long round;
+	double scale;		/* the growth rounds' squeeze and growth factor (halved by a retry) */
+	double r0sum;		/* the input radii's sum: growth is counted from it */
+	double e_prev, y_prev;	/* the compaction secant's last point (NaN before the first step) */
+	int full;		/* the last stage was minimised to the full tolerance */
+	int have_ref;		/* p->refbox holds the reference box (set in phase (a)) */
+	int limit_hit;
+	struct densify_stage st;	/* the stage's measures, as logged */
+};
+
+/* Called after every stage with the pack's centres in p->x; nonzero stops the run (densify_run
+ * returns 2), -1 is an error. */
+typedef int (*densify_checkpoint_fn)(const struct pack *p, const struct densify_resume *at, void *ctx);
+
 /* The default onset for a target stress: 1e5 Pa, or a tenth of the target below 1 MPa.
  * Just above jamming the minimisations slow critically as the stress falls (the Hessian's
  * soft modes): at 1e4 Pa a 1e4-grain pack spent 100k+ L-BFGS iterations per round and did
@@ -98,6 +119,20 @@ void densify_params_default(struct densify_params *dp);
  * minimisation hit its iteration limit (p holds the state reached); -1 on error. */
 int densify_run(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx,
     struct densify_stage *last);
+/* densify_run, with ck called after every stage, and from (NULL: the start) a checkpoint to
+ * go on from, p then holding the checkpoint's pack.  2 when ck stopped the run. */
+int densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_log_fn fn, void *ctx,
+    densify_checkpoint_fn ck, const struct densify_resume *from, struct densify_stage *last);
+
+/* The checkpoint as header meta lines of the pack (keys "densify-..."), and back: the state
+ * numbers written to round-trip exactly, the reference box when p does not carry it yet, run
+ * (what the caller needs to recognise its own run: options, input) and the log rows so far
+ * (one per line).  densify_resume_get returns 0 with *at, *run and *rows filled (the caller
+ * frees the strings) and the meta removed, 1 when p holds no checkpoint, -1 on a malformed
+ * one (message in msg_geterr). */
+int densify_resume_put(struct pack *p, const struct densify_resume *at, const char *run, const char *rows);
+int densify_resume_get(struct pack *p, struct densify_resume *at, char **run, char **rows);
+void densify_resume_clear(struct pack *p);
 
 #include <stdio.h>
 

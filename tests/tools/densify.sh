@@ -123,6 +123,65 @@ check_dense "every step to --tol" full.pack 4e6
 expect_num "full.tsv: every compaction step at --tol" \
     "$(awk -F '\t' '$1 == "compact" && !($9 <= 1e-4) { k++ } END { print k + 0 }' full.tsv)" == 0
 
+# Checkpoints: a run stopped after every stage (--time-limit far below one stage) and rerun
+# until it finishes must give the uninterrupted run's pack and log, to the byte (the history
+# line records the command, so it is left out); each stop exits 75 with one line, no pack and
+# no log; the finished run removes the checkpoint.
+# resume_all NAME INPUT ARGS...: reruns densify until it stops stopping; sets runs, rc.
+resume_all() {
+	n=$1 in=$2
+	shift 2
+	runs=0 stops_ok=1
+	rm -f "$n.ck" "$n.pack" "$n.tsv"
+	while :; do
+		densify "$@" --checkpoint "$n.ck" --time-limit 1e-9 --log "$n.tsv" -o "$n.pack" "$in" >"$n.out" 2>"$n.err"
+		rc=$?
+		runs=$((runs + 1))
+		[ "$rc" -eq 75 ] && [ "$runs" -lt 200 ] || break
+		if [ -e "$n.pack" ] || [ -e "$n.tsv" ] || [ -s "$n.out" ] || [ ! -s "$n.ck" ] || [ "$(wc -l <"$n.err")" -ne 1 ] ||
+		    ! grep -q "^densify: stopped after [a-z]* [0-9]* at the time limit .*goes on from $n.ck\$" "$n.err"; then
+			stops_ok=0
+			echo "stop $runs: $(cat "$n.err")" >"$n.why"
+		fi
+	done
+}
+resume_all ck4 loose.pack --stress 4e6
+expect_num "checkpoint: the run ends (exit 0) after its stops" "$rc" == 0
+expect_num "checkpoint: one run per stage of the log" "$runs" == "$(rows d4.tsv | wc -l)"
+if [ "$stops_ok" -eq 1 ]; then pass "checkpoint: every stop exits 75, one line, the checkpoint, no pack, no log"; else fail "checkpoint: every stop exits 75, one line, the checkpoint, no pack, no log" "$(cat ck4.why)"; fi
+grep -v '^history densify ' ck4.pack >ck4.nohist 2>/dev/null
+expect_same "checkpoint: the resumed pack is the uninterrupted one" d4.nohist ck4.nohist
+expect_same "checkpoint: the resumed log is the uninterrupted one" d4.tsv ck4.tsv
+if [ ! -e ck4.ck ]; then pass "checkpoint: removed when the run is done"; else fail "checkpoint: removed when the run is done" "ck4.ck left"; fi
+# a dense pack compacted further (it carries a reference box and contact lines)
+resume_all ckre d1.pack --stress 4e6
+grep -v '^history densify ' re.pack >re.nohist
+grep -v '^history densify ' ckre.pack >ckre.nohist 2>/dev/null
+expect_same "checkpoint: dense pack further, resumed, is the uninterrupted one" re.nohist ckre.nohist
+# an uninterrupted run with --checkpoint is the run without it
+densify --stress 4e6 --checkpoint once.ck -o once.pack loose.pack 2>/dev/null
+grep -v '^history densify ' once.pack >once.nohist 2>/dev/null
+expect_same "checkpoint: --checkpoint alone changes nothing" d4.nohist once.nohist
+# What a checkpoint is refused for: another run's options or input, a pack that is not a
+# checkpoint, a damaged one.  The checkpoint is kept (it may be the only copy of hours of work).
+densify --stress 4e6 --checkpoint other.ck --time-limit 1e-9 -o other.pack loose.pack 2>/dev/null
+cp other.ck other.keep
+expect_error "checkpoint of other options" 1 '^densify: other.ck: the checkpoint of another run \(other options or another input\): remove it to start afresh$' \
+    densify --stress 3e6 --checkpoint other.ck -o other.pack loose.pack
+expect_same "checkpoint of other options: kept" other.keep other.ck
+expect_error "checkpoint of another input" 1 '^densify: other.ck: the checkpoint of another run' \
+    densify --stress 4e6 --checkpoint other.ck -o other.pack d1.pack
+cp loose.pack plain.ck
+expect_error "a pack that is no checkpoint" 1 '^densify: plain.ck: not a densify checkpoint' \
+    densify --stress 4e6 --checkpoint plain.ck -o other.pack loose.pack
+sed 's/^meta densify-checkpoint 1 /meta densify-checkpoint 9 /' other.keep >bad.ck
+expect_error "a checkpoint of another version" 1 '^densify: bad.ck: meta densify-checkpoint: not a densify checkpoint of version 1$' \
+    densify --stress 4e6 --checkpoint bad.ck -o other.pack loose.pack
+grep -v '^meta densify-stage ' other.keep >bad.ck
+expect_error "a checkpoint without its stage" 1 '^densify: bad.ck: meta densify-stage: missing or malformed$' \
+    densify --stress 4e6 --checkpoint bad.ck -o other.pack loose.pack
+if [ ! -e other.pack ]; then pass "refused checkpoints: no output"; else fail "refused checkpoints: no output" "other.pack written"; fi
+
 # Errors: exit status, nothing on stdout, one line on stderr, no output file.
 # expect_fail NAME STATUS REGEX ARGS...: densify ARGS -o nothing.pack, as expect_error, and
 # neither nothing.pack nor a temporary file is left.
@@ -171,6 +230,8 @@ expect_fail "--tol 2" 2 '^densify: --tol' --tol 2 loose.pack
 expect_fail "--method bfgs" 2 "^densify: --method: 'bfgs'" --method bfgs loose.pack
 expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
 expect_fail "--release-after -1" 2 '^densify: --release-after' --release-after -1 loose.pack
+expect_fail "--time-limit without --checkpoint" 2 '^densify: --time-limit needs --checkpoint' --time-limit 60 loose.pack
+expect_fail "--time-limit -1" 2 '^densify: --time-limit' --checkpoint x.ck --time-limit -1 loose.pack
 expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
 expect_fail "unknown option" 2 '^densify: unknown option' --bogus loose.pack
 expect_fail "missing input file" 1 '^densify: ' no-such.pack
