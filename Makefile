@@ -62,7 +62,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -237,6 +237,14 @@ bench-memory: all
 	@$(MAKE) --no-print-directory B=build build/bench/evalscale
 	@sh tests/bench-memory.sh build/bin $(BENCH_MEMORY_TILES)
 
+# The chain's first stages at 1e6 grains, measured (bench/densify-1e6.md, tests/bench-1e6.sh):
+# packgen, densify, one frictional increment; hours, so each call goes on where the last one
+# stopped (densify from its checkpoint; with BENCH_1E6_LIMIT=S it stops, exit 75, before S s):
+# make bench-1e6 [BENCH_1E6_LIMIT=0 BENCH_1E6_THREADS=2 BENCH_1E6_DIR=bench/1e6]
+bench-1e6: all
+	@$(MAKE) --no-print-directory B=build build/bench/fincrement
+	@sh tests/bench-1e6.sh build/bin build/bench
+
 # qusgm against LIGGGHTS (Hertz-Mindlin DEM) on the same oedometric increments from the same
 # pack (bench/peers.md, tests/bench-peers.sh; about a minute): make bench-peers
 # [PEERS_INCREMENTS=10].  As root, installs LIGGGHTS if missing; otherwise stops with the
@@ -316,6 +324,7 @@ help:
 	@echo "make bench      benchmarks; results in bench/results.md and bench/plates.md"
 	@echo "make bench-plates  the spheroplate DEM's benchmarks alone (bench/plates.md)"
 	@echo "make bench-memory  the chain's peak memory at 1.25e6 grains, tiled (bench/memory-1e6.md)"
+	@echo "make bench-1e6     packgen, densify and an increment at 1e6 grains; hours, resumable (bench/densify-1e6.md)"
 	@echo "make bench-peers   qusgm against LIGGGHTS on the same oedometric increments (bench/peers.md; installs liggghts as root)"
 	@echo "make validate   long validation cases; results in validate/results.md and validate/studies.md"
 	@echo "make cluster-check  a one-node Slurm cluster here (root: installs slurm-wlm, munge): a SMALL study through srun vs make -j"
