@@ -202,6 +202,9 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--time-limit: must be a number of seconds, 0 or more");
 	if (o.time_limit > 0 && !o.checkpoint)
 		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
+	/* the finished run removes the checkpoint: never the pack or the log just written */
+	if (o.checkpoint && ((st->output && strcmp(o.checkpoint, st->output) == 0) || (o.log && strcmp(o.checkpoint, o.log) == 0)))
+		cli_usage_error("--checkpoint: '%s' is the output or the log; give it a file of its own", o.checkpoint);
 	cli_usage_done();
 	o.dp.loose_steps = !o.full_steps;
 	if (o.dp.onset == 0)

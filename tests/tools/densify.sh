@@ -134,7 +134,8 @@ resume_all() {
 	runs=0 stops_ok=1
 	rm -f "$n.ck" "$n.pack" "$n.tsv"
 	while :; do
-		densify "$@" --checkpoint "$n.ck" --time-limit 1e-9 --log "$n.tsv" -o "$n.pack" "$in" >"$n.out" 2>"$n.err"
+		# one thread and two in turn: a checkpoint does not depend on the count
+		densify "$@" --threads $((runs % 2 + 1)) --checkpoint "$n.ck" --time-limit 1e-9 --log "$n.tsv" -o "$n.pack" "$in" >"$n.out" 2>"$n.err"
 		rc=$?
 		runs=$((runs + 1))
 		[ "$rc" -eq 75 ] && [ "$runs" -lt 200 ] || break
@@ -231,6 +232,7 @@ expect_fail "--method bfgs" 2 "^densify: --method: 'bfgs'" --method bfgs loose.p
 expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
 expect_fail "--release-after -1" 2 '^densify: --release-after' --release-after -1 loose.pack
 expect_fail "--time-limit without --checkpoint" 2 '^densify: --time-limit needs --checkpoint' --time-limit 60 loose.pack
+expect_fail "--checkpoint the output" 2 "^densify: --checkpoint: 'nothing.pack' is the output or the log" --checkpoint nothing.pack loose.pack
 expect_fail "--time-limit -1" 2 '^densify: --time-limit' --checkpoint x.ck --time-limit -1 loose.pack
 expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
 expect_fail "unknown option" 2 '^densify: unknown option' --bogus loose.pack
