@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -66,8 +67,15 @@ struct log_ctx {
 	const char *ckpath;
 	char *run;
 	struct timespec t0;
-	double longest, last;
+	double longest;		/* the longest stage so far, in any call (s) */
+	double last;		/* when the last checkpoint was written, in this call (s) */
+	double before;		/* the wall time of the earlier calls (s) */
+	long calls;		/* this call's number */
 };
+
+/* The tool's own checkpoint line: the clock, which is not part of the state (the run goes
+ * on the same whatever it says): the longest stage, the wall time of the calls, their count. */
+#define CK_CLOCK "densify-clock"
 
 static double
 since(const struct timespec *t0)
@@ -95,20 +103,24 @@ on_stage(const struct densify_stage *st, void *vctx)
 }
 
 /* After every stage: the pack and the state to the checkpoint file (atomically), and, with
- * --time-limit, stop when the next stage, taken as long as the longest so far, would end past
- * it.  A stage cannot be cut short: its minimiser's state is not saved. */
+ * --time-limit, stop when the next stage, taken as long as the longest so far in any call
+ * and followed by a checkpoint as long as this one, would end past it.  A stage cannot be
+ * cut short: its minimiser's state is not saved, so each call runs at least one. */
 static int
 on_checkpoint(const struct pack *p, const struct densify_resume *at, void *vctx)
 {
 	struct log_ctx *c = vctx;
-	double now = since(&c->t0);
+	double now = since(&c->t0), wrote;
+	char clock[96];
 
 	c->longest = fmax(c->longest, now - c->last);
-	c->last = now;
+	snprintf(clock, sizeof clock, "%.3f %.3f %ld", c->longest, c->before + now, c->calls);
 	if (fflush(c->rows) || densify_resume_put((struct pack *)p, at, c->run, c->rowbuf) ||
-	    pack_write_path(p, c->ckpath))
+	    pack_set_meta((struct pack *)p, CK_CLOCK, clock) || pack_write_path(p, c->ckpath))
 		return -1;
-	return o.time_limit > 0 && since(&c->t0) + c->longest > o.time_limit;
+	wrote = since(&c->t0);
+	c->last = wrote;
+	return o.time_limit > 0 && wrote + c->longest + (wrote - now) > o.time_limit;
 }
 
 /* What a checkpoint must match to be gone on from: the options that change the result, and
@@ -118,21 +130,25 @@ run_identity(const struct pack *p)
 {
 	const char *log = o.log, *ck = o.checkpoint;
 	double tl = o.time_limit;
+	int al = o.allow_limit;
 	uLong crc = crc32(0L, Z_NULL, 0);
 	char *res, *s, *q;
 	size_t len;
 
+	/* what only decides where output goes, when to stop, or whether a run at its limit is
+	 * kept, is left out: a run stopped by --time-limit may be finished without it */
 	o.log = o.checkpoint = NULL;
 	o.time_limit = 0;
+	o.allow_limit = 0;
 	res = cli_resolved(&tool);
-	o.log = log, o.checkpoint = ck, o.time_limit = tl;
+	o.log = log, o.checkpoint = ck, o.time_limit = tl, o.allow_limit = al;
 	crc = crc32(crc, (const Bytef *)p->id, (uInt)(p->n * sizeof *p->id));
 	crc = crc32(crc, (const Bytef *)p->x, (uInt)(3 * p->n * sizeof *p->x));
 	crc = crc32(crc, (const Bytef *)p->r, (uInt)(p->n * sizeof *p->r));
 	len = strlen(res) + 64;
 	if (!(s = malloc(len)))
 		msg_die(EXIT_DATA, "out of memory");
-	snprintf(s, len, "grains %zu crc32 %08lx ; %s", p->n, (unsigned long)crc, res);
+	snprintf(s, len, "%s %s grains %zu crc32 %08lx ; %s", tool.name, QUSGM_VERSION, p->n, (unsigned long)crc, res);
 	for (q = s; *q; q++)
 		if (*q == '\n' || *q == '\r')
 			*q = ' ';
@@ -160,6 +176,15 @@ resume_from(const char *path, struct pack *p, struct densify_resume *at, struct 
 	if (strcmp(run, c->run) != 0 || q.n != p->n)
 		msg_die(EXIT_DATA, "%s: the checkpoint of another run (other options or another input): remove it to start afresh",
 		    path);
+	if (pack_get_meta(&q, CK_CLOCK)) {
+		int end = -1;
+		const char *cl = pack_get_meta(&q, CK_CLOCK);
+		if (sscanf(cl, "%lg %lg %ld %n", &c->longest, &c->before, &c->calls, &end) != 3 || end < 0 || cl[end] ||
+		    !(c->longest >= 0 && c->longest < 1e12) || !(c->before >= 0 && c->before < 1e12) || c->calls < 1)
+			msg_die(EXIT_DATA, "%s: meta %s: malformed", path, CK_CLOCK);
+		pack_unset_meta(&q, CK_CLOCK);
+	}
+	c->calls++;
 	if (c->fp)
 		fputs(rows, c->fp);
 	fputs(rows, c->rows);
@@ -168,6 +193,33 @@ resume_from(const char *path, struct pack *p, struct densify_resume *at, struct 
 	pack_free(p);
 	*p = q;
 	return 1;
+}
+
+/* Whether paths a and b (b may be NULL or "-") name the same file: the same inode when both
+ * exist, else the same directory (by inode) and the same last component. */
+static int
+same_file(const char *a, const char *b)
+{
+	struct stat sa, sb;
+	const char *ba, *bb;
+	char *da, *db;
+	int same;
+
+	if (!b || strcmp(b, "-") == 0)
+		return 0;
+	if (strcmp(a, b) == 0)
+		return 1;
+	if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+		return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+	ba = strrchr(a, '/') ? strrchr(a, '/') + 1 : a;
+	bb = strrchr(b, '/') ? strrchr(b, '/') + 1 : b;
+	if (strcmp(ba, bb) != 0)
+		return 0;
+	da = ba == a ? strdup(".") : strndup(a, (size_t)(ba - a));
+	db = bb == b ? strdup(".") : strndup(b, (size_t)(bb - b));
+	same = da && db && stat(da, &sa) == 0 && stat(db, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+	free(da), free(db);
+	return same;
 }
 
 static void
@@ -202,9 +254,12 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--time-limit: must be a number of seconds, 0 or more");
 	if (o.time_limit > 0 && !o.checkpoint)
 		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
-	/* the finished run removes the checkpoint: never the pack or the log just written */
-	if (o.checkpoint && ((st->output && strcmp(o.checkpoint, st->output) == 0) || (o.log && strcmp(o.checkpoint, o.log) == 0)))
-		cli_usage_error("--checkpoint: '%s' is the output or the log; give it a file of its own", o.checkpoint);
+	/* the finished run removes the checkpoint: never the pack or the log just written, nor
+	 * the input; and it is read back, so not standard output */
+	if (o.checkpoint && (strcmp(o.checkpoint, "-") == 0 || same_file(o.checkpoint, st->output) ||
+	                        same_file(o.checkpoint, o.log) || same_file(o.checkpoint, st->input)))
+		cli_usage_error("--checkpoint: '%s' is standard output, the input, the output or the log; give it a file of its own",
+		    o.checkpoint);
 	cli_usage_done();
 	o.dp.loose_steps = !o.full_steps;
 	if (o.dp.onset == 0)
@@ -312,6 +367,7 @@ main(int argc, char **argv)
 		if (!(lc.rows = open_memstream(&lc.rowbuf, &lc.rowlen)))
 			msg_die(EXIT_DATA, "out of memory");
 		lc.ckpath = o.checkpoint;
+		lc.calls = 1;
 		lc.run = run_identity(&p);
 		resumed = resume_from(o.checkpoint, &p, &at, &lc);
 	}
@@ -327,6 +383,9 @@ main(int argc, char **argv)
 	}
 	check_stop(r, &logout, &last, st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>");
 	densify_resume_clear(&p);
+	pack_unset_meta(&p, CK_CLOCK);
+	if (o.checkpoint)
+		msg_info(1, "%.0f s of wall time in %ld call%s", lc.before + since(&lc.t0), lc.calls, lc.calls == 1 ? "" : "s");
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
 	if (pack_write_tool(&p, &tool, &st))

@@ -95,19 +95,24 @@ on_gap(const struct contact *c, void *vctx)
 
 /* Grow each grain with fewer than min_coord contacts until it touches its min_coord-th
  * nearest neighbour or wall (from the Verlet list: neighbours within the skin), by at most
- * max_growth of its radius.  Returns the number of grains grown. */
-static size_t
+ * max_growth of its radius.  Returns the number of grains grown, -1 on error. */
+static long
 grow_grains(struct qs_system *s, const double *x, const unsigned *cnt, const struct densify_params *dp,
     double scale, struct gaps *gp)
 {
 	struct pack *p = s->p;
 	struct grow_ctx g = {p, cnt, dp->min_coord, dp->min_coord < 4 ? dp->min_coord : 4, gp};
-	size_t i, grown = 0;
+	size_t i;
+	long grown = 0;
 
 	if (g.want == 0)
 		return 0;
 	for (i = 0; i < s->n; i++)
 		gp[i].k = 0;
+	/* a list built at x: every pair within the skin, whenever the list was built last, so
+	 * that the growth depends on the state alone (a resumed run's list is younger) */
+	if (contact_enum_update(&s->ce, x, 1))
+		return -1;
 	contact_foreach(&s->ce, x, CONTACT_NEAR, on_gap, &g);
 	for (i = 0; i < s->n; i++) {
 		double dr, cap = scale * dp->max_growth * p->r[i];
@@ -390,7 +395,8 @@ phase_a_round(struct densify_state *d, long round)
 	struct pack *p = d->p;
 	double de, sc, d3[3], zero[3] = {0, 0, 0};
 	struct qs_min_params mp;
-	size_t grown, i;
+	size_t i;
+	long grown;
 
 	/* the reference box: where the stress reached the onset and stayed there (a pack that
 	 * relaxes below it was not jammed; a pack densified again keeps its own) */
@@ -410,7 +416,8 @@ phase_a_round(struct densify_state *d, long round)
 	memcpy(d->xsave, d->x, 3 * p->n * sizeof *d->x);
 	memcpy(d->rsave, p->r, p->n * sizeof *d->rsave);
 	memcpy(d->boxsave, p->box, sizeof d->boxsave);
-	grown = grow_grains(&d->s, d->x, d->cnt, dp, d->scale, d->gp);
+	if ((grown = grow_grains(&d->s, d->x, d->cnt, dp, d->scale, d->gp)) < 0)
+		return -1;
 	de = d->st.sigma_c < dp->onset ? d->scale * dp->strain_step : 0;
 	if (grown == 0 && de == 0) {
 		/* under-coordinated grains that cannot grow (already touching): rattlers of a
@@ -475,8 +482,8 @@ compaction_step(struct densify_state *d, long round, double *e_prev, double *y_p
 	*y_prev = y;
 	d3[0] = d3[1] = d3[2] = de;
 	/* compaction can leave a grain with fewer than min_coord contacts: grow it too */
-	if (d->st.under4 > 0)
-		grow_grains(&d->s, d->x, d->cnt, dp, 1.0, d->gp);
+	if (d->st.under4 > 0 && grow_grains(&d->s, d->x, d->cnt, dp, 1.0, d->gp) < 0)
+		return -1;
 	if (fabs(d->st.sigma_c / dp->stress - 1) <= dp->stress_tol)
 		d3[0] = d3[1] = d3[2] = 0;
 	/* A step that moves the box only brings the pack nearer the target, like a growth
@@ -522,6 +529,7 @@ checkpoint(struct densify_state *d, densify_checkpoint_fn ck, void *ctx, int pha
 	at.round = round;
 	at.scale = d->scale;
 	at.r0sum = d->r0sum;
+	at.skin = d->s.skin;
 	at.e_prev = e_prev;
 	at.y_prev = y_prev;
 	at.full = d->full;
@@ -577,6 +585,9 @@ densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_l
 		d.st = from->st;
 		e_prev = from->e_prev;
 		y_prev = from->y_prev;
+		/* the skin of the run that wrote the checkpoint (qs_init took it from the grown
+		 * radii): the release's longest move and the neighbours a growth sees */
+		d.s.skin = d.s.ce.skin = from->skin;
 		/* the contact counts the next growth decides on, as the stage left them */
 		if (contact_enum_update(&d.s.ce, d.x, 0))
 			goto out;
@@ -631,7 +642,7 @@ out:
 #define CK_REFBOX "densify-refbox"
 #define CK_ROW "densify-log-"
 #define CK_RUN "densify-run"
-#define CK_VERSION 1
+#define CK_VERSION 2
 
 static const char *const stage_names[] = {"relax", "grow", "retry", "compact"};
 
@@ -640,13 +651,18 @@ densify_resume_put(struct pack *p, const struct densify_resume *at, const char *
 {
 	char buf[640], key[40];
 	const struct densify_stage *st = &at->st;
-	const char *row = rows, *nl;
-	long k = 0;
+	const char *row, *nl;
+	long k = 0, nrows = 0;
 	int bad = 0;
 
 	densify_resume_clear(p);
-	snprintf(buf, sizeof buf, "%d %d %ld %.17g %.17g %.17g %.17g %d %d %d", CK_VERSION, at->phase, at->round,
-	    at->scale, at->r0sum, at->e_prev, at->y_prev, at->full, at->have_ref, at->limit_hit);
+	for (row = rows; row && *row; row = *nl ? nl + 1 : nl) {
+		nl = row + strcspn(row, "\n");
+		nrows++;
+	}
+	snprintf(buf, sizeof buf, "%d %d %ld %.17g %.17g %.17g %.17g %.17g %d %d %d %ld", CK_VERSION, at->phase,
+	    at->round, at->scale, at->r0sum, at->skin, at->e_prev, at->y_prev, at->full, at->have_ref, at->limit_hit,
+	    nrows);
 	bad |= pack_set_meta(p, CK_STATE, buf);
 	snprintf(buf, sizeof buf, "%s %.17g %.17g %.17g %zu %.17g %ld %.17g %.17g %d", st->stage, st->sigma_c,
 	    st->porosity, st->coordination, st->under4, st->growth, st->iterations, st->res_max, st->res_mean,
@@ -658,7 +674,7 @@ densify_resume_put(struct pack *p, const struct densify_resume *at, const char *
 		    p->refbox[2], p->refbox[3], p->refbox[4], p->refbox[5]);
 		bad |= pack_set_meta(p, CK_REFBOX, buf);
 	}
-	for (; row && *row && !bad; row = *nl ? nl + 1 : nl) {
+	for (row = rows; row && *row && !bad; row = *nl ? nl + 1 : nl) {
 		char *line;
 		nl = row + strcspn(row, "\n");
 		if (!(line = strndup(row, (size_t)(nl - row))))
@@ -677,57 +693,69 @@ densify_resume_put(struct pack *p, const struct densify_resume *at, const char *
 void
 densify_resume_clear(struct pack *p)
 {
-	char key[40];
-	long k;
+	size_t k = 0;
 
 	pack_unset_meta(p, CK_STATE);
 	pack_unset_meta(p, CK_STAGE);
 	pack_unset_meta(p, CK_REFBOX);
 	pack_unset_meta(p, CK_RUN);
-	for (k = 1;; k++) {
-		snprintf(key, sizeof key, CK_ROW "%ld", k);
-		if (!pack_get_meta(p, key))
-			break;
-		pack_unset_meta(p, key);
-	}
+	while (k < p->nmeta)
+		if (strncmp(p->meta[k].key, CK_ROW, strlen(CK_ROW)) == 0)
+			pack_unset_meta(p, p->meta[k].key);
+		else
+			k++;
 }
 
-/* The state and stage lines, and the reference box when there is one. */
+/* The state and stage lines, and the reference box when there is one: every number in its
+ * range (a damaged checkpoint is refused, not run); *nrows the log rows it holds. */
 static int
-resume_parse(struct pack *p, struct densify_resume *at)
+resume_parse(struct pack *p, struct densify_resume *at, long *nrows)
 {
 	const char *s = pack_get_meta(p, CK_STATE), *t = pack_get_meta(p, CK_STAGE), *rb = pack_get_meta(p, CK_REFBOX);
+	struct densify_stage *st = &at->st;
 	char name[16];
-	int version, end = -1;
+	int version = 0, end = -1, flags_ok;
+	long under4;
 	unsigned k;
 
-	if (sscanf(s, "%d %d %ld %lg %lg %lg %lg %d %d %d %n", &version, &at->phase, &at->round, &at->scale,
-	        &at->r0sum, &at->e_prev, &at->y_prev, &at->full, &at->have_ref, &at->limit_hit, &end) != 10 ||
-	    end < 0 || s[end] || version != CK_VERSION || at->phase < 0 || at->phase > 2 || at->round < 0 ||
-	    !(at->scale > 0) || !(at->r0sum > 0)) {
+	if (sscanf(s, "%d", &version) != 1 || version != CK_VERSION) {
 		msg_seterr("meta %s: not a densify checkpoint of version %d", CK_STATE, CK_VERSION);
 		return -1;
 	}
-	end = -1;
-	if (!t || sscanf(t, "%15s %lg %lg %lg %zu %lg %ld %lg %lg %d %n", name, &at->st.sigma_c, &at->st.porosity,
-	        &at->st.coordination, &at->st.under4, &at->st.growth, &at->st.iterations, &at->st.res_max,
-	        &at->st.res_mean, &at->st.min_status, &end) != 10 || end < 0 || t[end]) {
-		msg_seterr("meta %s: missing or malformed", CK_STAGE);
+	flags_ok = sscanf(s, "%d %d %ld %lg %lg %lg %lg %lg %d %d %d %ld %n", &version, &at->phase, &at->round,
+	               &at->scale, &at->r0sum, &at->skin, &at->e_prev, &at->y_prev, &at->full, &at->have_ref,
+	               &at->limit_hit, nrows, &end) == 12 && end >= 0 && !s[end];
+	if (!flags_ok || at->phase < 0 || at->phase > 2 || at->round < 0 || at->round > 1000000000L ||
+	    (at->phase == 0) != (at->round == 0) || !(at->scale > 0 && at->scale <= 1) || !isfinite(at->r0sum) ||
+	    !(at->r0sum > 0) || !isfinite(at->skin) || !(at->skin > 0) || isnan(at->e_prev) != isnan(at->y_prev) ||
+	    isinf(at->e_prev) || isinf(at->y_prev) || (unsigned)at->full > 1 || (unsigned)at->have_ref > 1 ||
+	    (unsigned)at->limit_hit > 1 || (at->phase == 2 && !at->have_ref) || *nrows < 1 || *nrows > 1000000000L) {
+		msg_seterr("meta %s: malformed or out of range", CK_STATE);
 		return -1;
 	}
+	end = -1;
+	if (!t || sscanf(t, "%15s %lg %lg %lg %ld %lg %ld %lg %lg %d %n", name, &st->sigma_c, &st->porosity,
+	        &st->coordination, &under4, &st->growth, &st->iterations, &st->res_max, &st->res_mean,
+	        &st->min_status, &end) != 10 || end < 0 || t[end] || !isfinite(st->sigma_c) || !isfinite(st->porosity) ||
+	    !isfinite(st->coordination) || under4 < 0 || !isfinite(st->growth) || st->iterations < 0 ||
+	    !isfinite(st->res_max) || !isfinite(st->res_mean)) {
+		msg_seterr("meta %s: missing, malformed or out of range", CK_STAGE);
+		return -1;
+	}
+	st->under4 = (size_t)under4;
 	for (k = 0; k < sizeof stage_names / sizeof *stage_names; k++)
 		if (strcmp(name, stage_names[k]) == 0)
-			at->st.stage = stage_names[k];
-	if (!at->st.stage) {
+			st->stage = stage_names[k];
+	if (!st->stage) {
 		msg_seterr("meta %s: unknown stage '%s'", CK_STAGE, name);
 		return -1;
 	}
-	at->st.round = at->round;
+	st->round = at->round;
 	if (rb) {
 		double *b = p->refbox;
 		end = -1;
 		if (sscanf(rb, "%lg %lg %lg %lg %lg %lg %n", b, b + 1, b + 2, b + 3, b + 4, b + 5, &end) != 6 ||
-		    end < 0 || rb[end]) {
+		    end < 0 || rb[end] || !isfinite(b[0] + b[1] + b[2] + b[3] + b[4] + b[5])) {
 			msg_seterr("meta %s: expected six numbers", CK_REFBOX);
 			return -1;
 		}
@@ -742,33 +770,45 @@ resume_parse(struct pack *p, struct densify_resume *at)
 	return 0;
 }
 
-/* The log rows, one per line. */
+/* The log rows 1..nrows, one per line; NULL (message set) when one is missing or there are
+ * more. */
 static char *
-resume_rows(const struct pack *p)
+resume_rows(const struct pack *p, long nrows)
 {
 	char key[40], *buf = malloc(1);
 	size_t len = 0;
 	long q;
 
-	if (buf)
-		*buf = 0;
-	for (q = 1; buf; q++) {
+	if (!buf) {
+		msg_seterr("out of memory");
+		return NULL;
+	}
+	*buf = 0;
+	for (q = 1; q <= nrows + 1; q++) {
 		const char *row;
 		char *nb;
 		size_t l;
 		snprintf(key, sizeof key, CK_ROW "%ld", q);
-		if (!(row = pack_get_meta(p, key)))
+		row = pack_get_meta(p, key);
+		if (!row != (q > nrows)) {
+			free(buf);
+			msg_seterr("meta %s%ld: %s (%s says %ld rows)", CK_ROW, q, row ? "one row too many" : "missing",
+			    CK_STATE, nrows);
+			return NULL;
+		}
+		if (!row)
 			break;
 		l = strlen(row);
-		if (!(nb = realloc(buf, len + l + 2)))
+		if (!(nb = realloc(buf, len + l + 2))) {
 			free(buf);
-		buf = nb;
-		if (buf) {
-			memcpy(buf + len, row, l);
-			len += l;
-			buf[len++] = '\n';
-			buf[len] = 0;
+			msg_seterr("out of memory");
+			return NULL;
 		}
+		buf = nb;
+		memcpy(buf + len, row, l);
+		len += l;
+		buf[len++] = '\n';
+		buf[len] = 0;
 	}
 	return buf;
 }
@@ -776,17 +816,17 @@ resume_rows(const struct pack *p)
 int
 densify_resume_get(struct pack *p, struct densify_resume *at, char **run, char **rows)
 {
+	long nrows;
+
 	*rows = *run = NULL;
 	if (!pack_get_meta(p, CK_STATE))
 		return 1;
 	memset(at, 0, sizeof *at);
-	if (resume_parse(p, at))
+	if (resume_parse(p, at, &nrows) || !(*rows = resume_rows(p, nrows)))
 		return -1;
-	*run = strdup(pack_get_meta(p, CK_RUN));
-	*rows = resume_rows(p);
-	if (!*run || !*rows) {
-		free(*run), free(*rows);
-		*run = *rows = NULL;
+	if (!(*run = strdup(pack_get_meta(p, CK_RUN)))) {
+		free(*rows);
+		*rows = NULL;
 		msg_seterr("out of memory");
 		return -1;
 	}

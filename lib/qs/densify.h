@@ -95,6 +95,7 @@ struct densify_resume {
 	long round;
 	double scale;		/* the growth rounds' squeeze and growth factor (halved by a retry) */
 	double r0sum;		/* the input radii's sum: growth is counted from it */
+	double skin;		/* the Verlet skin (m), set from the input's smallest radius */
 	double e_prev, y_prev;	/* the compaction secant's last point (NaN before the first step) */
 	int full;		/* the last stage was minimised to the full tolerance */
 	int have_ref;		/* p->refbox holds the reference box (set in phase (a)) */

@@ -159,12 +159,23 @@ resume_all ckre d1.pack --stress 4e6
 grep -v '^history densify ' re.pack >re.nohist
 grep -v '^history densify ' ckre.pack >ckre.nohist 2>/dev/null
 expect_same "checkpoint: dense pack further, resumed, is the uninterrupted one" re.nohist ckre.nohist
+# A wide size distribution (the smallest grains grow, so the skin taken from the radii of a
+# resumed run would be larger) with a release every 10 iterations (the release's longest
+# move is a quarter of the skin): the resumed run must still be the uninterrupted one.
+expect_ok "packgen, a wide psd" packgen -n 300 --seed 3 --psd uniform:2e-5,1.5e-4 -o wide.pack
+densify --stress 4e6 --release-after 10 --log wide.tsv -o wide.pack.d wide.pack 2>/dev/null
+resume_all ckwide wide.pack --stress 4e6 --release-after 10
+grep -v '^history densify ' wide.pack.d >wide.nohist
+grep -v '^history densify ' ckwide.pack >ckwide.nohist 2>/dev/null
+expect_same "checkpoint: wide psd, releases every 10 iterations, resumed" wide.nohist ckwide.nohist
+expect_same "checkpoint: wide psd, the log" wide.tsv ckwide.tsv
 # an uninterrupted run with --checkpoint is the run without it
 densify --stress 4e6 --checkpoint once.ck -o once.pack loose.pack 2>/dev/null
 grep -v '^history densify ' once.pack >once.nohist 2>/dev/null
 expect_same "checkpoint: --checkpoint alone changes nothing" d4.nohist once.nohist
 # What a checkpoint is refused for: another run's options or input, a pack that is not a
 # checkpoint, a damaged one.  The checkpoint is kept (it may be the only copy of hours of work).
+rm -f other.ck al.ck
 densify --stress 4e6 --checkpoint other.ck --time-limit 1e-9 -o other.pack loose.pack 2>/dev/null
 cp other.ck other.keep
 expect_error "checkpoint of other options" 1 '^densify: other.ck: the checkpoint of another run \(other options or another input\): remove it to start afresh$' \
@@ -175,12 +186,31 @@ expect_error "checkpoint of another input" 1 '^densify: other.ck: the checkpoint
 cp loose.pack plain.ck
 expect_error "a pack that is no checkpoint" 1 '^densify: plain.ck: not a densify checkpoint' \
     densify --stress 4e6 --checkpoint plain.ck -o other.pack loose.pack
-sed 's/^meta densify-checkpoint 1 /meta densify-checkpoint 9 /' other.keep >bad.ck
-expect_error "a checkpoint of another version" 1 '^densify: bad.ck: meta densify-checkpoint: not a densify checkpoint of version 1$' \
-    densify --stress 4e6 --checkpoint bad.ck -o other.pack loose.pack
-grep -v '^meta densify-stage ' other.keep >bad.ck
-expect_error "a checkpoint without its stage" 1 '^densify: bad.ck: meta densify-stage: missing or malformed$' \
-    densify --stress 4e6 --checkpoint bad.ck -o other.pack loose.pack
+# bad_ck NAME SED REGEX: the checkpoint edited by SED is refused with one line matching REGEX
+bad_ck() {
+	sed "$2" other.keep >bad.ck
+	if cmp -s bad.ck other.keep; then fail "$1" "the edit '$2' changed nothing"; return; fi
+	expect_error "$1" 1 "$3" densify --stress 4e6 --checkpoint bad.ck -o other.pack loose.pack
+}
+bad_ck "a checkpoint of another version" 's/^meta densify-checkpoint 2 /meta densify-checkpoint 9 /' \
+    '^densify: bad.ck: meta densify-checkpoint: not a densify checkpoint of version 2$'
+bad_ck "a checkpoint without its stage" '/^meta densify-stage /d' \
+    '^densify: bad.ck: meta densify-stage: missing, malformed or out of range$'
+bad_ck "a checkpoint with a negative under4" 's/^\(meta densify-stage [a-z]* [^ ]* [^ ]* [^ ]*\) [0-9]* /\1 -1 /' \
+    '^densify: bad.ck: meta densify-stage: missing, malformed or out of range$'
+bad_ck "a checkpoint with a round beyond any" 's/^\(meta densify-checkpoint 2 [0-9]\) [0-9]* /\1 9223372036854775807 /' \
+    '^densify: bad.ck: meta densify-checkpoint: malformed or out of range$'
+bad_ck "a checkpoint with an infinite scale" 's/^\(meta densify-checkpoint 2 [0-9] [0-9]*\) [^ ]* /\1 inf /' \
+    '^densify: bad.ck: meta densify-checkpoint: malformed or out of range$'
+bad_ck "a checkpoint missing a log row" '/^meta densify-log-1 /d' \
+    '^densify: bad.ck: meta densify-log-1: missing \(densify-checkpoint says 1 rows\)$'
+bad_ck "a checkpoint with a row too many" 's/^\(meta densify-log-1 .*\)$/\1\nmeta densify-log-2 x/' \
+    '^densify: bad.ck: meta densify-log-2: one row too many'
+# --allow-limit is not part of the run: a stopped run may be finished with it
+densify --stress 4e6 --checkpoint al.ck --time-limit 1e-9 -o al.pack loose.pack 2>/dev/null
+expect_ok "checkpoint: finished with --allow-limit added" densify --stress 4e6 --allow-limit --checkpoint al.ck -o al.pack loose.pack
+grep -v '^history densify ' al.pack >al.nohist 2>/dev/null
+expect_same "checkpoint: finished with --allow-limit, the same pack" d4.nohist al.nohist
 if [ ! -e other.pack ]; then pass "refused checkpoints: no output"; else fail "refused checkpoints: no output" "other.pack written"; fi
 
 # Errors: exit status, nothing on stdout, one line on stderr, no output file.
@@ -232,7 +262,11 @@ expect_fail "--method bfgs" 2 "^densify: --method: 'bfgs'" --method bfgs loose.p
 expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
 expect_fail "--release-after -1" 2 '^densify: --release-after' --release-after -1 loose.pack
 expect_fail "--time-limit without --checkpoint" 2 '^densify: --time-limit needs --checkpoint' --time-limit 60 loose.pack
-expect_fail "--checkpoint the output" 2 "^densify: --checkpoint: 'nothing.pack' is the output or the log" --checkpoint nothing.pack loose.pack
+expect_fail "--checkpoint the output" 2 "^densify: --checkpoint: 'nothing.pack' is standard output, the input, the output or the log" --checkpoint nothing.pack loose.pack
+expect_fail "--checkpoint the output by another path" 2 "^densify: --checkpoint: './nothing.pack' is" --checkpoint ./nothing.pack loose.pack
+expect_fail "--checkpoint the log" 2 "^densify: --checkpoint: 'l.tsv' is" --checkpoint l.tsv --log ./l.tsv loose.pack
+expect_fail "--checkpoint the input" 2 "^densify: --checkpoint: 'loose.pack' is" --checkpoint loose.pack loose.pack
+expect_fail "--checkpoint -" 2 "^densify: --checkpoint: '-' is" --checkpoint - loose.pack
 expect_fail "--time-limit -1" 2 '^densify: --time-limit' --checkpoint x.ck --time-limit -1 loose.pack
 expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
 expect_fail "unknown option" 2 '^densify: unknown option' --bogus loose.pack
