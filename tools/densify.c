@@ -379,6 +379,9 @@ main(int argc, char **argv)
 			file_out_abort(&logout);
 		msg_info(0, "stopped after %s %ld at the time limit (%.0f s); the same command goes on from %s", last.stage,
 		    last.round, since(&lc.t0), o.checkpoint);
+		fclose(lc.rows);
+		free(lc.rowbuf), free(lc.run);
+		pack_free(&p);
 		return EXIT_STOPPED;
 	}
 	check_stop(r, &logout, &last, st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>");
