@@ -176,6 +176,8 @@ resume_from(const char *path, struct pack *p, struct densify_resume *at, struct 
 	if (strcmp(run, c->run) != 0 || q.n != p->n)
 		msg_die(EXIT_DATA, "%s: the checkpoint of another run (other options or another input): remove it to start afresh",
 		    path);
+	if (densify_resume_check_input(p, &o.dp, at))
+		msg_die(EXIT_DATA, "%s: %s", path, msg_geterr());
 	if (pack_get_meta(&q, CK_CLOCK)) {
 		int end = -1;
 		const char *cl = pack_get_meta(&q, CK_CLOCK);
@@ -196,9 +198,10 @@ resume_from(const char *path, struct pack *p, struct densify_resume *at, struct 
 }
 
 /* Whether paths a and b (b may be NULL or "-") name the same file: the same inode when both
- * exist, else the same directory (by inode) and the same last component. */
+ * exist, else the same directory (by inode) and the same last component.  link: b is an
+ * output, which a rename replaces, so a symbolic link there is a file of its own. */
 static int
-same_file(const char *a, const char *b)
+same_file(const char *a, const char *b, int link)
 {
 	struct stat sa, sb;
 	const char *ba, *bb;
@@ -209,7 +212,7 @@ same_file(const char *a, const char *b)
 		return 0;
 	if (strcmp(a, b) == 0)
 		return 1;
-	if (stat(a, &sa) == 0 && stat(b, &sb) == 0)
+	if (stat(a, &sa) == 0 && (link ? lstat(b, &sb) : stat(b, &sb)) == 0)
 		return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 	ba = strrchr(a, '/') ? strrchr(a, '/') + 1 : a;
 	bb = strrchr(b, '/') ? strrchr(b, '/') + 1 : b;
@@ -220,6 +223,20 @@ same_file(const char *a, const char *b)
 	same = da && db && stat(da, &sa) == 0 && stat(db, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 	free(da), free(db);
 	return same;
+}
+
+/* The directory a file is to be written in exists and is writable (a usage error otherwise). */
+static void
+check_dir(const char *path, const char *opt)
+{
+	const char *b = strrchr(path, '/');
+	char *dir = b ? (b == path ? strdup("/") : strndup(path, (size_t)(b - path))) : strdup(".");
+
+	if (!dir)
+		msg_die(EXIT_DATA, "out of memory");
+	if (access(dir, W_OK | X_OK) != 0)
+		cli_usage_error("%s: cannot write in directory '%s': %s", opt, dir, strerror(errno));
+	free(dir);
 }
 
 static void
@@ -256,10 +273,15 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
 	/* the finished run removes the checkpoint: never the pack or the log just written, nor
 	 * the input; and it is read back, so not standard output */
-	if (o.checkpoint && (strcmp(o.checkpoint, "-") == 0 || same_file(o.checkpoint, st->output) ||
-	                        same_file(o.checkpoint, o.log) || same_file(o.checkpoint, st->input)))
+	if (o.checkpoint && (strcmp(o.checkpoint, "-") == 0 || same_file(o.checkpoint, st->output, 1) ||
+	                        same_file(o.checkpoint, o.log, 1) || same_file(o.checkpoint, st->input, 0)))
 		cli_usage_error("--checkpoint: '%s' is standard output, the input, the output or the log; give it a file of its own",
 		    o.checkpoint);
+	/* a run of hours must not find out at its end that it cannot write */
+	if (o.checkpoint)
+		check_dir(o.checkpoint, "--checkpoint");
+	if (st->output && strcmp(st->output, "-") != 0)
+		check_dir(st->output, "-o");
 	cli_usage_done();
 	o.dp.loose_steps = !o.full_steps;
 	if (o.dp.onset == 0)
@@ -349,7 +371,7 @@ main(int argc, char **argv)
 	struct densify_stage last;
 	struct densify_resume at;
 	struct pack p;
-	char buf[40];
+	char buf[40], ckname[4096];
 	int r, resumed = 0;
 
 	msg_init(argv[0]);
@@ -371,6 +393,7 @@ main(int argc, char **argv)
 		lc.run = run_identity(&p);
 		resumed = resume_from(o.checkpoint, &p, &at, &lc);
 	}
+	lc.last = since(&lc.t0);	/* the first stage's time does not count the reading */
 	r = densify_run_resumable(&p, &o.dp, on_stage, &lc, o.checkpoint ? on_checkpoint : NULL, resumed ? &at : NULL,
 	    &last);
 	cli_progress_end();
@@ -384,7 +407,10 @@ main(int argc, char **argv)
 		pack_free(&p);
 		return EXIT_STOPPED;
 	}
-	check_stop(r, &logout, &last, st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>");
+	/* a resumed run's state is the checkpoint's */
+	if (resumed && (size_t)snprintf(ckname, sizeof ckname, "%s (resumed)", o.checkpoint) >= sizeof ckname)
+		strcpy(ckname, "the checkpoint");
+	check_stop(r, &logout, &last, resumed ? ckname : st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>");
 	densify_resume_clear(&p);
 	pack_unset_meta(&p, CK_CLOCK);
 	if (o.checkpoint)
@@ -395,8 +421,10 @@ main(int argc, char **argv)
 		msg_die_err(EXIT_DATA);
 	if (o.log && file_out_commit(&logout))
 		msg_die_err(EXIT_DATA);
-	/* the run is done: a rerun starts afresh */
-	if (o.checkpoint && unlink(o.checkpoint) != 0 && errno != ENOENT)
+	/* the run is done: a rerun starts afresh (never the pack or the log just written, even
+	 * if a name the checks above could not see through leads there) */
+	if (o.checkpoint && !same_file(o.checkpoint, st.output, 0) && !same_file(o.checkpoint, o.log, 0) &&
+	    unlink(o.checkpoint) != 0 && errno != ENOENT)
 		msg_warn("%s: %s (the checkpoint of a finished run)", o.checkpoint, strerror(errno));
 	if (lc.rows)
 		fclose(lc.rows);

@@ -141,6 +141,16 @@ wall_sigma_c(const struct qs_system *s)
 	return (sig[0] + sig[1] + sig[2]) / 3;
 }
 
+static size_t
+count_under4(const unsigned *cnt, size_t n)
+{
+	size_t i, k = 0;
+
+	for (i = 0; i < n; i++)
+		k += cnt[i] < 4;
+	return k;
+}
+
 static void
 stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densify_stage *st)
 {
@@ -150,11 +160,9 @@ stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densi
 	st->sigma_c = wall_sigma_c(s);
 	st->porosity = 1 - pack_grain_volume(s->p) / pack_box_volume(s->p->box);
 	qs_coordination(s, x, cnt);
-	st->under4 = 0;
-	for (i = 0; i < s->n; i++) {
+	for (i = 0; i < s->n; i++)
 		sum += cnt[i];
-		st->under4 += cnt[i] < 4;
-	}
+	st->under4 = count_under4(cnt, s->n);
 	st->coordination = sum / s->n;
 }
 
@@ -592,6 +600,11 @@ densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_l
 		if (contact_enum_update(&d.s.ce, d.x, 0))
 			goto out;
 		qs_coordination(&d.s, d.x, d.cnt);
+		if (count_under4(d.cnt, p->n) != from->st.under4) {
+			msg_seterr("the checkpoint's positions give %zu grains under 4 contacts, its stage %zu",
+			    count_under4(d.cnt, p->n), from->st.under4);
+			goto out;
+		}
 	} else {
 		if (qs_minimize(&d.s, d.x, &dpl.min, &d.rep) < 0)
 			goto out;
@@ -715,21 +728,26 @@ resume_parse(struct pack *p, struct densify_resume *at, long *nrows)
 	struct densify_stage *st = &at->st;
 	char name[16];
 	int version = 0, end = -1, flags_ok;
-	long under4;
-	unsigned k;
+	long under4, v[5];
+	unsigned k, k0 = 99;
 
 	if (sscanf(s, "%d", &version) != 1 || version != CK_VERSION) {
 		msg_seterr("meta %s: not a densify checkpoint of version %d", CK_STATE, CK_VERSION);
 		return -1;
 	}
-	flags_ok = sscanf(s, "%d %d %ld %lg %lg %lg %lg %lg %d %d %d %ld %n", &version, &at->phase, &at->round,
-	               &at->scale, &at->r0sum, &at->skin, &at->e_prev, &at->y_prev, &at->full, &at->have_ref,
-	               &at->limit_hit, nrows, &end) == 12 && end >= 0 && !s[end];
-	if (!flags_ok || at->phase < 0 || at->phase > 2 || at->round < 0 || at->round > 1000000000L ||
-	    (at->phase == 0) != (at->round == 0) || !(at->scale > 0 && at->scale <= 1) || !isfinite(at->r0sum) ||
-	    !(at->r0sum > 0) || !isfinite(at->skin) || !(at->skin > 0) || isnan(at->e_prev) != isnan(at->y_prev) ||
-	    isinf(at->e_prev) || isinf(at->y_prev) || (unsigned)at->full > 1 || (unsigned)at->have_ref > 1 ||
-	    (unsigned)at->limit_hit > 1 || (at->phase == 2 && !at->have_ref) || *nrows < 1 || *nrows > 1000000000L) {
+	/* every field as a long first: %d of a number beyond int is undefined */
+	flags_ok = sscanf(s, "%ld %ld %ld %lg %lg %lg %lg %lg %ld %ld %ld %ld %n", &v[0], &v[1], &at->round, &at->scale,
+	               &at->r0sum, &at->skin, &at->e_prev, &at->y_prev, &v[2], &v[3], &v[4], nrows, &end) == 12 &&
+	           end >= 0 && !s[end] && v[1] >= 0 && v[1] <= 2 && v[2] >= 0 && v[2] <= 1 && v[3] >= 0 && v[3] <= 1 &&
+	           v[4] >= 0 && v[4] <= 1;
+	at->phase = (int)v[1], at->full = (int)v[2], at->have_ref = (int)v[3], at->limit_hit = (int)v[4];
+	/* one log row per stage: the relaxation and one per growth round (a retry is its round's
+	 * row), then one per compaction step */
+	if (!flags_ok || at->round < 0 || at->round > 1000000000L || (at->phase == 0) != (at->round == 0) ||
+	    !(at->scale > 0 && at->scale <= 1) || !isfinite(at->r0sum) || !(at->r0sum > 0) || !isfinite(at->skin) ||
+	    !(at->skin > 0) || isnan(at->e_prev) != isnan(at->y_prev) || isinf(at->e_prev) || isinf(at->y_prev) ||
+	    (at->phase == 2 && !at->have_ref) || (at->phase < 2 && *nrows != at->round + 1) ||
+	    (at->phase == 2 && *nrows < at->round + 1) || *nrows > 2000000001L) {
 		msg_seterr("meta %s: malformed or out of range", CK_STATE);
 		return -1;
 	}
@@ -745,9 +763,10 @@ resume_parse(struct pack *p, struct densify_resume *at, long *nrows)
 	st->under4 = (size_t)under4;
 	for (k = 0; k < sizeof stage_names / sizeof *stage_names; k++)
 		if (strcmp(name, stage_names[k]) == 0)
-			st->stage = stage_names[k];
-	if (!st->stage) {
-		msg_seterr("meta %s: unknown stage '%s'", CK_STAGE, name);
+			st->stage = stage_names[k], k0 = k;
+	if (!st->stage || (at->phase == 0) != (k0 == 0) || (at->phase == 1) != (k0 == 1 || k0 == 2) ||
+	    (at->phase == 2) != (k0 == 3)) {
+		msg_seterr("meta %s: stage '%s' after phase %d", CK_STAGE, name, at->phase);
 		return -1;
 	}
 	st->round = at->round;
@@ -811,6 +830,24 @@ resume_rows(const struct pack *p, long nrows)
 		buf[len] = 0;
 	}
 	return buf;
+}
+
+int
+densify_resume_check_input(const struct pack *input, const struct densify_params *dp, const struct densify_resume *at)
+{
+	double r0sum = 0, rmin = INFINITY;
+	size_t i;
+
+	/* as state_alloc and qs_init take them */
+	for (i = 0; i < input->n; i++) {
+		r0sum += input->r[i];
+		rmin = fmin(rmin, input->r[i]);
+	}
+	if (at->r0sum != r0sum || at->skin != dp->skin * rmin) {
+		msg_seterr("the checkpoint's radii sum or skin is not the input's");
+		return -1;
+	}
+	return 0;
 }
 
 int

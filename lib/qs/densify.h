@@ -134,6 +134,10 @@ int densify_run_resumable(struct pack *p, const struct densify_params *dp, densi
 int densify_resume_put(struct pack *p, const struct densify_resume *at, const char *run, const char *rows);
 int densify_resume_get(struct pack *p, struct densify_resume *at, char **run, char **rows);
 void densify_resume_clear(struct pack *p);
+/* Whether the checkpoint at was written by a run from input with dp (its radii's sum and the
+ * skin, which follow from them): 0, or -1 with the message set. */
+int densify_resume_check_input(const struct pack *input, const struct densify_params *dp,
+    const struct densify_resume *at);
 
 #include <stdio.h>
 

@@ -206,6 +206,14 @@ bad_ck "a checkpoint missing a log row" '/^meta densify-log-1 /d' \
     '^densify: bad.ck: meta densify-log-1: missing \(densify-checkpoint says 1 rows\)$'
 bad_ck "a checkpoint with a row too many" 's/^\(meta densify-log-1 .*\)$/\1\nmeta densify-log-2 x/' \
     '^densify: bad.ck: meta densify-log-2: one row too many'
+bad_ck "a checkpoint with a phase beyond int" 's/^meta densify-checkpoint 2 0 /meta densify-checkpoint 2 4294967296 /' \
+    '^densify: bad.ck: meta densify-checkpoint: malformed or out of range$'
+bad_ck "a checkpoint whose stage is not its phase's" 's/^meta densify-stage relax /meta densify-stage compact /' \
+    "^densify: bad.ck: meta densify-stage: stage 'compact' after phase 0$"
+bad_ck "a checkpoint whose skin is not the input's" 's/^\(meta densify-checkpoint 2 0 0 1 [^ ]*\) [^ ]* /\1 1e-300 /' \
+    "^densify: bad.ck: the checkpoint's radii sum or skin is not the input's$"
+bad_ck "a checkpoint whose under4 the positions do not give" 's/^\(meta densify-stage relax [^ ]* [^ ]* [^ ]*\) [0-9]* /\1 5 /' \
+    "^densify: bad.ck \\(resumed\\): the checkpoint's positions give [0-9]+ grains under 4 contacts, its stage 5$"
 # --allow-limit is not part of the run: a stopped run may be finished with it
 densify --stress 4e6 --checkpoint al.ck --time-limit 1e-9 -o al.pack loose.pack 2>/dev/null
 expect_ok "checkpoint: finished with --allow-limit added" densify --stress 4e6 --allow-limit --checkpoint al.ck -o al.pack loose.pack
@@ -266,6 +274,13 @@ expect_fail "--checkpoint the output" 2 "^densify: --checkpoint: 'nothing.pack' 
 expect_fail "--checkpoint the output by another path" 2 "^densify: --checkpoint: './nothing.pack' is" --checkpoint ./nothing.pack loose.pack
 expect_fail "--checkpoint the log" 2 "^densify: --checkpoint: 'l.tsv' is" --checkpoint l.tsv --log ./l.tsv loose.pack
 expect_fail "--checkpoint the input" 2 "^densify: --checkpoint: 'loose.pack' is" --checkpoint loose.pack loose.pack
+ln -sf nothing.ck link.pack
+expect_error "--checkpoint the output through a link: allowed (the rename replaces the link)" 75 '^densify: stopped after relax 0' \
+    densify --checkpoint nothing.ck --time-limit 1e-9 -o link.pack loose.pack
+if [ -L link.pack ] && [ -s nothing.ck ]; then pass "the link stays until the output replaces it"; else fail "the link stays until the output replaces it" "$(ls -l link.pack nothing.ck 2>&1)"; fi
+rm -f nothing.ck link.pack
+expect_error "-o in a missing directory" 2 "^densify: -o: cannot write in directory 'no-such-dir'" densify --checkpoint x.ck -o no-such-dir/x.pack loose.pack
+expect_fail "--checkpoint in a missing directory" 2 "^densify: --checkpoint: cannot write in directory 'no-such-dir'" --checkpoint no-such-dir/x.ck loose.pack
 expect_fail "--checkpoint -" 2 "^densify: --checkpoint: '-' is" --checkpoint - loose.pack
 expect_fail "--time-limit -1" 2 '^densify: --time-limit' --checkpoint x.ck --time-limit -1 loose.pack
 expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
