@@ -1,13 +1,16 @@
 #!/bin/sh
 # tests/bench-1e6.sh BIN BENCHBIN: make bench-1e6.  The chain's first stages at a million grains
 # (issue 17): packgen, densify to 4 MPa, one frictional uniaxial 1e-4 increment, each timed
-# with its peak memory, in BENCH_1E6_DIR (default bench/1e6; about 200 MB of packs).
+# with its peak memory, in BENCH_1E6_DIR (default bench/1e6; at 1e6 about 250 MB: the loose
+# and dense packs, densify's checkpoint while it runs).
 #
 # Hours of work (packgen about 2 h and densify many on two threads), so it goes on where it
 # stopped: a stage whose output exists is not run again, and densify runs with --checkpoint,
 # so each call of this script continues it from its last stage (--time-limit
-# BENCH_1E6_LIMIT seconds, 0 for none: the call then stops with exit status 75, and the next
-# call goes on; the pack is the uninterrupted run's to the byte).  Every densify call is a
+# BENCH_1E6_LIMIT seconds, 0 for none: the call then stops with exit status 75, which make
+# reports as "Error 75", and the next call goes on; the pack is the uninterrupted run's to
+# the byte).  Do not change densify's code between the calls of one run: a checkpoint
+# records the options and the input, not the build.  Every densify call is a
 # line of runs.txt and a file runK.time ("WALL s PEAK KiB"); the summary adds them up.
 #
 # Knobs: BENCH_1E6_N (1000000), BENCH_1E6_THREADS (2), BENCH_1E6_LIMIT (0).

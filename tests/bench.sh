@@ -242,6 +242,8 @@ rows() { for k in $all; do cat "$out/rows-$k.$1" 2>/dev/null; done; }
 	echo
 	echo "Iterations are the sum over the log's stages (growth rounds and compaction steps);"
 	echo "time per iteration per contact divides the wall time by them and by the final contacts."
+	echo "At 1e6 grains densify takes hours: \`make bench-1e6\` runs it in calls that go on from its"
+	echo "checkpoint, and bench/densify-1e6.md says how far it got."
 	echo
 	echo "| grains | method | wall time (s) | peak memory (MiB) | iterations | stages grow / compact | contacts | ns per iteration per contact | sigma_c (MPa) | porosity | coordination | residual |"
 	echo "| ---: | :--- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
