@@ -570,6 +570,7 @@ densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_l
 	double e_prev = NAN, y_prev = NAN;
 	long round = 0;
 	int status = -1, r, phase = 0;
+	size_t under;
 
 	if (!(dpl.onset > 0))
 		dpl.onset = densify_onset_default(dpl.stress);
@@ -600,9 +601,9 @@ densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_l
 		if (contact_enum_update(&d.s.ce, d.x, 0))
 			goto out;
 		qs_coordination(&d.s, d.x, d.cnt);
-		if (count_under4(d.cnt, p->n) != from->st.under4) {
-			msg_seterr("the checkpoint's positions give %zu grains under 4 contacts, its stage %zu",
-			    count_under4(d.cnt, p->n), from->st.under4);
+		if ((under = count_under4(d.cnt, p->n)) != from->st.under4) {
+			msg_seterr("the checkpoint's positions give %zu grains under 4 contacts, its stage %zu", under,
+			    from->st.under4);
 			goto out;
 		}
 	} else {

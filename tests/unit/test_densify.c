@@ -108,14 +108,9 @@ run(const struct pack *loose, int keep)
 	struct pack p;
 	struct densify_params dp;
 	struct densify_stage last;
-	size_t i;
 	int r;
 
-	pack_init(&p);
-	for (i = 0; i < loose->n; i++)
-		pack_add_grain(&p, loose->id[i], loose->x + 3 * i, loose->r[i], loose->E[i], loose->nu[i], loose->rho[i]);
-	memcpy(p.box, loose->box, sizeof p.box);
-	p.wall_E = loose->wall_E, p.wall_nu = loose->wall_nu;
+	copy_loose(&p, loose);
 	densify_params_default(&dp);
 	dp.stress = 1e6;
 	dp.release_after = 50;
