@@ -4,23 +4,30 @@
  * Rounds: every grain with fewer than min_coord contacts (grain plus wall) is expanded until
  * it touches min_coord neighbours or walls (at most max_growth of its radius per round), the
  * box is shrunk by strain_step while the confining stress is below the onset, and the pack is
- * brought to equilibrium.  The rounds end when no grain has fewer than min_coord contacts and
- * the stress has reached the onset; the box where the stress reached the onset and stayed
- * above it becomes the reference box for strains.  Then the box is compressed isotropically (a secant on
- * sigma_c^(2/3), which Hertz contacts make nearly linear in strain) until sigma_c is within
- * stress_tol of the target.  A growth round only decides which grains grow next: it is
- * minimised to the looser grow_tol in at most grow_max_iter iterations (not an error), and
- * only a round that meets the end condition is taken on to the full tolerance (in chunks,
- * stopping early if the stress falls below the onset: the pack only looked jammed) and
- * judged again.  Near jamming a full-tolerance minimisation slows critically (70k L-BFGS
- * iterations in the jamming round of a 1e4-grain pack, 44k more over the 8 rounds that
- * seated its rattlers; 124k in all to 4 MPa this way against 144k).  Below the onset the
+ * brought to equilibrium.  The rounds end when the stress has reached the onset (the pack has
+ * jammed); that box becomes the reference box for strains.  Then the box is compressed
+ * isotropically (a secant on sigma_c^(2/3), which Hertz contacts make nearly linear in strain)
+ * until sigma_c is within stress_tol of the target, and every grain that is (or falls) under
+ * min_coord contacts is grown at each step as in the rounds; the compaction ends with the
+ * target stress, no grain under min_coord and a full equilibrium.  A growth round only
+ * decides which grains grow next: it is minimised to the looser grow_tol in at most
+ * grow_max_iter iterations (not an error).  Near jamming a full-tolerance minimisation slows
+ * critically (70k L-BFGS iterations in the jamming round of a 1e4-grain pack).
+ *
+ * Until 2026-12-05 the rounds went on above the onset until no grain was under min_coord,
+ * and the last one was taken to the full tolerance.  Those rounds, each stopped at
+ * grow_max_iter with grains under 4 left, were most of the work at large N: at 1e5 grains
+ * rounds 8-30 took 69644 of 154339 iterations, and the compaction then unseated up to 1186
+ * grains again; at 1e6 each round cut the grains under 4 by only a fifth.  Seating them in
+ * the compaction instead: 2740 grains, seeds 1-3, 25706, 25614, 25742 iterations against
+ * 49565, 37904, 41958; 1e4 grains 35829 against 49315; porosity and coordination within the
+ * scatter between seeds (bench/densify-1e6.md has the 1e5 run).  Below the onset the
  * residual's force floor is what a contact carries at the onset (an unjammed pack has no
- * load to balance).  A compaction step that moves the box is minimised like a growth round,
- * to grow_tol in at most grow_max_iter iterations (loose_steps, the default since
- * 2026-12-03): it only brings the pack nearer the target.  The step that stays at the target
- * (sigma_c within stress_tol) is the full equilibrium, and only a full step ends the
- * compaction, judged again on its own stress.  With every step to the full tolerance the
+ * load to balance).  A compaction step that moves the box or grows grains is minimised like
+ * a growth round, to grow_tol in at most grow_max_iter iterations (loose_steps, the default
+ * since 2026-12-03): it only brings the pack nearer the target.  The step that stays at the
+ * target (sigma_c within stress_tol) with no grain to grow is the full equilibrium, and only
+ * a full step ends the compaction, judged again on its own stress.  With every step to the full tolerance the
  * second compaction step of a 1e5-grain pack (0.27 -> 2.03 MPa) took 146673 of its 411291
  * iterations, a large squeeze whose rearrangement left grains with one contact; in a 1e4
  * pack (seed 1) 17130 of 55266.  A loose state's stress is not its equilibrium's (a 1e4
@@ -59,11 +66,11 @@ struct densify_params {
 	double stress_tol;	/* relative tolerance on the final sigma_c */
 	double strain_step;	/* largest isotropic strain per step */
 	double max_growth;	/* largest relative growth of a radius per round */
-	double grow_tol;	/* residual target of rounds that start below the onset */
-	long grow_max_iter;	/* iteration limit of those rounds */
+	double grow_tol;	/* residual target of growth rounds and loose compaction steps */
+	long grow_max_iter;	/* iteration limit of those */
 	long release_after;	/* minimiser iterations between releases of unbraced grains; 0: never */
 	int release_keep;	/* between releases, keep the minimiser's memory (1) or restart it (0) */
-	int loose_steps;	/* compaction steps that move the box: to grow_tol in grow_max_iter (1), or full (0) */
+	int loose_steps;	/* compaction steps that move the box or grow grains: to grow_tol in grow_max_iter (1), or full (0) */
 	unsigned min_coord;
 	long max_rounds;
 	int nsub;		/* sub-increments per strain step */

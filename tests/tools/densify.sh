@@ -71,14 +71,17 @@ last=$(tail -n 1 d4.tsv | cut -f 3)
 expect_num "log's last sigma_c is packinfo's" "$(rel "$last" "$(info_value d4.pack.txt sigma_c)")" "<" 1e-9
 last=$(tail -n 1 d1.tsv | cut -f 6)
 expect_num "log's last under4 is 0" "$last" == 0
-# Phase (a) ends on a growth round taken to the full --tol (1e-4) at or above the onset
-# (1e5 Pa by default; a tenth of --stress below 1 MPa), with no grain under 4 contacts; the
-# history line records the onset used.
+# Phase (a) ends with the first growth round that carries the onset (1e5 Pa by default; a
+# tenth of --stress below 1 MPa): the pack has jammed, and the compaction seats the grains
+# still under 4 contacts, its last step at the full --tol (1e-4) with none left.  The history
+# line records the onset used.
 for lg in d1.tsv d4.tsv; do
-	set -- $(awk -F '\t' '$1 == "grow" { s = $3; u = $6; r = $9 } END { print s + 0, u + 0, r + 0 }' $lg)
+	set -- $(awk -F '\t' '$1 == "grow" { if (s >= 1e5) early++; s = $3 } $1 == "compact" { u = $6; r = $9 }
+	    END { print s + 0, early + 0, u + 0, r + 0 }' $lg)
 	expect_num "$lg: the last growth round carries the onset" "$1" ">=" 1e5
-	expect_num "$lg: the last growth round has no grain under 4" "$2" == 0
-	expect_num "$lg: the last growth round is at the full --tol" "$3" "<=" 1e-4
+	expect_num "$lg: no growth round before it does" "$2" == 0
+	expect_num "$lg: the last compaction step has no grain under 4" "$3" == 0
+	expect_num "$lg: the last compaction step is at the full --tol" "$4" "<=" 1e-4
 done
 grep -q '^history densify .*--onset=100000' d4.pack && pass "history records --onset=100000" ||
     fail "history records --onset=100000" "$(grep '^history densify' d4.pack)"
@@ -192,25 +195,25 @@ bad_ck() {
 	if cmp -s bad.ck other.keep; then fail "$1" "the edit '$2' changed nothing"; return; fi
 	expect_error "$1" 1 "$3" densify --stress 4e6 --checkpoint bad.ck -o other.pack loose.pack
 }
-bad_ck "a checkpoint of another version" 's/^meta densify-checkpoint 2 /meta densify-checkpoint 9 /' \
-    '^densify: bad.ck: meta densify-checkpoint: not a densify checkpoint of version 2$'
+bad_ck "a checkpoint of another version" 's/^meta densify-checkpoint 3 /meta densify-checkpoint 9 /' \
+    '^densify: bad.ck: meta densify-checkpoint: not a densify checkpoint of version 3$'
 bad_ck "a checkpoint without its stage" '/^meta densify-stage /d' \
     '^densify: bad.ck: meta densify-stage: missing, malformed or out of range$'
 bad_ck "a checkpoint with a negative under4" 's/^\(meta densify-stage [a-z]* [^ ]* [^ ]* [^ ]*\) [0-9]* /\1 -1 /' \
     '^densify: bad.ck: meta densify-stage: missing, malformed or out of range$'
-bad_ck "a checkpoint with a round beyond any" 's/^\(meta densify-checkpoint 2 [0-9]\) [0-9]* /\1 9223372036854775807 /' \
+bad_ck "a checkpoint with a round beyond any" 's/^\(meta densify-checkpoint 3 [0-9]\) [0-9]* /\1 9223372036854775807 /' \
     '^densify: bad.ck: meta densify-checkpoint: malformed or out of range$'
-bad_ck "a checkpoint with an infinite scale" 's/^\(meta densify-checkpoint 2 [0-9] [0-9]*\) [^ ]* /\1 inf /' \
+bad_ck "a checkpoint with an infinite scale" 's/^\(meta densify-checkpoint 3 [0-9] [0-9]*\) [^ ]* /\1 inf /' \
     '^densify: bad.ck: meta densify-checkpoint: malformed or out of range$'
 bad_ck "a checkpoint missing a log row" '/^meta densify-log-1 /d' \
     '^densify: bad.ck: meta densify-log-1: missing \(densify-checkpoint says 1 rows\)$'
 bad_ck "a checkpoint with a row too many" 's/^\(meta densify-log-1 .*\)$/\1\nmeta densify-log-2 x/' \
     '^densify: bad.ck: meta densify-log-2: one row too many'
-bad_ck "a checkpoint with a phase beyond int" 's/^meta densify-checkpoint 2 0 /meta densify-checkpoint 2 4294967296 /' \
+bad_ck "a checkpoint with a phase beyond int" 's/^meta densify-checkpoint 3 0 /meta densify-checkpoint 3 4294967296 /' \
     '^densify: bad.ck: meta densify-checkpoint: malformed or out of range$'
 bad_ck "a checkpoint whose stage is not its phase's" 's/^meta densify-stage relax /meta densify-stage compact /' \
     "^densify: bad.ck: meta densify-stage: stage 'compact' after phase 0$"
-bad_ck "a checkpoint whose skin is not the input's" 's/^\(meta densify-checkpoint 2 0 0 1 [^ ]*\) [^ ]* /\1 1e-300 /' \
+bad_ck "a checkpoint whose skin is not the input's" 's/^\(meta densify-checkpoint 3 0 0 1 [^ ]*\) [^ ]* /\1 1e-300 /' \
     "^densify: bad.ck: the checkpoint's radii sum or skin is not the input's$"
 bad_ck "a checkpoint whose under4 the positions do not give" 's/^\(meta densify-stage relax [^ ]* [^ ]* [^ ]*\) [0-9]* /\1 5 /' \
     "^densify: bad.ck \\(resumed\\): the checkpoint's positions give [0-9]+ grains under 4 contacts, its stage 5$"

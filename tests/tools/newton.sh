@@ -9,7 +9,13 @@
 . "$TOP/tests/tools/lib.sh"
 
 # columns: 6-8 sig, 15 coordination, 18 iterations, 19 residual
-small_pack dense "densify makes the dense pack"
+# The comparison needs a path with one equilibrium: where contacts open as the stress rises
+# (a rearrangement), each minimiser may come to rest in another state, which is no fault of
+# either.  The 200-grain packs of seeds 1-7 rearrange in these increments under both methods
+# for two seeds with densify before 2026-12-05 (3 and 6) and three after (1, 2 and 5, the
+# other tests' seed), so this test takes seed 4, which does not under either.
+packgen -n 200 --seed 4 -o loose.pack 2>/dev/null
+expect_ok "densify makes the dense pack" densify --stress 4e6 -o dense.pack loose.pack
 
 for path in uniaxial isotropic; do
 	steps=6
