@@ -348,13 +348,13 @@ check_stop(int r, struct file_out *logout, const struct densify_stage *last, con
 	}
 	/* never a pack that does not carry what it claims: the end conditions, checked on the
 	 * final state itself (densify_run loops until they hold; this guards that loop) */
-	if (r == 0 && (!isfinite(last->sigma_c) || last->under4 > 0 || !isfinite(last->res_max) ||
+	if (r == 0 && (!isfinite(last->sigma_c) || last->under_min > 0 || !isfinite(last->res_max) ||
 	        fabs(last->sigma_c / o.dp.stress - 1) > o.dp.stress_tol)) {
 		if (o.log)
 			file_out_abort(logout);
 		msg_die(EXIT_DATA, "the final state fails the end conditions: sigma_c %g Pa (target %g, "
 		    "--stress-tol %g), %zu grains under %u contacts, residual %g", last->sigma_c, o.dp.stress,
-		    o.dp.stress_tol, last->under4, o.dp.min_coord, last->res_max);
+		    o.dp.stress_tol, last->under_min, o.dp.min_coord, last->res_max);
 	}
 	if (r == 1)
 		msg_warn("%s (kept: --allow-limit)", msg_geterr());

@@ -141,14 +141,16 @@ wall_sigma_c(const struct qs_system *s)
 	return (sig[0] + sig[1] + sig[2]) / 3;
 }
 
+/* The grains with fewer than k contacts: the log's under4 (k = 4), and the grains the
+ * compaction grows and waits for (k = min_coord, 0 to 4). */
 static size_t
-count_under4(const unsigned *cnt, size_t n)
+count_under(const unsigned *cnt, size_t n, unsigned k)
 {
-	size_t i, k = 0;
+	size_t i, u = 0;
 
 	for (i = 0; i < n; i++)
-		k += cnt[i] < 4;
-	return k;
+		u += cnt[i] < k;
+	return u;
 }
 
 static void
@@ -162,7 +164,7 @@ stage_measures(struct qs_system *s, const double *x, unsigned *cnt, struct densi
 	qs_coordination(s, x, cnt);
 	for (i = 0; i < s->n; i++)
 		sum += cnt[i];
-	st->under4 = count_under4(cnt, s->n);
+	st->under4 = count_under(cnt, s->n, 4);
 	st->coordination = sum / s->n;
 }
 
@@ -286,6 +288,7 @@ record(struct densify_state *d, const char *name, long rnd)
 	size_t i;
 
 	stage_measures(&d->s, d->x, d->cnt, st);
+	st->under_min = count_under(d->cnt, d->p->n, d->dp->min_coord);
 	for (i = 0; i < d->p->n; i++)
 		rs += d->p->r[i];
 	st->stage = name;
@@ -446,7 +449,7 @@ compaction_step(struct densify_state *d, long round, double *e_prev, double *y_p
 	*y_prev = y;
 	d3[0] = d3[1] = d3[2] = de;
 	/* compaction can leave a grain with fewer than min_coord contacts: grow it too */
-	if (d->st.under4 > 0 && grow_grains(&d->s, d->x, d->cnt, dp, 1.0, d->gp) < 0)
+	if (d->st.under_min > 0 && grow_grains(&d->s, d->x, d->cnt, dp, 1.0, d->gp) < 0)
 		return -1;
 	if (fabs(d->st.sigma_c / dp->stress - 1) <= dp->stress_tol)
 		d3[0] = d3[1] = d3[2] = 0;
@@ -455,7 +458,7 @@ compaction_step(struct densify_state *d, long round, double *e_prev, double *y_p
 	 * at the target with every grain seated is the full equilibrium, and only a full one
 	 * can end the compaction.  (Growing grains in a full step: the 1e5 benchmark pack's
 	 * first one at the target, 849 grains grown, had not converged after 30000 iterations.) */
-	mp = dp->loose_steps && (d3[0] != 0 || d->st.under4 > 0) ? loose_min(dp) : dp->min;
+	mp = dp->loose_steps && (d3[0] != 0 || d->st.under_min > 0) ? loose_min(dp) : dp->min;
 	if (minimize_releasing(&d->s, d->x, d3, dp, &mp, &d->rep) < 0)
 		return -1;
 	d->full = mp.tol <= dp->min.tol;
@@ -506,11 +509,13 @@ checkpoint(struct densify_state *d, densify_checkpoint_fn ck, void *ctx, int pha
 	return r < 0 ? -1 : r != 0;
 }
 
-/* The compaction's end: the target stress, no grain under min_coord, a full equilibrium. */
+/* The compaction's end: the target stress, no grain under min_coord, a full equilibrium.
+ * (Until 2026-12-05 it waited for no grain under 4 whatever min_coord was, so --min-coord 0,
+ * growth off, never ended while a grain had fewer than 4 contacts.) */
 static int
 compaction_done(const struct densify_state *d)
 {
-	return !(fabs(d->st.sigma_c / d->dp->stress - 1) > d->dp->stress_tol || d->st.under4 > 0 || !d->full);
+	return !(fabs(d->st.sigma_c / d->dp->stress - 1) > d->dp->stress_tol || d->st.under_min > 0 || !d->full);
 }
 
 int
@@ -559,7 +564,8 @@ densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_l
 		if (contact_enum_update(&d.s.ce, d.x, 0))
 			goto out;
 		qs_coordination(&d.s, d.x, d.cnt);
-		if ((under = count_under4(d.cnt, p->n)) != from->st.under4) {
+		d.st.under_min = count_under(d.cnt, p->n, dpl.min_coord);
+		if ((under = count_under(d.cnt, p->n, 4)) != from->st.under4) {
 			msg_seterr("the checkpoint's positions give %zu grains under 4 contacts, its stage %zu", under,
 			    from->st.under4);
 			goto out;
@@ -722,6 +728,7 @@ resume_parse(struct pack *p, struct densify_resume *at, long *nrows)
 		return -1;
 	}
 	st->under4 = (size_t)under4;
+	st->under_min = 0;	/* densify_run_resumable counts them from the positions */
 	for (k = 0; k < sizeof stage_names / sizeof *stage_names; k++)
 		if (strcmp(name, stage_names[k]) == 0)
 			st->stage = stage_names[k], k0 = k;

@@ -84,6 +84,7 @@ struct densify_stage {
 	long round;
 	double sigma_c, porosity, coordination;
 	size_t under4;
+	size_t under_min;	/* grains under min_coord contacts (under4 when min_coord is 4) */
 	double growth;		/* mean relative radius growth so far */
 	long iterations;
 	double res_max, res_mean;

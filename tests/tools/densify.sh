@@ -89,6 +89,17 @@ densify --stress 5e5 -o half.pack loose.pack 2>/dev/null
 grep -q '^history densify .*--onset=50000 ' half.pack && pass "--stress 5e5: the onset is a tenth of it" ||
     fail "--stress 5e5: the onset is a tenth of it" "$(grep '^history densify' half.pack)"
 
+# --min-coord 0 turns growth off: the pack is only compressed to the target, and grains left
+# with fewer than 4 contacts (rattlers) do not hold the end.  Until 2026-12-05 the compaction
+# waited for them whatever --min-coord was, and failed after 1000 steps.
+densify --min-coord 0 --stress 4e6 --log mc0.tsv -o mc0.pack loose.pack 2>mc0.err
+rc=$?
+if [ "$rc" -eq 0 ]; then pass "--min-coord 0: exit 0"; else fail "--min-coord 0: exit 0" "exit $rc: $(head -c 300 mc0.err)"; fi
+set -- $(awk -F '\t' '!/^#/ { g = $7; s = $3; r = $9 } END { print g + 0, s + 0, r + 0 }' mc0.tsv 2>/dev/null)
+expect_num "--min-coord 0: no grain grew" "${1:-x}" == 0
+expect_num "--min-coord 0: sigma_c within 1 % of 4 MPa" "$(rel "${2:-0}" 4e6)" "<=" 0.01
+expect_num "--min-coord 0: the last step is at the full --tol" "${3:-x}" "<=" 1e-4
+
 # Determinism: the same command gives the same bytes; stdin and -o give the same pack as a
 # file operand and stdout, apart from the history line that records the command line.
 densify --stress 4e6 --log d4.tsv loose.pack >d4b.pack 2>/dev/null
