@@ -31,8 +31,16 @@ densify_params_default(struct densify_params *dp)
 	 * that grow next, and the last one goes on to the full tolerance anyway.  The 1e4
 	 * seed-1 pack: 55266 iterations and 120 s against 93966 and 207 s; 2740 grains, seeds
 	 * 1-3: 18.3, 16.7, 17.6 s against 24.0, 26.4, 21.3 s, porosity within 0.0022 and
-	 * coordination within 0.04 (the scatter between seeds), bench/results.md. */
-	dp->grow_max_iter = 5000;
+	 * coordination within 0.04 (the scatter between seeds), bench/results.md.
+	 * 2500, not 5000 (until 2026-12-06), since phase (a) ends at the onset and every
+	 * compaction step grows the grains under min_coord: a capped stage only picks the
+	 * grains to grow, and picking them twice as often seats them sooner.  Iterations to
+	 * 4 MPa against 5000: 2740 grains, seeds 1-6, 16717 14047 21408 18976 17625 22648
+	 * against 25706 25614 25742 20992 21982 23227; 1e4, seeds 1-2, 33753 26420 against
+	 * 35829 38832; 1e5 (seed 1) 47833 against 58674; porosity and coordination within
+	 * the scatter between seeds.  3500 was not monotone between them (1e5: 61679);
+	 * bench/densify-1e5.md, run 7. */
+	dp->grow_max_iter = 2500;
 	dp->release_after = 5000;
 	dp->loose_steps = 1;
 	dp->min_coord = 4;

@@ -2,9 +2,9 @@
 # quartz and hydrate densified to 21 MPa, dissociated along the paper's two series, a
 # three-axis probe after each), then the paper's finding from its summary table: K and G fall
 # with the dissociation.  What a 1000-grain pack shows for every pack tried is checked, not one
-# pack's draw: four packs (seeds 1, 2, 3 with the DEM step before 2026-12, seed 1 with two
-# versions after) all have K falling point by point along dS (p_ex 1 MPa), K at p_ex 3 MPa
-# below p_ex 0, every K of the p_ex series below the undissociated pack's, and G at the end of
+# pack's draw: five packs (seeds 1, 2, 3 with the DEM step before 2026-12, seed 1 with three
+# versions after) all have K falling point by point along dS (p_ex 1 MPa), every K of the
+# p_ex series below the undissociated pack's, and G at the end of
 # the dS series below half the undissociated pack's.  K at p_ex 1 MPa without dissociation
 # is within the probe's scatter of the undissociated K (below).  G at small dS is not: it moved by up to
 # 2.5x between neighbouring points, rose above the undissociated pack's at dS -0.01 for seed
@@ -48,7 +48,14 @@ for k in 1 2 3 4 5; do
 	prev=$cur
 	lastG=$(val hyd-d$k-p1 G)
 done
-expect_num "dS -0.01: K at p_ex 3 MPa below p_ex 0" "$(val hyd-d1-p3 K)" "<" "$(val hyd-d1-p0 K)"
+# dS -0.01 at p_ex 3 MPa against 0: the pore pressure takes effective stress (6.5 % of it in
+# the pack of 2026-12-06's densify: 12.64 against 13.51 MPa after the dissociation), but
+# K ~ sigma'^(1/3) makes that 2.2 % of K, below what a 1000-grain probe resolves (its fits'
+# relative residuals 2-4 %; that pack's K came out 3 % above, the four packs before had
+# it below).  Checked are the effective stress, and K within 5 % as at p_ex 1 MPa below.
+expect_num "dS -0.01: the effective stress after it at p_ex 3 MPa below p_ex 0" \
+    "$(val hyd-d1-p3 sigma_after)" "<" "$(val hyd-d1-p0 sigma_after)"
+expect_num "dS -0.01: K at p_ex 3 MPa within 5 % of p_ex 0" "$(rel "$(val hyd-d1-p3 K)" "$(val hyd-d1-p0 K)")" "<" 0.05
 for p in 0 0.5 1 2 3; do
 	probed hyd-d1-p$p || continue
 	expect_num "dS -0.01, p_ex $p MPa: K below the undissociated pack's" "$(val hyd-d1-p$p K)" "<" "$(val hyd-d0-p0 K)"
