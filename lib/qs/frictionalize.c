@@ -96,7 +96,9 @@ frictionalize_run(struct pack *p, const struct fric_params *fp, fric_row_fn fn, 
 		*last = row;
 		prev = row;
 		if (r == 1) {
-			msg_seterr("increment %ld: the minimiser hit its iteration limit (residual %.3g)", k, row.res_max);
+			char note[96];
+			msg_seterr("increment %ld: the minimiser hit its iteration limit (residual %.3g)%s", k, row.res_max,
+			    loader_limit_note(&L, note, sizeof note));
 			st = 1;
 			break;
 		}

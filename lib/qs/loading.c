@@ -7,6 +7,7 @@
 #include "base/vec3.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -412,4 +413,16 @@ load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, 
 		v[n++] = G;
 	}
 	table_row(fp, v, n);
+}
+
+const char *
+loader_limit_note(const struct loader *L, char *buf, size_t n)
+{
+	size_t sl = L->f.ncommit_slipped;
+
+	if (n)
+		buf[0] = 0;
+	if (sl && n)
+		snprintf(buf, n, "; %zu friction history lines slipped to their limit at the commit", sl);
+	return buf;
 }

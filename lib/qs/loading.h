@@ -113,6 +113,11 @@ int loader_measure(struct loader *L, struct load_row *row);
  * reached, committed). */
 int loader_step(struct loader *L, const double de[3], struct load_row *row);
 void loader_close(struct loader *L);
+/* What a message about an increment stopped at its iteration limit adds: "" or "; N friction
+ * history lines slipped to their limit at the commit" (fr_commit slips the lines that such a
+ * commit far from equilibrium leaves beyond the reader's bound, so that the pack reads back).
+ * Written to buf (n bytes), which is returned. */
+const char *loader_limit_note(const struct loader *L, char *buf, size_t n);
 
 /* The rows as TSV (share/doc/tables.md): inc, seg, strains, wall stresses, Love-Weber normal
  * stresses, sigma_c, the mean lateral stress sig_lat (of the two axes other than axis), porosity,

@@ -487,8 +487,9 @@ run_segment(struct walk *w, size_t k, const struct path_seg *sg)
 			return 3;
 		w->prev = row;
 		if (r == 1) {
-			msg_seterr("segment %zu (%s), increment %ld: the minimiser hit its iteration limit (residual %.3g)",
-			    k + 1, path_kind_name(sg->kind), row.inc, row.res_max);
+			char note[96];
+			msg_seterr("segment %zu (%s), increment %ld: the minimiser hit its iteration limit (residual %.3g)%s",
+			    k + 1, path_kind_name(sg->kind), row.inc, row.res_max, loader_limit_note(w->L, note, sizeof note));
 			return 1;
 		}
 		if (past_strain_limit(w, k, sg, &row))

@@ -167,12 +167,21 @@ expect_num "--allow-limit: log has the start row and 3 increments" "$(($(wc -l <
 # before, loadtest refused it: |Q0| or |M0| far above the limit of a committed pack).
 awk 'NR == FNR { if (/^end$/) e = 1; else if (e && NF == 8 && (top == "" || $4 > zt)) { top = $1; zt = $4 } next }
      /^end$/ { e2 = 1 } e2 && NF == 8 && $1 == top { $5 = $5 * 1.03 } { print }' dense.pack dense.pack >infl.pack
-frictionalize --max-iter 20 --max-inc 2 --window 2 --window-overlap 0 --allow-limit -q -o infl-f.pack infl.pack >/dev/null 2>&1
-if [ -s infl-f.pack ] && loadtest -p uniaxial -n 1 --max-iter 20 --allow-limit -q infl-f.pack >infl.tsv 2>infl.err; then
+frictionalize --max-iter 20 --max-inc 2 --window 2 --window-overlap 0 --allow-limit -o infl-f.pack infl.pack >/dev/null 2>infl-f.err
+if [ -s infl-f.pack ] && loadtest -p uniaxial -n 1 --max-iter 20 --allow-limit infl-f.pack >infl.tsv 2>infl.err; then
 	pass "--allow-limit far from equilibrium: loadtest reads the kept pack"
 else
 	fail "--allow-limit far from equilibrium: loadtest reads the kept pack" "$(head -c 300 infl.err)"
 fi
+# and both say how many lines the commit slipped (a pack whose history was cut to its limits
+# is not the state a converged increment would have left)
+for t in infl-f infl; do
+	if grep -Eq 'iteration limit .*; [1-9][0-9]* friction history lines slipped to their limit at the commit \(kept: --allow-limit\)' $t.err; then
+		pass "--allow-limit far from equilibrium: $t.err counts the slipped lines"
+	else
+		fail "--allow-limit far from equilibrium: $t.err counts the slipped lines" "$(tail -n 2 $t.err)"
+	fi
+done
 
 # -o is atomic: a failing run leaves an existing file (and log) as they were
 echo keep >old.pack
