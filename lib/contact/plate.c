@@ -97,6 +97,8 @@ struct pair {
 	struct segs ee[4][4];		/* A's edge, B's edge */
 	double d, pa[3], pb[3];		/* the cores' distance (squared while searching) and closest points */
 	double tol;			/* length tolerance of ties */
+	unsigned eedone;		/* bit 4 i + j: ee[i][j] computed (pair_set: all; the cached
+					 * narrow phase: those its mask names, and any rule 3 asks for) */
 };
 
 static const double corner_s[4] = {-1, 1, 1, -1}, corner_t[4] = {-1, -1, 1, 1};
@@ -284,6 +286,7 @@ pair_set(struct pair *g, const struct plate_body *a, const struct plate_body *b)
 		foot_set(&g->fb[j], &g->A, g->B.V[j]);
 		pair_closest_take(g, g->fb[j].d2, g->fb[j].q, g->B.V[j]);
 	}
+	g->eedone = 0;
 	if (g->A.nv < 4 || g->B.nv < 4) {
 		g->d = sqrt(g->d);
 		return;
@@ -294,9 +297,24 @@ pair_set(struct pair *g, const struct plate_body *a, const struct plate_body *b)
 			segs_set(s, g->A.V[i], g->A.V[(i + 1) % 4], g->B.V[j], g->B.V[(j + 1) % 4]);
 			pair_closest_take(g, s->d2, s->pa, s->pb);
 		}
+	g->eedone = 0xffffu;
 	g->d = sqrt(g->d);
 	if (g->d > 0)
 		pair_cross(g);
+}
+
+/* Edge pair (i, j), computed now if the cached narrow phase skipped it: the same numbers
+ * pair_set would have (segs_set depends on the two edges alone). */
+static const struct segs *
+pair_edges(struct pair *g, int i, int j)
+{
+	unsigned bit = 1u << (4 * i + j);
+
+	if (!(g->eedone & bit)) {
+		segs_set(&g->ee[i][j], g->A.V[i], g->A.V[(i + 1) % 4], g->B.V[j], g->B.V[(j + 1) % 4]);
+		g->eedone |= bit;
+	}
+	return &g->ee[i][j];
 }
 
 double
@@ -354,11 +372,12 @@ element_add(struct plate_interaction *out, const struct pair *g, const double pi
 
 /* Does one of vertex k's edges (on its own square, side 0 = A) cross edge e of the other? */
 static int
-vertex_superseded(const struct pair *g, int side, int k, int e)
+vertex_superseded(struct pair *g, int side, int k, int e)
 {
 	int k0 = (k + 3) % 4;
 
-	return side ? g->ee[e][k].interior || g->ee[e][k0].interior : g->ee[k][e].interior || g->ee[k0][e].interior;
+	return side ? pair_edges(g, e, k)->interior || pair_edges(g, e, k0)->interior :
+	    pair_edges(g, k, e)->interior || pair_edges(g, k0, e)->interior;
 }
 
 /* Does the closed square of `own` cover point q (of the other core) along its normal? */
@@ -404,7 +423,7 @@ shadow_status(const struct square *q, const double n[3], const double p[3], int 
 
 /* Rules 1, 3 and 4 for vertex k of side 0 (A on B) or 1 (B on A). */
 static int
-vertex_kept(const struct pair *g, const double n[3], int side, int k)
+vertex_kept(struct pair *g, const double n[3], int side, int k)
 {
 	const struct foot *f = side ? &g->fb[k] : &g->fa[k];
 	const struct square *own = side ? &g->B : &g->A, *other = side ? &g->A : &g->B;
@@ -418,25 +437,26 @@ vertex_kept(const struct pair *g, const double n[3], int side, int k)
 }
 
 /* The element contacts of cores apart (rules 1-5), n the interaction's normal.  A point core
- * has one element, the closest pair. */
+ * has one element, the closest pair.  feet: the vertices whose feet pair_set computed (bits
+ * 0-3 A's, 4-7 B's; the others are farther than any element kept, see plate_cached). */
 static void
-elements_find(const struct pair *g, const double n[3], double gap, struct plate_interaction *out)
+elements_find(struct pair *g, const double n[3], double gap, unsigned feet, struct plate_interaction *out)
 {
 	double s, t;
 	int i, j, k, ta, tb;
 
 	if (g->A.nv == 4 && g->B.nv == 4) {
 		for (k = 0; k < 4; k++)
-			if (vertex_kept(g, n, 0, k))
+			if ((feet & (1u << k)) && vertex_kept(g, n, 0, k))
 				element_add(out, g, g->A.V[k], g->fa[k].q, sqrt(g->fa[k].d2),
 				    element_kind(FEAT_VERTEX, g->fa[k].type), gap);
 		for (k = 0; k < 4; k++)
-			if (vertex_kept(g, n, 1, k))
+			if ((feet & (1u << (4 + k))) && vertex_kept(g, n, 1, k))
 				element_add(out, g, g->fb[k].q, g->B.V[k], sqrt(g->fb[k].d2),
 				    element_kind(g->fb[k].type, FEAT_VERTEX), gap);
 		for (i = 0; i < 4; i++)
 			for (j = 0; j < 4; j++)
-				if (g->ee[i][j].interior)
+				if ((g->eedone & (1u << (4 * i + j))) && g->ee[i][j].interior)
 					element_add(out, g, g->ee[i][j].pa, g->ee[i][j].pb, sqrt(g->ee[i][j].d2), PLATE_EDGE_EDGE, gap);
 	}
 	for (k = 0; k < out->m; k++)
@@ -568,28 +588,22 @@ axes_separation(const struct plate_body *a, const struct plate_body *b)
 	return best;
 }
 
-int
-plate_interaction(const struct plate_body *a, const struct plate_body *b, double gap, struct plate_interaction *out)
+/* The interaction of a pair_set's cores (every feature, or those of a cache; feet as in
+ * elements_find), its points moved back from a's centre to the lab frame. */
+static int
+interaction_finish(struct pair *g, const struct plate_body *a, const struct plate_body *b, double gap, unsigned feet,
+    struct plate_interaction *out)
 {
-	struct pair g;
 	int j, k;
 
-	if (a->half == 0 && b->half == 0)
-		return spheres(a, b, gap, out);
-	out->d = axes_separation(a, b);
-	if (out->d >= a->r + b->r + gap) {
-		out->m = 0;
-		return 0;
-	}
-	pair_set(&g, a, b);
-	out->d = g.d;
+	out->d = g->d;
 	out->m = 0;
-	if (g.d <= g.tol) {
-		overlap_find(&g, gap, out);
+	if (g->d <= g->tol) {
+		overlap_find(g, gap, out);
 	} else {
 		for (k = 0; k < 3; k++)
-			out->n[k] = (g.pa[k] - g.pb[k]) / g.d;
-		elements_find(&g, out->n, gap, out);
+			out->n[k] = (g->pa[k] - g->pb[k]) / g->d;
+		elements_find(g, out->n, gap, feet, out);
 		for (j = 0; j < out->m; j++)
 			contact_point(&out->e[j], out->n, a->r, b->r);
 	}
@@ -600,6 +614,117 @@ plate_interaction(const struct plate_body *a, const struct plate_body *b, double
 			out->e[j].p[k] += a->x[k];
 		}
 	return out->m;
+}
+
+int
+plate_interaction(const struct plate_body *a, const struct plate_body *b, double gap, struct plate_interaction *out)
+{
+	struct pair g;
+
+	if (a->half == 0 && b->half == 0)
+		return spheres(a, b, gap, out);
+	out->d = axes_separation(a, b);
+	if (out->d >= a->r + b->r + gap) {
+		out->m = 0;
+		return 0;
+	}
+	pair_set(&g, a, b);
+	return interaction_finish(&g, a, b, gap, 0xffu, out);
+}
+
+/* pair_set on the features of cache alone (in pair_set's order, so that the closest pair
+ * and its ties come out the same), and the edge crossings only when the cache says the
+ * cores may meet. */
+static void
+pair_set_cached(struct pair *g, const struct plate_body *a, const struct plate_body *b, unsigned cache)
+{
+	int i, j;
+
+	square_set(&g->A, a, a->x);
+	square_set(&g->B, b, a->x);
+	g->tol = PLATE_TOL * (a->half + b->half + a->r + b->r);
+	g->d = INFINITY;
+	g->eedone = 0;
+	for (i = 0; i < g->A.nv; i++)
+		if (cache & (1u << i)) {
+			foot_set(&g->fa[i], &g->B, g->A.V[i]);
+			pair_closest_take(g, g->fa[i].d2, g->A.V[i], g->fa[i].q);
+		}
+	for (j = 0; j < g->B.nv; j++)
+		if (cache & (1u << (4 + j))) {
+			foot_set(&g->fb[j], &g->A, g->B.V[j]);
+			pair_closest_take(g, g->fb[j].d2, g->fb[j].q, g->B.V[j]);
+		}
+	if (g->A.nv == 4 && g->B.nv == 4)
+		for (i = 0; i < 4; i++)
+			for (j = 0; j < 4; j++)
+				if (cache & (1u << (8 + 4 * i + j))) {
+					struct segs *s = &g->ee[i][j];
+					segs_set(s, g->A.V[i], g->A.V[(i + 1) % 4], g->B.V[j], g->B.V[(j + 1) % 4]);
+					g->eedone |= 1u << (4 * i + j);
+					pair_closest_take(g, s->d2, s->pa, s->pb);
+				}
+	g->d = sqrt(g->d);
+	if (g->d > 0 && (cache & PLATE_CACHE_CROSS) && g->A.nv == 4 && g->B.nv == 4)
+		pair_cross(g);
+}
+
+/* Why the cache gives pair_set's answer.  Every feature distance (a vertex to the other
+ * square, an edge to an edge) is the distance between two sets that move rigidly with their
+ * grains, so it changes by at most the sum of the largest displacements of the two cores'
+ * points since the cache was made, which the caller keeps below margin.  A feature left out
+ * was then farther than r_a + r_b + margin, so it is still farther than r_a + r_b: it cannot
+ * be an element (h <= 0), nor the closest pair of cores that touch (that one is nearer than
+ * r_a + r_b), nor come before it among equals.  Rule 3's test of a vertex's own edges against
+ * an edge may name an edge pair left out: pair_edges computes it then.  The cores can meet
+ * (an edge through the other square) only if they were within margin. */
+int
+plate_interaction_cached(const struct plate_body *a, const struct plate_body *b, double margin, unsigned *cache,
+    int build, struct plate_interaction *out)
+{
+	struct pair g;
+	unsigned c = 0;
+	int i, j;
+
+	if (a->half == 0 && b->half == 0) {
+		*cache = 0;
+		return spheres(a, b, 0, out);
+	}
+	if (build) {
+		double lim = a->r + b->r + margin, lim2 = lim * lim;
+
+		out->d = axes_separation(a, b);
+		if (out->d >= lim) {
+			*cache = 0;
+			out->m = 0;
+			return 0;
+		}
+		pair_set(&g, a, b);
+		for (i = 0; i < g.A.nv; i++)
+			c |= (unsigned)(g.fa[i].d2 < lim2) << i;
+		for (j = 0; j < g.B.nv; j++)
+			c |= (unsigned)(g.fb[j].d2 < lim2) << (4 + j);
+		if (g.eedone)
+			for (i = 0; i < 4; i++)
+				for (j = 0; j < 4; j++)
+					c |= (unsigned)(g.ee[i][j].d2 < lim2) << (8 + 4 * i + j);
+		if (g.d <= margin + 2 * g.tol)
+			c |= PLATE_CACHE_CROSS;
+		*cache = c;
+		return interaction_finish(&g, a, b, 0, 0xffu, out);
+	}
+	if (!(*cache & PLATE_CACHE_FEATURES)) {
+		out->d = INFINITY;
+		out->m = 0;
+		return 0;
+	}
+	pair_set_cached(&g, a, b, *cache);
+	if (!(g.d < a->r + b->r)) {	/* every element is at least as far: none */
+		out->d = g.d;
+		out->m = 0;
+		return 0;
+	}
+	return interaction_finish(&g, a, b, 0, *cache & 0xffu, out);
 }
 
 int

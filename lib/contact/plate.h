@@ -74,6 +74,21 @@ struct plate_interaction {
 int plate_interaction(const struct plate_body *a, const struct plate_body *b, double gap,
     struct plate_interaction *out);
 
+/* The narrow phase kept between steps (the DEM's persistent element pairs, as Rockable and
+ * exaDEM keep theirs): a cache word per pair names the features worth computing, bits 0-3
+ * a's vertices against b's square, 4-7 b's against a's, 8 + 4 i + j a's edge i against b's
+ * edge j, and PLATE_CACHE_CROSS when the cores were near enough to meet.  With build set the
+ * interaction is computed from every feature and *cache made: the features nearer than
+ * r_a + r_b + margin.  Without, only the cached features are computed, which gives
+ * plate_interaction's elements (gap 0) to the bit as long as no point of either core has
+ * moved, since the cache was made, by more than margin in all (the caller's bound: centre
+ * displacement plus the turn's; plate.c says why).  Two spheres: plate_interaction's exact
+ * element, no cache.  Returns m. */
+#define PLATE_CACHE_FEATURES 0xffffffu
+#define PLATE_CACHE_CROSS (1u << 24)
+int plate_interaction_cached(const struct plate_body *a, const struct plate_body *b, double margin, unsigned *cache,
+    int build, struct plate_interaction *out);
+
 /* The element contacts of plate a with the wall plane through point w0 with inward unit normal
  * wn (the wall's side is where wn points away from): the core's points nearest the plane,
  * i.e. the corners (a face or an edge lying on the wall gives its 4 or 2 corners, which is the

@@ -5,10 +5,12 @@
 #include "contact/plate.h"
 #include "pack/shape.h"
 #include "base/msg.h"
+#include "base/par.h"
 #include "base/quat.h"
 #include "base/vec3.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,6 +35,8 @@ pdem_free(struct pdem *d)
 {
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
+	free(d->pcache), free(d->pepoch), free(d->x0), free(d->q0), free(d->wl);
+	free(d->prec), free(d->colk), free(d->colk_first), free(d->wrec), free(d->sums);
 	contact_enum_free(&d->ce);
 	memset(d, 0, sizeof *d);
 }
@@ -79,8 +83,11 @@ pdem_alloc(struct pdem *d, size_t n)
 	d->R = calloc(9 * n, sizeof *d->R), d->m = calloc(n, sizeof *d->m);
 	d->J = calloc(3 * n, sizeof *d->J), d->r = calloc(n, sizeof *d->r);
 	d->half = calloc(n, sizeof *d->half), d->rb = calloc(n, sizeof *d->rb);
+	d->x0 = calloc(3 * n, sizeof *d->x0), d->q0 = calloc(4 * n, sizeof *d->q0);
+	d->wl = calloc(3 * n, sizeof *d->wl), d->colk_first = calloc(n + 1, sizeof *d->colk_first);
+	d->wrec = malloc(NWALLS * n * sizeof *d->wrec);
 	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
-	    !d->rb) {
+	    !d->rb || !d->x0 || !d->q0 || !d->wl || !d->colk_first || !d->wrec) {
 		msg_seterr("out of memory for %zu grains", n);
 		return -1;
 	}
@@ -132,6 +139,10 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	d->zeta = zeta_of_restitution(pp->restitution);
 	d->damping = pp->damping;
 	d->dt = pp->dt_factor * sqrt(mmin);
+	d->cache_margin = PDEM_CACHE_MARGIN;
+	d->epoch_builds = d->rec_builds = -1;
+	for (i = 0; i < NWALLS * n; i++)
+		d->wrec[i].stamp = -1;
 	/* the skin: a tenth of the smallest bounding radius, so the list lasts many steps */
 	if (contact_enum_init(&d->ce, n, d->rb, d->lo, d->hi, d->periodic, 0.1 * rbmin, 3)) {
 		pdem_free(d);
@@ -140,46 +151,48 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	return 0;
 }
 
-/* Velocity of grain i's material point p (lab frame): v + R w_body x (p - x). */
+/* Velocity of grain i's material point p (lab frame): v + w x (p - x), w the lab-frame
+ * angular velocity (refresh_rotations). */
 static void
 point_velocity(const struct pdem *d, size_t i, const double *xi, const double p[3], double v[3])
-{
-	const double *R = d->R + 9 * i, *wb = d->w + 3 * i;
-	double wl[3], arm[3] = {p[0] - xi[0], p[1] - xi[1], p[2] - xi[2]}, c[3];
-	int a;
-
-	for (a = 0; a < 3; a++)
-		wl[a] = R[3 * a] * wb[0] + R[3 * a + 1] * wb[1] + R[3 * a + 2] * wb[2];
-	vec3_cross(wl, arm, c);
-	for (a = 0; a < 3; a++)
-		v[a] = d->v[3 * i + a] + c[a];
-}
-
-/* Force F at point p on grain i (centre xi): into f and t with sign s. */
-static void
-apply(struct pdem *d, size_t i, const double *xi, const double p[3], const double F[3], double s)
 {
 	double arm[3] = {p[0] - xi[0], p[1] - xi[1], p[2] - xi[2]}, c[3];
 	int a;
 
-	vec3_cross(arm, F, c);
+	vec3_cross(d->wl + 3 * i, arm, c);
+	for (a = 0; a < 3; a++)
+		v[a] = d->v[3 * i + a] + c[a];
+}
+
+/* Force F at point p of a grain centred at xi: into the force F and torque T it gets. */
+static void
+apply(const double *xi, const double p[3], const double Fk[3], double F[3], double T[3])
+{
+	double arm[3] = {p[0] - xi[0], p[1] - xi[1], p[2] - xi[2]}, c[3];
+	int a;
+
+	vec3_cross(arm, Fk, c);
 	for (a = 0; a < 3; a++) {
-		d->f[3 * i + a] += s * F[a];
-		d->t[3 * i + a] += s * c[a];
+		F[a] += Fk[a];
+		T[a] += c[a];
 	}
 }
 
-/* The forces of interaction it between grain i and grain j (j < 0: a wall, at rest), with
- * j's centre xj (its nearest image), onto both; hist is the tangential spring. */
+/* The forces of interaction it between grain i and grain j (j < 0: a wall), with j's centre
+ * xj (its nearest image): into rec (the force on i, j getting its opposite, and the torques
+ * on both) and the block's sums; hist is the tangential spring. */
 static void
-interaction_force(struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist)
+interaction_force(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it,
+    double *hist, struct pdem_rec *rec, struct pdem_sums *sums)
 {
 	const double *n = it->n, *xi = d->x + 3 * i;
 	int wall = PACK_IS_WALL(j), M = it->m, k, a, gi, gj;
 	double meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
 	double gn = 2 * d->zeta * sqrt(meff / M), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
-	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn;
+	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn, c[3];
+	double *F = rec->F, *Ti = rec->Ti;
 
+	memset(rec, 0, offsetof(struct pdem_rec, stamp));
 	if (wall)	/* a moving wall's velocity (0 for the walls of a compaction) */
 		memcpy(vj, d->wallv[PACK_WALL_INDEX(j)], sizeof vj);
 
@@ -201,9 +214,7 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 			pc[a] += h * e->p[a];
 		}
 		hsum += h;
-		apply(d, i, xi, e->p, Fk, 1);
-		if (!wall)
-			apply(d, (size_t)j, xj, e->p, Fk, -1);
+		apply(xi, e->p, Fk, F, Ti);
 	}
 	if (hsum <= 0)
 		memcpy(pc, it->e[0].p, sizeof pc);
@@ -239,37 +250,41 @@ interaction_force(struct pdem *d, size_t i, long j, const double *xj, const stru
 			for (a = 0; a < 3; a++)
 				ft[a] *= tn / fm;
 	}
-	apply(d, i, xi, pc, ft, 1);
+	apply(xi, pc, ft, F, Ti);
+	if (!wall) {	/* on j: -F at the same points, the torque about xj */
+		double br[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+
+		vec3_cross(br, F, c);
+		for (a = 0; a < 3; a++)
+			rec->Tj[a] = -(Ti[a] + c[a]);
+	}
 	gi = d->glue ? d->glue[i] : 0;
 	gj = d->glue && !wall ? d->glue[j] : 0;
-	if (!wall && gi && gj) {	/* inside a wall body: applied, not counted */
-		apply(d, (size_t)j, xj, pc, ft, -1);
+	if (!wall && gi && gj)	/* inside a wall body: applied, not counted */
 		return;
-	}
-	d->zends += (gi ? 0 : 1) + (wall || gj ? 0 : 1);
+	sums->zends += (gi ? 0 : 1) + (wall || gj ? 0 : 1);
 	if (!wall) {
-		double F[3], br[3];
+		double Fn[3], br[3];
 
-		apply(d, (size_t)j, xj, pc, ft, -1);
 		for (a = 0; a < 3; a++) {
-			F[a] = fsum * n[a] + ft[a];
+			Fn[a] = fsum * n[a] + ft[a];
 			br[a] = xi[a] - xj[a];
 		}
-		d->sig[0] += br[0] * F[0], d->sig[1] += br[1] * F[1], d->sig[2] += br[2] * F[2];
-		d->sig[3] += 0.5 * (br[0] * F[1] + br[1] * F[0]);
-		d->sig[4] += 0.5 * (br[0] * F[2] + br[2] * F[0]);
-		d->sig[5] += 0.5 * (br[1] * F[2] + br[2] * F[1]);
+		sums->sig[0] += br[0] * Fn[0], sums->sig[1] += br[1] * Fn[1], sums->sig[2] += br[2] * Fn[2];
+		sums->sig[3] += 0.5 * (br[0] * Fn[1] + br[1] * Fn[0]);
+		sums->sig[4] += 0.5 * (br[0] * Fn[2] + br[2] * Fn[0]);
+		sums->sig[5] += 0.5 * (br[1] * Fn[2] + br[2] * Fn[1]);
 	} else {
 		int w = PACK_WALL_INDEX(j);
 
-		d->wallf[w] += fel;
+		sums->wallf[w] += fel;
 		for (a = 0; a < 3; a++)
-			d->wallF[w][a] += fsum * n[a] + ft[a];
-		d->nwall++;
+			sums->wallF[w][a] += fsum * n[a] + ft[a];
+		sums->nwall++;
 	}
-	d->ninter++;
-	d->nelem += (size_t)M;
-	d->sum_f += sqrt(fsum * fsum + vec3_dot(ft, ft));
+	sums->ninter++;
+	sums->nelem += (size_t)M;
+	sums->sum_f += sqrt(fsum * fsum + vec3_dot(ft, ft));
 }
 
 /* The interaction of record c (a pair, or a grain and a wall) at the current state, with j's
@@ -283,22 +298,63 @@ interaction_of(const struct pdem *d, const struct contact *c, struct plate_inter
 	return plate_record_interaction(&g, c, 0, it, xj);
 }
 
+/* A pair's interaction through its cache (made when its epoch is not the current one), with
+ * j's centre (its nearest image) into xj. */
 static int
-on_contact(const struct contact *c, void *vd)
+pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_interaction *it, double xj[3])
 {
-	struct pdem *d = vd;
+	size_t k = contact_pair_index(&d->ce, c), i = c->i, j = (size_t)c->j;
+	struct plate_body a, b;
+	int build = d->pepoch[k] != d->epoch, m, q;
+
+	for (q = 0; q < 3; q++) {
+		a.x[q] = d->x[3 * i + q];
+		xj[q] = a.x[q] - c->dx[q];
+	}
+	memcpy(b.x, xj, sizeof b.x);
+	memcpy(a.R, d->R + 9 * i, sizeof a.R);
+	memcpy(b.R, d->R + 9 * j, sizeof b.R);
+	a.half = d->half[i], a.r = d->r[i];
+	b.half = d->half[j], b.r = d->r[j];
+	m = plate_interaction_cached(&a, &b, d->cache_margin, &d->pcache[k], build, it);
+	d->pepoch[k] = d->epoch;
+	return m;
+}
+
+/* One walk of a block of rows: its sums. */
+struct force_walk {
+	struct pdem *d;
+	struct pdem_sums s;
+};
+
+/* Each interaction of the walk into its record (a pair's by its list entry, a wall's by
+ * grain and wall), stamped with this pass; nothing is written for the others, whose older
+ * stamps say they carry no force. */
+static int
+on_contact(const struct contact *c, void *vw)
+{
+	struct force_walk *fw = vw;
+	struct pdem *d = fw->d;
 	struct plate_interaction it;
+	struct pdem_rec *rec;
 	double xj[3];
+	int wall = PACK_IS_WALL(c->j), m;
 
 	if (c->h <= 0)
 		return 0;	/* bounding spheres apart (their spring zeroed by the enumerator) */
-	if (d->glue && PACK_IS_WALL(c->j) && d->glue[c->i] == 1 + PACK_WALL_INDEX(c->j))
+	if (d->glue && wall && d->glue[c->i] == 1 + PACK_WALL_INDEX(c->j))
 		return 0;	/* glued to that wall: part of it */
-	if (interaction_of(d, c, &it, xj) == 0) {
+	if (wall || d->cache_margin <= 0)
+		m = interaction_of(d, c, &it, xj);
+	else
+		m = pair_interaction_cached(d, c, &it, xj);
+	if (m == 0) {
 		c->hist[0] = c->hist[1] = c->hist[2] = 0;
 		return 0;
 	}
-	interaction_force(d, c->i, c->j, PACK_IS_WALL(c->j) ? NULL : xj, &it, c->hist);
+	rec = wall ? &d->wrec[NWALLS * c->i + PACK_WALL_INDEX(c->j)] : &d->prec[contact_pair_index(&d->ce, c)];
+	interaction_force(d, c->i, c->j, wall ? NULL : xj, &it, c->hist, rec, &fw->s);
+	rec->stamp = d->stamp;
 	return 0;
 }
 
@@ -307,24 +363,230 @@ refresh_rotations(struct pdem *d)
 {
 	size_t i;
 
-	for (i = 0; i < d->n; i++)
+#pragma omp parallel for schedule(static) if (d->threads)
+	for (i = 0; i < d->n; i++) {
+		const double *R = d->R + 9 * i, *wb = d->w + 3 * i;
+		int a;
+
 		quat_to_matrix(d->q + 4 * i, d->R + 9 * i);
+		for (a = 0; a < 3; a++)
+			d->wl[3 * i + a] = R[3 * a] * wb[0] + R[3 * a + 1] * wb[1] + R[3 * a + 2] * wb[2];
+	}
 }
 
+/* The largest displacement of a point of grain i's core since the epoch began: its centre's
+ * (nearest image) plus the turn's at the core's corners, |R - R0| <= 2 |q - q0| (the nearer
+ * of q0 and -q0) times half sqrt 2. */
+static double
+core_drift(const struct pdem *d, size_t i)
+{
+	const double *q = d->q + 4 * i, *q0 = d->q0 + 4 * i;
+	double dx[3], dp = 0, dm = 0;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		dx[a] = d->x[3 * i + a] - d->x0[3 * i + a];
+		if (d->periodic[a]) {
+			double L = d->hi[a] - d->lo[a];
+			dx[a] -= L * nearbyint(dx[a] / L);
+		}
+	}
+	for (a = 0; a < 4; a++) {
+		dp += (q[a] - q0[a]) * (q[a] - q0[a]);
+		dm += (q[a] + q0[a]) * (q[a] + q0[a]);
+	}
+	return vec3_norm(dx) + 2 * sqrt(fmin(dp, dm)) * d->half[i] * M_SQRT2;
+}
+
+/* Start a new epoch of the cached narrow phase when the list was rebuilt (its entries are
+ * new) or a core has moved by a quarter of the margin: then any two moved by less than the
+ * margin between a cache made in the epoch and now (each at most a quarter since the start,
+ * at both times).  0 or -1. */
+static int
+cache_epoch(struct pdem *d)
+{
+	size_t i, np = d->ce.nl.npairs;
+	double most = 0;
+
+	if (d->cache_margin <= 0)
+		return 0;
+	if (d->epoch_builds != d->ce.rebuilds) {
+		if (np > d->pcap) {
+			size_t cap = np + np / 4 + 16;
+			unsigned *pc = realloc(d->pcache, cap * sizeof *pc);
+			long *pe;
+
+			if (!pc)
+				goto oom;
+			d->pcache = pc;
+			if (!(pe = realloc(d->pepoch, cap * sizeof *pe)))
+				goto oom;
+			d->pepoch = pe;
+			for (i = d->pcap; i < cap; i++)	/* of no epoch yet */
+				pe[i] = -1;
+			d->pcap = cap;
+		}
+		d->epoch_builds = d->ce.rebuilds;
+	} else {
+		for (i = 0; i < d->n; i++)
+			most = fmax(most, core_drift(d, i));
+		if (most < 0.25 * d->cache_margin)
+			return 0;
+	}
+	/* an entry made in an earlier epoch (or for another list) holds a smaller number */
+	d->epoch++;
+	d->epochs++;
+	memcpy(d->x0, d->x, 3 * d->n * sizeof *d->x0);
+	memcpy(d->q0, d->q, 4 * d->n * sizeof *d->q0);
+	return 0;
+oom:
+	msg_seterr("out of memory for the contact list's caches");
+	return -1;
+}
+
+/* The records' room for the current list: a pair's record per list entry and the columns'
+ * entries (the pairs (m, j), m < j, of each grain j by ascending m).  0 or -1. */
+static int
+records_fit(struct pdem *d)
+{
+	const struct nlist *nl = &d->ce.nl;
+	size_t np = nl->npairs, n = d->n, i, k, *fill;
+
+	if (d->rec_builds == d->ce.rebuilds)
+		return 0;
+	if (np + 1 > d->rcap) {
+		size_t cap = np + np / 4 + 16;
+		struct pdem_rec *r = realloc(d->prec, cap * sizeof *r);
+		size_t *ck;
+
+		if (!r)
+			goto oom;
+		d->prec = r;
+		if (!(ck = realloc(d->colk, cap * sizeof *ck)))
+			goto oom;
+		d->colk = ck;
+		d->rcap = cap;
+	}
+	for (k = 0; k < np; k++)
+		d->prec[k].stamp = -1;
+	if (!(fill = calloc(n + 1, sizeof *fill)))
+		goto oom;
+	memset(d->colk_first, 0, (n + 1) * sizeof *d->colk_first);
+	for (k = 0; k < np; k++)
+		d->colk_first[nl->nbr[k] + 1]++;
+	for (i = 0; i < n; i++)
+		d->colk_first[i + 1] += d->colk_first[i];
+	for (i = 0; i < n; i++)	/* rows in ascending i: each column fills ascending */
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			size_t j = nl->nbr[k];
+			d->colk[d->colk_first[j] + fill[j]++] = k;
+		}
+	free(fill);
+	d->rec_builds = d->ce.rebuilds;
+	return 0;
+oom:
+	msg_seterr("out of memory for the interactions' records");
+	return -1;
+}
+
+/* Every grain's force and torque and the pass's sums, on threads with the same bytes for any
+ * number (base/par.h).  Pass 1 computes the interactions of each block of rows (the pairs
+ * (i, j > i) and the walls of grains i in the block, as contact_foreach orders them) into
+ * their records and the block's sums; pass 2 gathers each grain's force and torque in a fixed
+ * order: the pairs (m, i) by ascending m, then i's own pairs and walls.  The block sums are
+ * added in block order.  So no sum depends on which thread did what. */
 int
 pdem_forces(struct pdem *d)
 {
-	if (contact_enum_update(&d->ce, d->x, 0))
+	struct contact_enum *e = &d->ce;
+	size_t n = d->n, bl = par_block(n), nb = (n + bl - 1) / bl, b;
+	int err = 0, w, a;
+
+	d->threads = par_threads() > 1 && nb > 1;
+	if (contact_enum_update(e, d->x, 0))
 		return -1;
 	refresh_rotations(d);
-	memset(d->f, 0, 3 * d->n * sizeof *d->f);
-	memset(d->t, 0, 3 * d->n * sizeof *d->t);
+	if (cache_epoch(d) || records_fit(d))
+		return -1;
+	if (nb > d->sums_cap) {
+		struct pdem_sums *ns = realloc(d->sums, nb * sizeof *ns);
+		if (!ns) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		d->sums = ns;
+		d->sums_cap = nb;
+	}
+	d->stamp++;
+#pragma omp parallel if (d->threads)
+	{
+		long bb;
+
+#pragma omp for schedule(dynamic, 1)
+		for (bb = 0; bb < (long)nb; bb++) {
+			struct force_walk fw;
+			size_t i, i0 = (size_t)bb * bl, i1 = i0 + bl < n ? i0 + bl : n;
+			long calls = 0;
+
+			memset(&fw, 0, sizeof fw);
+			fw.d = d;
+			for (i = i0; i < i1; i++)
+				if (contact_foreach_row(e, d->x, i, CONTACT_NEAR, e->any_periodic, 3, on_contact, on_contact, &fw,
+				    &calls) < 0) {
+#pragma omp atomic write
+					err = 1;
+				}
+			d->sums[bb] = fw.s;
+		}
+		/* the gather (the implicit barrier above: every record is written) */
+#pragma omp for schedule(static)
+		for (bb = 0; bb < (long)n; bb++) {
+			size_t i = (size_t)bb, k, q;
+			double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
+
+			for (q = d->colk_first[i]; q < d->colk_first[i + 1]; q++) {
+				const struct pdem_rec *r = &d->prec[d->colk[q]];
+				if (r->stamp == d->stamp)
+					for (a = 0; a < 3; a++)
+						F[a] -= r->F[a], T[a] += r->Tj[a];
+			}
+			for (k = e->nl.first[i]; k < e->nl.first[i + 1]; k++) {
+				const struct pdem_rec *r = &d->prec[k];
+				if (r->stamp == d->stamp)
+					for (a = 0; a < 3; a++)
+						F[a] += r->F[a], T[a] += r->Ti[a];
+			}
+			for (w = 0; w < NWALLS; w++) {
+				const struct pdem_rec *r = &d->wrec[NWALLS * i + w];
+				if (r->stamp == d->stamp)
+					for (a = 0; a < 3; a++)
+						F[a] += r->F[a], T[a] += r->Ti[a];
+			}
+			memcpy(d->f + 3 * i, F, sizeof F);
+			memcpy(d->t + 3 * i, T, sizeof T);
+		}
+	}
+	if (err)
+		return -1;
 	memset(d->wallf, 0, sizeof d->wallf);
 	memset(d->wallF, 0, sizeof d->wallF);
 	memset(d->sig, 0, sizeof d->sig);
 	d->ninter = d->nwall = d->nelem = d->zends = 0;
 	d->sum_f = 0;
-	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_contact, d) < 0 ? -1 : 0;
+	for (b = 0; b < nb; b++) {
+		const struct pdem_sums *s = &d->sums[b];
+
+		for (w = 0; w < NWALLS; w++) {
+			d->wallf[w] += s->wallf[w];
+			for (a = 0; a < 3; a++)
+				d->wallF[w][a] += s->wallF[w][a];
+		}
+		for (a = 0; a < 6; a++)
+			d->sig[a] += s->sig[a];
+		d->ninter += s->ninter, d->nwall += s->nwall, d->nelem += s->nelem, d->zends += s->zends;
+		d->sum_f += s->sum_f;
+	}
+	return 0;
 }
 
 struct interaction_pass {
@@ -486,6 +748,7 @@ pdem_make_periodic(struct pdem *d, const int periodic[3])
 		d->periodic[a] = d->periodic[a] || periodic[a];
 	pdem_wrap(d);
 	contact_enum_free(&d->ce);
+	d->epoch_builds = d->rec_builds = -1;	/* a new list: new entries */
 	return contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, 3);
 }
 

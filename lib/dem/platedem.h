@@ -43,6 +43,19 @@ struct pdem_params {
 	double dt_factor;	/* dt = dt_factor sqrt(m_min / k_n) */
 };
 
+/* One interaction's forces in a pass of pdem_forces: the force on i (j gets its opposite) and
+ * the torques on i and j about their centres. */
+struct pdem_rec {
+	double F[3], Ti[3], Tj[3];
+	long stamp;		/* the pass that wrote it: an older one, no force now */
+};
+
+/* A block of rows' share of a pass's sums (added in block order). */
+struct pdem_sums {
+	double wallf[NWALLS], wallF[NWALLS][3], sig[6], sum_f;
+	size_t ninter, nwall, nelem, zends;
+};
+
 struct pdem {
 	size_t n;
 	double *x, *v;		/* centres, velocities (3n) */
@@ -77,9 +90,35 @@ struct pdem {
 	 * caller moves the planes (lo, hi) itself. */
 	unsigned char *glue;
 	double wallv[NWALLS][3];
+	/* The narrow phase kept between steps (plate_interaction_cached): per listed pair its
+	 * cache word and the epoch it was made in.  An epoch ends when the list is rebuilt or
+	 * some grain's core has moved by cache_margin / 4 since the epoch began (from x0, q0:
+	 * the centre's displacement plus what the turn moves a corner), so a pair's two cores
+	 * move by less than cache_margin between its cache and any step of the epoch.  Set
+	 * cache_margin to 0 to compute every feature at every step. */
+	unsigned *pcache;
+	long *pepoch;
+	size_t pcap;
+	long epoch, epoch_builds, epochs;
+	double cache_margin;
+	double *x0, *q0;
+	/* pdem_forces' records (pairs by list entry, walls by grain: NWALLS n), the columns'
+	 * entries for the gather, the block sums, the pass's stamp, the lab-frame angular
+	 * velocities (3n), and whether the passes run on threads */
+	struct pdem_rec *prec, *wrec;
+	size_t *colk, *colk_first, rcap;
+	long rec_builds, stamp;
+	struct pdem_sums *sums;
+	size_t sums_cap;
+	double *wl;
+	int threads;
 	/* the scales: SI value = scaled value times these */
 	double u_len, u_mass, u_time, u_force;
 };
+
+/* The default cache margin (scaled units, r0): features within r_i + r_j + 0.1 r0 are kept;
+ * an epoch lasts while no core moves by 0.025 r0. */
+#define PDEM_CACHE_MARGIN 0.1
 
 void pdem_params_default(struct pdem_params *pp);
 /* The engine for pack p (SI): scaled copies of its grains and box, at rest, the boundary of
