@@ -1,10 +1,16 @@
 /* lines: the one reader of text lines, behind every qusgm reader (packs, tables, material
  * files, size tables, "x y z r" spheres).
  *
- * Input goes through zlib (gzdopen/gzread), which reads a plain file as it is and
- * decompresses a gzip one, so both share one code path; a truncated or corrupt gzip stream
- * is one error, "NAME:LINE: corrupt or truncated input (why)", at the line that was being
- * read when the data stopped, never a silently shortened input.  Lines may be of any
+ * Input is read with read(2) and, when it starts with gzip's magic bytes (1f 8b), inflated
+ * with zlib member after member, as gzip -d does, so plain and gzip input share one code
+ * path; a truncated or corrupt gzip stream is one error, "NAME:LINE: corrupt or truncated
+ * input (why)", at the line that was being read when the data stopped, never a silently
+ * shortened input, and bytes after the last member that are not another member ("trailing
+ * data after the end of the gzip stream": a plain file appended to a .gz one, which zlib's
+ * gzread dropped without a word) are an error too.  Input that starts as no text does (xz,
+ * bzip2, zstd, lz4, compress or zip data, UTF-16, a UTF-8 byte-order mark) is refused at
+ * line 1 with what it is and how to convert it, and so is a file of CR-only (old Mac) line
+ * endings, whose first line would run to the end of the input.  Lines may be of any
  * length.  A line ends at "\n"; the "\n" and one "\r" before it (or at the very end of the
  * input) are stripped, so CRLF files read as LF ones.  A line holding a NUL byte is an error
  * ("binary data (NUL byte) in a text file").  Line numbers count from 1, and lines_error

@@ -216,6 +216,27 @@ expect_same two-packs-keys two.info two.want
 cat good.pack.gz good.pack.gz >two.pack.gz
 packinfo --tsv two.pack.gz >twogz.tsv 2>/dev/null
 expect_same two-gzip-members twogz.tsv two.tsv
+# a plain pack appended to a .gz one (gzip -t: "trailing garbage"): refused, never dropped
+# without a word; the same bytes on standard input
+cat good.pack.gz good.pack >gz-then-plain.pack.gz
+expect_error gzip-trailing-plain 1 '^packinfo: gz-then-plain\.pack\.gz:19: trailing data after the end of the gzip stream \(not a gzip member' \
+    packinfo gz-then-plain.pack.gz
+expect_error gzip-trailing-plain-stdin 1 '^packinfo: <stdin>:19: trailing data after the end of the gzip stream' \
+    packinfo <gz-then-plain.pack.gz
+expect_error gzip-trailing-plain-one-pack 1 '^densify: gz-then-plain\.pack\.gz:19: trailing data after the end of the gzip stream' \
+    densify --stress 1e6 -o nothing.pack gz-then-plain.pack.gz
+# what is not a pack of LF lines says what it is, at line 1
+tr '\n' '\r' <good.pack >cr-only.pack
+expect_error cr-only 1 "^packinfo: cr-only\\.pack:1: CR line endings \\(old Mac\\): convert them \\(tr '\\\\r' '\\\\n' < FILE\\)\$" \
+    packinfo cr-only.pack
+printf '\357\273\277' | cat - good.pack >bom.pack
+expect_error utf8-bom 1 '^packinfo: bom\.pack:1: a UTF-8 byte-order mark \(bytes EF BB BF\) starts the file' packinfo bom.pack
+for z in xz bzip2 zstd lz4; do
+	command -v $z >/dev/null 2>&1 || continue
+	$z -c <good.pack >good.pack.$z 2>/dev/null
+	expect_error "$z-input" 1 "^packinfo: good\\.pack\\.$z:1: $z-compressed: decompress it first \\($z -d FILE" \
+	    packinfo "good.pack.$z"
+done
 
 # -o FILE: written atomically; nothing at all when the input is bad
 expect_ok output-file packinfo -o out.info good.pack

@@ -228,6 +228,102 @@ test_truncated_gz(void)
 	free(z);
 }
 
+/* Several gzip members read as one stream, as gzip -d reads them; anything after the last
+ * member that is not another one is refused, with its reason, after the lines before it
+ * (zlib's gzread dropped a plain pack appended to a .gz one without a word). */
+static void
+test_gzip_members(void)
+{
+	const char *text = "a 1\nb 2\n", *p = path_of("cat.gz");
+	size_t zlen, k;
+	char *z = gzip_bytes(text, 8, &zlen), *buf = malloc(2 * zlen + 64), *got, want[400];
+	int st;
+	long n;
+	static const struct {
+		const char *what, *tail;
+		size_t len;
+	} tails[] = {
+		{"a plain file appended to a gzip one", "c 3\n", 4},
+		{"zero bytes after the gzip member", "\0\0\0\0", 4},
+		{"one byte after the gzip member", "x", 1},
+		{"gzip's first magic byte alone after the member", "\x1f", 1},
+	};
+
+	memcpy(buf, z, zlen);
+	memcpy(buf + zlen, z, zlen);
+	write_file(p, buf, 2 * zlen);
+	got = read_all(p, &st, &n);
+	CHECK(st == 0 && strcmp(got, "a 1$|b 2$|a 1$|b 2$") == 0, "two gzip members read as one stream: '%s' (status %d)",
+	    got, st);
+	free(got);
+	for (k = 0; k < sizeof tails / sizeof tails[0]; k++) {
+		memcpy(buf + zlen, tails[k].tail, tails[k].len);
+		write_file(p, buf, zlen + tails[k].len);
+		got = read_all(p, &st, &n);
+		snprintf(want, sizeof want, "%s:3: trailing data after the end of the gzip stream (not a gzip member; gzip -t calls it trailing garbage: a file appended to a .gz one?)", p);
+		CHECK(st == -1 && n == 2 && strcmp(msg_geterr(), want) == 0, "%s: refused after the %ld lines before it: '%s'",
+		    tails[k].what, n, msg_geterr());
+		free(got);
+	}
+	/* a second member cut short is as truncated as the first */
+	memcpy(buf + zlen, z, zlen - 5);
+	write_file(p, buf, 2 * zlen - 5);
+	got = read_all(p, &st, &n);
+	snprintf(want, sizeof want, "%s:", p);
+	CHECK(st == -1 && strncmp(msg_geterr(), want, strlen(want)) == 0 && strstr(msg_geterr(), "corrupt or truncated input ("),
+	    "a second gzip member cut short: '%s'", msg_geterr());
+	free(got);
+	unlink(p);
+	free(buf);
+	free(z);
+}
+
+/* Input that is not text, or not text of LF lines, named for what it is at line 1 (a NUL
+ * byte said "binary data" of an xz file, "not a qusgm pack" of a BOM, "truncated" of a
+ * CR-only file). */
+static void
+test_foreign(void)
+{
+	static const struct {
+		const char *what, *data;
+		size_t len;
+		const char *msg;
+	} cases[] = {
+		{"xz data", "\xfd" "7zXZ\0\0\x04\xe6\xd6\xb4\x46", 12, "xz-compressed: decompress it first (xz -d FILE; qusgm reads plain text and gzip)"},
+		{"bzip2 data", "BZh91AY&SY\x01\x02", 12, "bzip2-compressed: decompress it first (bzip2 -d FILE; qusgm reads plain text and gzip)"},
+		{"zstd data", "\x28\xb5\x2f\xfd\x04\x58", 6, "zstd-compressed: decompress it first (zstd -d FILE; qusgm reads plain text and gzip)"},
+		{"lz4 data", "\x04\x22\x4d\x18\x64\x40", 6, "lz4-compressed: decompress it first (lz4 -d FILE; qusgm reads plain text and gzip)"},
+		{"compress (.Z) data", "\x1f\x9d\x90\x71", 4, "compressed by compress (.Z): decompress it first (gzip -d FILE; qusgm reads plain text and gzip)"},
+		{"a zip archive", "PK\x03\x04\x14\x00", 6, "a zip archive: extract the file first (unzip)"},
+		{"a UTF-8 byte-order mark", "\xef\xbb\xbfqusgm-pack 1\n", 16, "a UTF-8 byte-order mark (bytes EF BB BF) starts the file: save it without one (sed -i '1s/^\\xEF\\xBB\\xBF//' FILE)"},
+		{"UTF-16LE text", "\xff\xfeq\0u\0\n\0", 8, "UTF-16 text (byte-order mark FF FE): convert it (iconv -f UTF-16 -t UTF-8 FILE)"},
+		{"UTF-16BE text", "\xfe\xff\0q\0u\0\n", 8, "UTF-16 text (byte-order mark FE FF): convert it (iconv -f UTF-16 -t UTF-8 FILE)"},
+		{"CR-only line endings", "qusgm-pack 1\runits SI\rend\r", 26, "CR line endings (old Mac): convert them (tr '\\r' '\\n' < FILE)"},
+		{"CR-only line endings, no CR at the end", "a 1\rb 2", 7, "CR line endings (old Mac): convert them (tr '\\r' '\\n' < FILE)"},
+	};
+	char want[400], *got, *z;
+	size_t k, zlen;
+	int st;
+	long n;
+
+	for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+		snprintf(want, sizeof want, "%s/foreign:1: %s", dir, cases[k].msg);
+		expect_error(cases[k].what, "foreign", cases[k].data, cases[k].len, want);
+	}
+	/* inside gzip too: what the gzip holds is judged */
+	z = gzip_bytes(cases[0].data, cases[0].len, &zlen);
+	write_file(path_of("foreign.gz"), z, zlen);
+	got = read_all(path_of("foreign.gz"), &st, &n);
+	snprintf(want, sizeof want, "%s/foreign.gz:1: %s", dir, cases[0].msg);
+	CHECK(st == -1 && strcmp(msg_geterr(), want) == 0, "xz data inside gzip: '%s'", msg_geterr());
+	free(got);
+	free(z);
+	unlink(path_of("foreign.gz"));
+	/* "BZh" that is text, a lone CR in an LF file: still text */
+	expect_lines("a file starting 'BZh' as text", "BZh is a word\n", 14, "BZh is a word$", 1);
+	expect_lines("a one-line file ending in CR alone", "a 1\r", 4, "a 1", 1);
+}
+
 /* Line numbers in messages, lines_unread, the sticky failure, the name of stdin. */
 static void
 test_numbers(void)
@@ -309,6 +405,8 @@ main(void)
 	test_long_line();
 	test_nul();
 	test_truncated_gz();
+	test_gzip_members();
+	test_foreign();
 	test_numbers();
 	test_borrowed_stream();
 	rmdir(dir);
