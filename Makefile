@@ -1,7 +1,7 @@
 # qusgm: quasi-static granular mechanics toolkit.
 # Targets: all check run bench bench-peers validate install uninstall clean deps help (see `make help`).
 
-VERSION   = 0.1.0
+VERSION   = 0.2.0
 PREFIX   ?= /usr/local
 BINDIR   ?= $(PREFIX)/bin
 MANPREFIX ?= $(PREFIX)/share/man
@@ -28,6 +28,22 @@ DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config
 DEB_PLOT  = gnuplot-nox
 DEB_PY    = python3-numpy
 DEB_PEERS = liggghts
+
+# The exact source of a build, which every tool's --version and every history line it writes
+# name (lib/base/cli.c): VERSION, then from a git checkout "+" and what `git describe --always
+# --dirty` prints (0.2.0+<hash>, 0.2.0+<hash>-dirty with uncommitted changes); outside git (a
+# tarball) VERSION alone.  The -dirty mark comes from git status, which reads as describe's
+# does but takes no lock on the index (GIT_OPTIONAL_LOCKS=0), so that a build never blocks a
+# commit in the same tree.  Computed once per make and exported to the sub-makes and the
+# tests, so that every build of one make names the same source; QUSGM_SOURCE_VERSION=... on
+# the command line sets it.
+ifeq ($(origin QUSGM_SOURCE_VERSION),undefined)
+GIT_DESCRIBE := $(if $(wildcard .git),$(shell d=$$(git describe --always 2>/dev/null) && \
+  { [ -z "$$(GIT_OPTIONAL_LOCKS=0 git status --porcelain --untracked-files=no 2>/dev/null)" ] || d=$$d-dirty; } && \
+  echo "$$d"))
+QUSGM_SOURCE_VERSION := $(VERSION)$(if $(GIT_DESCRIBE),+$(GIT_DESCRIBE))
+endif
+export QUSGM_SOURCE_VERSION
 
 # Build directories: build/ is the normal build, build-san/ the sanitizer build.
 B        ?= build
@@ -62,7 +78,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: version FORCE libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -94,6 +110,17 @@ deps:
 $(B)/lib/%.o: lib/%.c $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+# The source version reaches cli.c alone, as a define; its objects depend on a file that
+# changes only when the string does, so a new commit or a first edit recompiles one file and
+# relinks, nothing more.
+$(B)/source-version: FORCE
+	@mkdir -p $(@D)
+	@echo '$(QUSGM_SOURCE_VERSION)' >$@.$$$$; \
+	if cmp -s $@.$$$$ $@; then rm -f $@.$$$$; else mv -f $@.$$$$ $@; fi
+$(B)/lib/base/cli.o $(B)/pic/base/cli.o: $(B)/source-version
+$(B)/lib/base/cli.o $(B)/pic/base/cli.o: ALL_CFLAGS += -DQUSGM_SOURCE_VERSION='"$(QUSGM_SOURCE_VERSION)"'
+FORCE:
 
 $(B)/libqusgm.a: $(LIB_OBJ)
 	rm -f $@
@@ -314,8 +341,13 @@ uninstall:
 clean:
 	rm -rf build build-san build-fuzz tests/out
 
+# The source version this tree builds (QUSGM_SOURCE_VERSION above)
+version:
+	@echo '$(QUSGM_SOURCE_VERSION)'
+
 help:
 	@echo "make            build the library and the tools ($(TOOLS))"
+	@echo "make version    the source version the tools name: VERSION, and git describe in a git checkout"
 	@echo "make check      build normally and with ASan+UBSan, run every test; ends 'N passed, N failed'"
 	@echo "make check-fast the tests on the normal build only"
 	@echo "make killtest   kill every writing tool with TERM/INT/HUP/KILL at seeded random moments; check outputs and temporaries"

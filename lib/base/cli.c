@@ -11,6 +11,17 @@
 #include <string.h>
 #include <unistd.h>
 
+/* The Makefile defines it for this file alone (its objects depend on build/source-version) */
+#ifndef QUSGM_SOURCE_VERSION
+#define QUSGM_SOURCE_VERSION QUSGM_VERSION
+#endif
+
+const char *
+cli_source_version(void)
+{
+	return QUSGM_SOURCE_VERSION;
+}
+
 static int usage_errors;
 static char *argv_text_owned;
 
@@ -304,7 +315,7 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 		exit(0);
 	}
 	if (version_flag) {
-		printf("%s (qusgm) %s\n", t->name, QUSGM_VERSION);
+		printf("%s (qusgm) %s\n", t->name, cli_source_version());
 		exit(0);
 	}
 	msg_verbosity = quiet_flag ? -1 : verbose_count;
@@ -349,14 +360,15 @@ char *
 cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 {
 	char *res = cli_resolved(t), *s, *c;
-	size_t len = strlen(t->name) + strlen(st->argv_text) + strlen(res) + 64;
+	size_t len = strlen(t->name) + strlen(cli_source_version()) + strlen(st->argv_text) + strlen(res) + 64;
 
 	s = malloc(len);
 	if (!s)
 		msg_die(EXIT_DATA, "out of memory");
 	/* the thread count is provenance, not an input: it changes no result, but a run's
 	 * record says how it was made */
-	snprintf(s, len, "%s %s: %s ; %s --threads=%d", t->name, QUSGM_VERSION, st->argv_text, res, par_threads());
+	snprintf(s, len, "%s %s: %s ; %s --threads=%d", t->name, cli_source_version(), st->argv_text, res,
+	    par_threads());
 	free(res);
 	/* one line, without a carriage return, that a pack reader gives back byte for byte */
 	for (c = s; *c; c++)

@@ -10,7 +10,14 @@
 
 #include <stdio.h>
 
-#define QUSGM_VERSION "0.1.0"
+/* The release: the Makefile's VERSION (tests/tools/version.sh checks that they agree). */
+#define QUSGM_VERSION "0.2.0"
+
+/* The exact source of this build, which --version and every history line name: the release,
+ * and from a git checkout "+" and its `git describe --always --dirty`, e.g.
+ * "0.2.0+<hash>-dirty" (the Makefile's QUSGM_SOURCE_VERSION); the release alone when cli.c
+ * was compiled outside git or without the Makefile. */
+const char *cli_source_version(void);
 
 enum cli_type { CLI_END = 0, CLI_FLAG, CLI_LONG, CLI_DOUBLE, CLI_STRING };
 
@@ -51,7 +58,8 @@ void cli_usage_done(void);
 /* "--name=value ..." for every option in the table, as resolved: goes into history. */
 char *cli_resolved(const struct cli_tool *t);
 
-/* A history line: "tool VERSION: argv ; resolved options". Caller frees. */
+/* A history line: "tool SOURCE_VERSION: argv ; resolved options" (cli_source_version).
+ * Caller frees. */
 char *cli_history_line(const struct cli_tool *t, const struct cli_state *st);
 
 /* Progress on stderr: shown when stderr is a terminal or with -v, never with -q. */

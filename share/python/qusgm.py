@@ -52,7 +52,7 @@ import sys
 import numpy as np
 
 __all__ = ["read_pack", "read_packs", "read_table", "Pack", "Table", "FormatError", "WALLS", "UNITS"]
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 WALLS = ("xlo", "xhi", "ylo", "yhi", "zlo", "zhi")
 VERSIONS = (1, 2)

@@ -12,6 +12,7 @@ if [ "${BIN#*build-san}" != "$BIN" ]; then
 	exit 0
 fi
 B=$(dirname "$BIN")	# the build under test, up to date: nothing is rebuilt
+ver=$(awk '$1 == "VERSION" && $2 == "=" { print $3; exit }' "$TOP/Makefile")	# the release
 stage=$PWD/stage
 lib=$stage/usr/local/lib
 inc=$stage/usr/local/include/qusgm
@@ -20,20 +21,20 @@ if make -s -C "$TOP" install B="$B" DESTDIR="$stage" PREFIX=/usr/local >inst.log
 else
 	fail "make install DESTDIR=... PREFIX=/usr/local" "$(tail -n 3 inst.log)"
 fi
-for f in libqusgm.a libqusgm.so.0.1.0 pkgconfig/qusgm.pc; do
+for f in libqusgm.a libqusgm.so.$ver pkgconfig/qusgm.pc; do
 	if [ -f "$lib/$f" ]; then pass "installed lib/$f"; else fail "installed lib/$f" "missing"; fi
 done
-if [ "$(readlink "$lib/libqusgm.so.0")" = libqusgm.so.0.1.0 ] && [ "$(readlink "$lib/libqusgm.so")" = libqusgm.so.0 ]; then
-	pass "libqusgm.so -> libqusgm.so.0 -> libqusgm.so.0.1.0"
+if [ "$(readlink "$lib/libqusgm.so.0")" = libqusgm.so.$ver ] && [ "$(readlink "$lib/libqusgm.so")" = libqusgm.so.0 ]; then
+	pass "libqusgm.so -> libqusgm.so.0 -> libqusgm.so.$ver"
 else
-	fail "libqusgm.so -> libqusgm.so.0 -> libqusgm.so.0.1.0" "$(ls -l "$lib" | tr '\n' ' ')"
+	fail "libqusgm.so -> libqusgm.so.0 -> libqusgm.so.$ver" "$(ls -l "$lib" | tr '\n' ' ')"
 fi
 if ! command -v readelf >/dev/null 2>&1; then
 	echo "SKIP soname (no readelf)"
-elif readelf -d "$lib/libqusgm.so.0.1.0" | grep -q 'SONAME.*\[libqusgm\.so\.0\]'; then
+elif readelf -d "$lib/libqusgm.so.$ver" | grep -q 'SONAME.*\[libqusgm\.so\.0\]'; then
 	pass "soname libqusgm.so.0"
 else
-	fail "soname libqusgm.so.0" "$(readelf -d "$lib/libqusgm.so.0.1.0" | grep SONAME)"
+	fail "soname libqusgm.so.0" "$(readelf -d "$lib/libqusgm.so.$ver" | grep SONAME)"
 fi
 # every header of lib/ is installed, in its layer's folder
 missing=
@@ -51,7 +52,7 @@ if command -v pkg-config >/dev/null 2>&1 && [ -f "$lib/pkgconfig/qusgm.pc" ]; th
 	mkdir -p pc
 	sed "s|^prefix=.*|prefix=$stage/usr/local|" "$lib/pkgconfig/qusgm.pc" >pc/qusgm.pc
 	pc() { PKG_CONFIG_PATH=$PWD/pc pkg-config "$@"; }
-	if [ "$(pc --modversion qusgm)" = 0.1.0 ]; then pass "pkg-config --modversion qusgm"; else fail "pkg-config --modversion qusgm" "$(pc --modversion qusgm 2>&1)"; fi
+	if [ "$(pc --modversion qusgm)" = "$ver" ]; then pass "pkg-config --modversion qusgm"; else fail "pkg-config --modversion qusgm" "$(pc --modversion qusgm 2>&1)"; fi
 	cflags=$(pc --cflags qusgm) libs=$(pc --libs qusgm)
 	case " $cflags $libs " in
 	*" -I$inc "*" -L$lib -lqusgm "*) pass "pkg-config --cflags --libs qusgm ($cflags $libs)" ;;
