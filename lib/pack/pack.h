@@ -110,9 +110,9 @@ struct pack {
 	size_t nc, ccap;
 	struct pack_contact *c;
 
-	size_t nhist;
+	size_t nhist, hist_cap;	/* hist_cap, meta_cap: the room, grown by doubling */
 	char **history;
-	size_t nmeta;
+	size_t nmeta, meta_cap;
 	struct pack_meta *meta;
 };
 
@@ -181,6 +181,11 @@ long *pack_history_keys(const struct pack *p);
 long pack_history_lookup(const long *keys, size_t n, size_t i, long j);
 int pack_add_history(struct pack *p, const char *line);
 int pack_set_meta(struct pack *p, const char *key, const char *value);
+/* Append key's line without looking for the key first: for a caller that knows it is new
+ * (the reader, which checks every key once against a hash of those before; pack_copy).
+ * pack_set_meta looks through every line, so a header of N meta lines read through it took
+ * N^2/2 comparisons (160000 lines: over 2 minutes).  0, or -1 when out of memory. */
+int pack_append_meta(struct pack *p, const char *key, const char *value);
 const char *pack_get_meta(const struct pack *p, const char *key);
 /* Remove key's line (the others keep their order); nothing when it is absent. */
 void pack_unset_meta(struct pack *p, const char *key);

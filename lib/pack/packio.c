@@ -354,7 +354,53 @@ struct header {
 	int ncol;	/* fields of a grain line */
 	int col[MAXTOK];	/* the columns[] index of each field of a grain line */
 	char colnames[256];	/* the names, "id x y z r E nu rho", for messages */
+	/* The meta keys read so far, by hash: slot k holds 1 + the index of a meta line, 0 when
+	 * empty; nslot a power of two, at least twice the keys.  A duplicate key is found in
+	 * constant time, so a header of N meta lines reads in time linear in N (a look through
+	 * the keys before each took 10 s for 40000 lines and over 2 minutes for 160000). */
+	size_t *slot, nslot;
 };
+
+static size_t
+key_hash(const char *k)
+{
+	size_t h = 14695981039346656037u;	/* FNV-1a */
+
+	for (; *k; k++)
+		h = (h ^ (unsigned char)*k) * 1099511628211u;
+	return h;
+}
+
+/* The slot of key: the one holding it, or the empty one where it would go. */
+static size_t
+key_slot(const struct header *h, const char *key)
+{
+	size_t k = key_hash(key) & (h->nslot - 1);
+
+	while (h->slot[k] && strcmp(h->p->meta[h->slot[k] - 1].key, key) != 0)
+		k = (k + 1) & (h->nslot - 1);
+	return k;
+}
+
+/* Room in the hash for one more key: 0, or -1 when out of memory. */
+static int
+keys_room(struct header *h)
+{
+	size_t *old = h->slot, nold = h->nslot, k, n = h->nslot ? 2 * h->nslot : 64;
+
+	if (2 * (h->p->nmeta + 1) <= h->nslot)
+		return 0;
+	if (!(h->slot = calloc(n, sizeof *h->slot))) {
+		h->slot = old;
+		return -1;
+	}
+	h->nslot = n;
+	for (k = 0; k < nold; k++)
+		if (old[k])
+			h->slot[key_slot(h, h->p->meta[old[k] - 1].key)] = old[k];
+	free(old);
+	return 0;
+}
 
 /* Until a columns line says otherwise: the required columns (a version-1 pack). */
 static void
@@ -589,6 +635,7 @@ static int
 header_meta(struct header *h, char *s)
 {
 	char *key = s + 5, *val;
+	size_t k;
 
 	while (*key == ' ' || *key == '\t')
 		key++;
@@ -600,10 +647,14 @@ header_meta(struct header *h, char *s)
 		val++;
 	if (!*val)
 		return rd_error(h->rd, "meta: expected a key and a value");
-	if (pack_get_meta(h->p, key))
-		return rd_error(h->rd, "meta: duplicate key '%s'", key);
-	if (pack_set_meta(h->p, key, val))
+	if (keys_room(h))
 		return rd_error(h->rd, "out of memory");
+	k = key_slot(h, key);
+	if (h->slot[k])
+		return rd_error(h->rd, "meta: duplicate key '%s'", key);
+	if (pack_append_meta(h->p, key, val))
+		return rd_error(h->rd, "out of memory");
+	h->slot[k] = h->p->nmeta;
 	return 0;
 }
 
@@ -885,6 +936,8 @@ pack_read_next(struct pack_reader *rd, struct pack *p)
 	status = read_magic(rd, s, &h.version);
 	if (status == 0)
 		status = read_header(&h);
+	free(h.slot);
+	h.slot = NULL;
 	if (status == 0)
 		status = read_grains(&h, &sorted);
 	if (status == 0)
