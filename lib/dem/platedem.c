@@ -35,8 +35,8 @@ pdem_free(struct pdem *d)
 {
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
-	free(d->pcache), free(d->pepoch), free(d->x0), free(d->q0), free(d->wl);
-	free(d->prec), free(d->colk), free(d->colk_first), free(d->wrec), free(d->sums);
+	free(d->pcache), free(d->q0), free(d->turn), free(d->gen), free(d->wl);
+	free(d->prec), free(d->colk), free(d->colk_first), free(d->wrec), free(d->sums), free(d->ptouch), free(d->wtouch);
 	contact_enum_free(&d->ce);
 	memset(d, 0, sizeof *d);
 }
@@ -83,11 +83,12 @@ pdem_alloc(struct pdem *d, size_t n)
 	d->R = calloc(9 * n, sizeof *d->R), d->m = calloc(n, sizeof *d->m);
 	d->J = calloc(3 * n, sizeof *d->J), d->r = calloc(n, sizeof *d->r);
 	d->half = calloc(n, sizeof *d->half), d->rb = calloc(n, sizeof *d->rb);
-	d->x0 = calloc(3 * n, sizeof *d->x0), d->q0 = calloc(4 * n, sizeof *d->q0);
+	d->turn = calloc(n, sizeof *d->turn), d->q0 = calloc(4 * n, sizeof *d->q0);
+	d->gen = calloc(n, sizeof *d->gen);
 	d->wl = calloc(3 * n, sizeof *d->wl), d->colk_first = calloc(n + 1, sizeof *d->colk_first);
-	d->wrec = malloc(NWALLS * n * sizeof *d->wrec);
+	d->wrec = malloc(NWALLS * n * sizeof *d->wrec), d->wtouch = calloc(n, 1);
 	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
-	    !d->rb || !d->x0 || !d->q0 || !d->wl || !d->colk_first || !d->wrec) {
+	    !d->rb || !d->turn || !d->q0 || !d->gen || !d->wl || !d->colk_first || !d->wrec || !d->wtouch) {
 		msg_seterr("out of memory for %zu grains", n);
 		return -1;
 	}
@@ -140,9 +141,7 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	d->damping = pp->damping;
 	d->dt = pp->dt_factor * sqrt(mmin);
 	d->cache_margin = PDEM_CACHE_MARGIN;
-	d->epoch_builds = d->rec_builds = -1;
-	for (i = 0; i < NWALLS * n; i++)
-		d->wrec[i].stamp = -1;
+	d->rec_builds = -1;
 	/* the skin: a tenth of the smallest bounding radius, so the list lasts many steps */
 	if (contact_enum_init(&d->ce, n, d->rb, d->lo, d->hi, d->periodic, 0.1 * rbmin, 3)) {
 		pdem_free(d);
@@ -192,7 +191,7 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn, c[3];
 	double *F = rec->F, *Ti = rec->Ti;
 
-	memset(rec, 0, offsetof(struct pdem_rec, stamp));
+	memset(rec, 0, sizeof *rec);
 	if (wall)	/* a moving wall's velocity (0 for the walls of a compaction) */
 		memcpy(vj, d->wallv[PACK_WALL_INDEX(j)], sizeof vj);
 
@@ -298,26 +297,41 @@ interaction_of(const struct pdem *d, const struct contact *c, struct plate_inter
 	return plate_record_interaction(&g, c, 0, it, xj);
 }
 
-/* A pair's interaction through its cache (made when its epoch is not the current one), with
+/* A pair's interaction through its cache (remade when it may have gone stale), with
  * j's centre (its nearest image) into xj. */
 static int
 pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_interaction *it, double xj[3])
 {
 	size_t k = contact_pair_index(&d->ce, c), i = c->i, j = (size_t)c->j;
+	struct pdem_cache *pc = &d->pcache[k];
 	struct plate_body a, b;
-	int build = d->pepoch[k] != d->epoch, m, q;
+	double turns = d->turn[i] + d->turn[j];
+	int build = pc->list != d->ce.rebuilds || pc->gi != d->gen[i] || pc->gj != d->gen[j], m, q;
 
+	if (!build) {
+		double e0 = c->dx[0] - pc->dx[0], e1 = c->dx[1] - pc->dx[1], e2 = c->dx[2] - pc->dx[2];
+		build = !(sqrt(e0 * e0 + e1 * e1 + e2 * e2) + turns + pc->turn < d->cache_margin);
+	}
+	/* cores that cannot touch yet (two spheres keep no cache) */
+	if (!build && !(pc->word & PLATE_CACHE_FEATURES) && (d->half[i] > 0 || d->half[j] > 0))
+		return 0;
 	for (q = 0; q < 3; q++) {
 		a.x[q] = d->x[3 * i + q];
-		xj[q] = a.x[q] - c->dx[q];
+		b.x[q] = a.x[q] - c->dx[q];
 	}
-	memcpy(b.x, xj, sizeof b.x);
+	memcpy(xj, b.x, sizeof b.x);
 	memcpy(a.R, d->R + 9 * i, sizeof a.R);
 	memcpy(b.R, d->R + 9 * j, sizeof b.R);
 	a.half = d->half[i], a.r = d->r[i];
 	b.half = d->half[j], b.r = d->r[j];
-	m = plate_interaction_cached(&a, &b, d->cache_margin, &d->pcache[k], build, it);
-	d->pepoch[k] = d->epoch;
+	m = plate_interaction_cached(&a, &b, d->cache_margin, &pc->word, build, it);
+	if (build) {
+		memcpy(pc->dx, c->dx, sizeof pc->dx);
+		pc->turn = turns;
+		pc->list = d->ce.rebuilds;
+		pc->gi = d->gen[i], pc->gj = d->gen[j];
+		d->cache_builds++;	/* a statistic: racy on threads, not a result */
+	}
 	return m;
 }
 
@@ -328,8 +342,7 @@ struct force_walk {
 };
 
 /* Each interaction of the walk into its record (a pair's by its list entry, a wall's by
- * grain and wall), stamped with this pass; nothing is written for the others, whose older
- * stamps say they carry no force. */
+ * grain and wall), flagged in ptouch or wtouch (cleared for the row before its walk). */
 static int
 on_contact(const struct contact *c, void *vw)
 {
@@ -352,9 +365,16 @@ on_contact(const struct contact *c, void *vw)
 		c->hist[0] = c->hist[1] = c->hist[2] = 0;
 		return 0;
 	}
-	rec = wall ? &d->wrec[NWALLS * c->i + PACK_WALL_INDEX(c->j)] : &d->prec[contact_pair_index(&d->ce, c)];
+	if (wall) {
+		int w = PACK_WALL_INDEX(c->j);
+		rec = &d->wrec[NWALLS * c->i + w];
+		d->wtouch[c->i] |= (unsigned char)(1u << w);
+	} else {
+		size_t k = contact_pair_index(&d->ce, c);
+		rec = &d->prec[k];
+		d->ptouch[k] = 1;
+	}
 	interaction_force(d, c->i, c->j, wall ? NULL : xj, &it, c->hist, rec, &fw->s);
-	rec->stamp = d->stamp;
 	return 0;
 }
 
@@ -374,74 +394,59 @@ refresh_rotations(struct pdem *d)
 	}
 }
 
-/* The largest displacement of a point of grain i's core since the epoch began: its centre's
- * (nearest image) plus the turn's at the core's corners, |R - R0| <= 2 |q - q0| (the nearer
- * of q0 and -q0) times half sqrt 2. */
+/* What grain i's turn since its generation began can move a point of its core: |R - R0| <= 2 |q - q0|
+ * (the nearer of q0 and -q0) times the core's radius half sqrt 2. */
 static double
-core_drift(const struct pdem *d, size_t i)
+core_turn(const struct pdem *d, size_t i)
 {
 	const double *q = d->q + 4 * i, *q0 = d->q0 + 4 * i;
-	double dx[3], dp = 0, dm = 0;
+	double dp = 0, dm = 0;
 	int a;
 
-	for (a = 0; a < 3; a++) {
-		dx[a] = d->x[3 * i + a] - d->x0[3 * i + a];
-		if (d->periodic[a]) {
-			double L = d->hi[a] - d->lo[a];
-			dx[a] -= L * nearbyint(dx[a] / L);
-		}
-	}
 	for (a = 0; a < 4; a++) {
 		dp += (q[a] - q0[a]) * (q[a] - q0[a]);
 		dm += (q[a] + q0[a]) * (q[a] + q0[a]);
 	}
-	return vec3_norm(dx) + 2 * sqrt(fmin(dp, dm)) * d->half[i] * M_SQRT2;
+	return 2 * sqrt(fmin(dp, dm)) * d->half[i] * M_SQRT2;
 }
 
-/* Start a new epoch of the cached narrow phase when the list was rebuilt (its entries are
- * new) or a core has moved by a quarter of the margin: then any two moved by less than the
- * margin between a cache made in the epoch and now (each at most a quarter since the start,
- * at both times).  0 or -1. */
+/* The room for the current list's caches (a new entry is of no list yet), and the grains'
+ * turns: a grain's generation ends, its turn measured from now, when its turn reaches a
+ * quarter of the margin, so that the turns of a cache's two grains, each at most a quarter
+ * at both ends, stay within the margin with the branch vector's change.  0 or -1. */
 static int
-cache_epoch(struct pdem *d)
+cache_turns(struct pdem *d)
 {
 	size_t i, np = d->ce.nl.npairs;
-	double most = 0;
+	double quarter = 0.25 * d->cache_margin;
 
 	if (d->cache_margin <= 0)
 		return 0;
-	if (d->epoch_builds != d->ce.rebuilds) {
-		if (np > d->pcap) {
-			size_t cap = np + np / 4 + 16;
-			unsigned *pc = realloc(d->pcache, cap * sizeof *pc);
-			long *pe;
+	if (np > d->pcap) {
+		size_t cap = np + np / 4 + 16;
+		struct pdem_cache *pc = realloc(d->pcache, cap * sizeof *pc);
 
-			if (!pc)
-				goto oom;
-			d->pcache = pc;
-			if (!(pe = realloc(d->pepoch, cap * sizeof *pe)))
-				goto oom;
-			d->pepoch = pe;
-			for (i = d->pcap; i < cap; i++)	/* of no epoch yet */
-				pe[i] = -1;
-			d->pcap = cap;
+		if (!pc) {
+			msg_seterr("out of memory for the contact list's caches");
+			return -1;
 		}
-		d->epoch_builds = d->ce.rebuilds;
-	} else {
-		for (i = 0; i < d->n; i++)
-			most = fmax(most, core_drift(d, i));
-		if (most < 0.25 * d->cache_margin)
-			return 0;
+		for (i = d->pcap; i < cap; i++)
+			pc[i].list = -1;
+		d->pcache = pc;
+		d->pcap = cap;
 	}
-	/* an entry made in an earlier epoch (or for another list) holds a smaller number */
-	d->epoch++;
-	d->epochs++;
-	memcpy(d->x0, d->x, 3 * d->n * sizeof *d->x0);
-	memcpy(d->q0, d->q, 4 * d->n * sizeof *d->q0);
+	if (!d->cache_list) {	/* the first pass: the turns from here */
+		memcpy(d->q0, d->q, 4 * d->n * sizeof *d->q0);
+		d->cache_list = 1;
+	}
+#pragma omp parallel for schedule(static) if (d->threads)
+	for (i = 0; i < d->n; i++)
+		if (!((d->turn[i] = core_turn(d, i)) < quarter)) {
+			memcpy(d->q0 + 4 * i, d->q + 4 * i, sizeof *d->q0 * 4);
+			d->turn[i] = 0;
+			d->gen[i]++;
+		}
 	return 0;
-oom:
-	msg_seterr("out of memory for the contact list's caches");
-	return -1;
 }
 
 /* The records' room for the current list: a pair's record per list entry and the columns'
@@ -457,6 +462,7 @@ records_fit(struct pdem *d)
 	if (np + 1 > d->rcap) {
 		size_t cap = np + np / 4 + 16;
 		struct pdem_rec *r = realloc(d->prec, cap * sizeof *r);
+		unsigned char *t;
 		size_t *ck;
 
 		if (!r)
@@ -465,10 +471,11 @@ records_fit(struct pdem *d)
 		if (!(ck = realloc(d->colk, cap * sizeof *ck)))
 			goto oom;
 		d->colk = ck;
+		if (!(t = realloc(d->ptouch, cap)))
+			goto oom;
+		d->ptouch = t;
 		d->rcap = cap;
 	}
-	for (k = 0; k < np; k++)
-		d->prec[k].stamp = -1;
 	if (!(fill = calloc(n + 1, sizeof *fill)))
 		goto oom;
 	memset(d->colk_first, 0, (n + 1) * sizeof *d->colk_first);
@@ -506,7 +513,7 @@ pdem_forces(struct pdem *d)
 	if (contact_enum_update(e, d->x, 0))
 		return -1;
 	refresh_rotations(d);
-	if (cache_epoch(d) || records_fit(d))
+	if (cache_turns(d) || records_fit(d))
 		return -1;
 	if (nb > d->sums_cap) {
 		struct pdem_sums *ns = realloc(d->sums, nb * sizeof *ns);
@@ -517,7 +524,6 @@ pdem_forces(struct pdem *d)
 		d->sums = ns;
 		d->sums_cap = nb;
 	}
-	d->stamp++;
 #pragma omp parallel if (d->threads)
 	{
 		long bb;
@@ -530,12 +536,17 @@ pdem_forces(struct pdem *d)
 
 			memset(&fw, 0, sizeof fw);
 			fw.d = d;
-			for (i = i0; i < i1; i++)
-				if (contact_foreach_row(e, d->x, i, CONTACT_NEAR, e->any_periodic, 3, on_contact, on_contact, &fw,
-				    &calls) < 0) {
+			for (i = i0; i < i1; i++) {
+				d->wtouch[i] = 0;
+				memset(d->ptouch + e->nl.first[i], 0, e->nl.first[i + 1] - e->nl.first[i]);
+				/* the pairs whose bounding spheres are apart are not visited (the enumerator
+				 * zeroes their springs), nor the walls beyond a grain's bounding sphere */
+				if (contact_foreach_row(e, d->x, i, CONTACT_TOUCHING, e->any_periodic, 3, on_contact, on_contact,
+				    &fw, &calls) < 0) {
 #pragma omp atomic write
 					err = 1;
 				}
+			}
 			d->sums[bb] = fw.s;
 		}
 		/* the gather (the implicit barrier above: every record is written) */
@@ -544,24 +555,24 @@ pdem_forces(struct pdem *d)
 			size_t i = (size_t)bb, k, q;
 			double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
 
-			for (q = d->colk_first[i]; q < d->colk_first[i + 1]; q++) {
-				const struct pdem_rec *r = &d->prec[d->colk[q]];
-				if (r->stamp == d->stamp)
+			for (q = d->colk_first[i]; q < d->colk_first[i + 1]; q++)
+				if (d->ptouch[d->colk[q]]) {
+					const struct pdem_rec *r = &d->prec[d->colk[q]];
 					for (a = 0; a < 3; a++)
 						F[a] -= r->F[a], T[a] += r->Tj[a];
-			}
-			for (k = e->nl.first[i]; k < e->nl.first[i + 1]; k++) {
-				const struct pdem_rec *r = &d->prec[k];
-				if (r->stamp == d->stamp)
+				}
+			for (k = e->nl.first[i]; k < e->nl.first[i + 1]; k++)
+				if (d->ptouch[k]) {
+					const struct pdem_rec *r = &d->prec[k];
 					for (a = 0; a < 3; a++)
 						F[a] += r->F[a], T[a] += r->Ti[a];
-			}
-			for (w = 0; w < NWALLS; w++) {
-				const struct pdem_rec *r = &d->wrec[NWALLS * i + w];
-				if (r->stamp == d->stamp)
+				}
+			for (w = 0; w < NWALLS; w++)
+				if (d->wtouch[i] & (1u << w)) {
+					const struct pdem_rec *r = &d->wrec[NWALLS * i + w];
 					for (a = 0; a < 3; a++)
 						F[a] += r->F[a], T[a] += r->Ti[a];
-			}
+				}
 			memcpy(d->f + 3 * i, F, sizeof F);
 			memcpy(d->t + 3 * i, T, sizeof T);
 		}
@@ -748,7 +759,9 @@ pdem_make_periodic(struct pdem *d, const int periodic[3])
 		d->periodic[a] = d->periodic[a] || periodic[a];
 	pdem_wrap(d);
 	contact_enum_free(&d->ce);
-	d->epoch_builds = d->rec_builds = -1;	/* a new list: new entries */
+	d->rec_builds = -1;	/* a new list: new entries */
+	for (i = 0; i < d->pcap; i++)
+		d->pcache[i].list = -1;
 	return contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, 3);
 }
 

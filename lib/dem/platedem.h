@@ -47,7 +47,14 @@ struct pdem_params {
  * the torques on i and j about their centres. */
 struct pdem_rec {
 	double F[3], Ti[3], Tj[3];
-	long stamp;		/* the pass that wrote it: an older one, no force now */
+};
+
+/* A pair's narrow-phase cache: the word of plate_interaction_cached, and the branch vector,
+ * the two grains' turns and their turn generations when it was made, for list `list`. */
+struct pdem_cache {
+	double dx[3], turn;
+	unsigned word, gi, gj;
+	long list;
 };
 
 /* A block of rows' share of a pass's sums (added in block order). */
@@ -91,23 +98,28 @@ struct pdem {
 	unsigned char *glue;
 	double wallv[NWALLS][3];
 	/* The narrow phase kept between steps (plate_interaction_cached): per listed pair its
-	 * cache word and the epoch it was made in.  An epoch ends when the list is rebuilt or
-	 * some grain's core has moved by cache_margin / 4 since the epoch began (from x0, q0:
-	 * the centre's displacement plus what the turn moves a corner), so a pair's two cores
-	 * move by less than cache_margin between its cache and any step of the epoch.  Set
-	 * cache_margin to 0 to compute every feature at every step. */
-	unsigned *pcache;
-	long *pepoch;
+	 * cache (struct pdem_cache), remade when the pair's cores may have moved against each
+	 * other by cache_margin since it was made: the change of their branch vector plus what
+	 * their turns move a corner.  A grain's turn is measured from its orientation q0 at the
+	 * start of its current turn generation (turn: 2 |q - q0| half sqrt 2, the nearer of q0
+	 * and -q0, which bounds |R - R0| times the core's radius); a generation ends when the
+	 * turn reaches cache_margin / 4, and a cache made in another generation of either grain,
+	 * or for another list, is remade.  Set cache_margin to 0 to compute every feature at
+	 * every step (the same bytes). */
+	struct pdem_cache *pcache;
 	size_t pcap;
-	long epoch, epoch_builds, epochs;
+	long cache_list, cache_builds;
 	double cache_margin;
-	double *x0, *q0;
-	/* pdem_forces' records (pairs by list entry, walls by grain: NWALLS n), the columns'
-	 * entries for the gather, the block sums, the pass's stamp, the lab-frame angular
-	 * velocities (3n), and whether the passes run on threads */
+	double *q0, *turn;
+	unsigned *gen;
+	/* pdem_forces' records (pairs by list entry, walls by grain: NWALLS n) and which hold
+	 * this pass's interactions (ptouch per list entry, wtouch per grain a bit per wall), the
+	 * columns' entries for the gather, the block sums, the lab-frame angular velocities (3n),
+	 * and whether the passes run on threads */
 	struct pdem_rec *prec, *wrec;
+	unsigned char *ptouch, *wtouch;
 	size_t *colk, *colk_first, rcap;
-	long rec_builds, stamp;
+	long rec_builds;
 	struct pdem_sums *sums;
 	size_t sums_cap;
 	double *wl;
@@ -117,7 +129,8 @@ struct pdem {
 };
 
 /* The default cache margin (scaled units, r0): features within r_i + r_j + 0.1 r0 are kept;
- * an epoch lasts while no core moves by 0.025 r0. */
+ * a pair's cache lasts while its cores move against each other by
+ * less than that. */
 #define PDEM_CACHE_MARGIN 0.1
 
 void pdem_params_default(struct pdem_params *pp);
