@@ -60,7 +60,7 @@ static const struct cli_tool tool = {
 /* The log, and the checkpoint: its file, the rows so far (a memory stream), what identifies
  * the run (options and input), the clock. */
 struct log_ctx {
-	FILE *fp;
+	struct file_out *log;	/* --log, or NULL */
 	FILE *rows;
 	char *rowbuf;
 	size_t rowlen;
@@ -91,9 +91,9 @@ on_stage(const struct densify_stage *st, void *vctx)
 {
 	struct log_ctx *c = vctx;
 
-	if (c->fp) {
-		densify_log_row(c->fp, st);
-		fflush(c->fp);	/* the temporary log can be followed while it runs */
+	if (c->log) {
+		densify_log_row(c->log->fp, st);
+		file_out_flush(c->log);	/* the temporary log can be followed while it runs */
 	}
 	if (c->rows)
 		densify_log_row(c->rows, st);
@@ -187,8 +187,8 @@ resume_from(const char *path, struct pack *p, struct densify_resume *at, struct 
 		pack_unset_meta(&q, CK_CLOCK);
 	}
 	c->calls++;
-	if (c->fp)
-		fputs(rows, c->fp);
+	if (c->log)
+		fputs(rows, c->log->fp);
 	fputs(rows, c->rows);
 	msg_info(1, "going on from %s, after %s %ld", path, at->st.stage, at->round);
 	free(run), free(rows);
@@ -197,46 +197,14 @@ resume_from(const char *path, struct pack *p, struct densify_resume *at, struct 
 	return 1;
 }
 
-/* Whether paths a and b (b may be NULL or "-") name the same file: the same inode when both
- * exist, else the same directory (by inode) and the same last component.  link: b is an
- * output, which a rename replaces, so a symbolic link there is a file of its own. */
-static int
-same_file(const char *a, const char *b, int link)
-{
-	struct stat sa, sb;
-	const char *ba, *bb;
-	char *da, *db;
-	int same;
-
-	if (!b || strcmp(b, "-") == 0)
-		return 0;
-	if (strcmp(a, b) == 0)
-		return 1;
-	if (stat(a, &sa) == 0 && (link ? lstat(b, &sb) : stat(b, &sb)) == 0)
-		return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-	ba = strrchr(a, '/') ? strrchr(a, '/') + 1 : a;
-	bb = strrchr(b, '/') ? strrchr(b, '/') + 1 : b;
-	if (strcmp(ba, bb) != 0)
-		return 0;
-	da = ba == a ? strdup(".") : strndup(a, (size_t)(ba - a));
-	db = bb == b ? strdup(".") : strndup(b, (size_t)(bb - b));
-	same = da && db && stat(da, &sa) == 0 && stat(db, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-	free(da), free(db);
-	return same;
-}
-
 /* The directory a file is to be written in exists and is writable (a usage error otherwise). */
 static void
 check_dir(const char *path, const char *opt)
 {
-	const char *b = strrchr(path, '/');
-	char *dir = b ? (b == path ? strdup("/") : strndup(path, (size_t)(b - path))) : strdup(".");
+	struct file_role r = {path, opt, 1};
 
-	if (!dir)
-		msg_die(EXIT_DATA, "out of memory");
-	if (access(dir, W_OK | X_OK) != 0)
-		cli_usage_error("%s: cannot write in directory '%s': %s", opt, dir, strerror(errno));
-	free(dir);
+	if (file_roles_check(&r, 1))
+		cli_usage_error("%s", msg_geterr());
 }
 
 static void
@@ -273,15 +241,19 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
 	/* the finished run removes the checkpoint: never the pack or the log just written, nor
 	 * the input; and it is read back, so not standard output */
-	if (o.checkpoint && (strcmp(o.checkpoint, "-") == 0 || same_file(o.checkpoint, st->output, 1) ||
-	                        same_file(o.checkpoint, o.log, 1) || same_file(o.checkpoint, st->input, 0)))
+	if (o.checkpoint && (strcmp(o.checkpoint, "-") == 0 || file_same(o.checkpoint, st->output, 1) ||
+	                        file_same(o.checkpoint, o.log, 1) || file_same(o.checkpoint, st->input, 0)))
 		cli_usage_error("--checkpoint: '%s' is standard output, the input, the output or the log; give it a file of its own",
 		    o.checkpoint);
 	/* a run of hours must not find out at its end that it cannot write */
 	if (o.checkpoint)
 		check_dir(o.checkpoint, "--checkpoint");
-	if (st->output && strcmp(st->output, "-") != 0)
-		check_dir(st->output, "-o");
+	{	/* nor the log or the pack over the other or over the input (--log X -o X kept the
+		 * log as X and lost the pack) */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {o.log, "--log", 1}, {st->input, "the input", 0}};
+		if (file_roles_check(r, 3))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 	o.dp.loose_steps = !o.full_steps;
 	if (o.dp.onset == 0)
@@ -380,10 +352,17 @@ main(int argc, char **argv)
 	read_pack(st.input, &p);
 	check_stress(&p);
 	if (o.log) {
+		/* the header flushed at once: a log that cannot be written (--log /dev/full) fails
+		 * the run before it starts */
 		if (file_out_open(&logout, o.log))
 			msg_die_err(EXIT_DATA);
-		lc.fp = logout.fp;
-		densify_log_header(lc.fp);
+		lc.log = &logout;
+		densify_log_header(logout.fp);
+		if (file_out_flush(&logout)) {
+			errno = logout.err;
+			file_out_abort(&logout);
+			msg_die(EXIT_DATA, "%s: write error:", o.log);
+		}
 	}
 	if (o.checkpoint) {
 		if (!(lc.rows = open_memstream(&lc.rowbuf, &lc.rowlen)))
@@ -417,13 +396,19 @@ main(int argc, char **argv)
 		msg_info(1, "%.0f s of wall time in %ld call%s", lc.before + since(&lc.t0), lc.calls, lc.calls == 1 ? "" : "s");
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
-	if (pack_write_tool(&p, &tool, &st))
-		msg_die_err(EXIT_DATA);
-	if (o.log && file_out_commit(&logout))
-		msg_die_err(EXIT_DATA);
+	{	/* the pack and the log, all or none */
+		struct file_out packout, *outs[2] = {&packout, o.log ? &logout : NULL};
+		if (pack_write_tool_out(&p, &tool, &st, &packout)) {
+			if (o.log)
+				file_out_abort(&logout);
+			msg_die_err(EXIT_DATA);
+		}
+		if (file_out_commit_all(outs, 2))
+			msg_die_err(EXIT_DATA);
+	}
 	/* the run is done: a rerun starts afresh (never the pack or the log just written, even
 	 * if a name the checks above could not see through leads there) */
-	if (o.checkpoint && !same_file(o.checkpoint, st.output, 0) && !same_file(o.checkpoint, o.log, 0) &&
+	if (o.checkpoint && !file_same(o.checkpoint, st.output, 0) && !file_same(o.checkpoint, o.log, 0) &&
 	    unlink(o.checkpoint) != 0 && errno != ENOENT)
 		msg_warn("%s: %s (the checkpoint of a finished run)", o.checkpoint, strerror(errno));
 	if (lc.rows)

@@ -2,6 +2,7 @@
  * pressure p_ex, then the new equilibrium (physics.md section 11; the rules in
  * qs/dissociate.h). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
 #include "pack/packio.h"
@@ -62,6 +63,11 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	if (!(o.d.probe > 0 && o.d.probe <= 1e-3))
 		cli_usage_error("--probe-strain: must be in (0, 1e-3]");
 	qs_load_opts_check(&o.lp, o.rule, o.nsub, o.mu, o.wall_mu);
+	{	/* before any work: -o writable and not the input */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {st->input, "the input", 0}};
+		if (file_roles_check(r, 2))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 }
 

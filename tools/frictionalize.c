@@ -10,6 +10,7 @@
 #include "base/numfmt.h"
 #include "pack/packio.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,7 +54,7 @@ static const struct cli_tool tool = {
 };
 
 struct log_ctx {
-	FILE *fp;
+	struct file_out *log;	/* --log, or NULL */
 	int axis;
 	size_t grains;
 };
@@ -63,9 +64,9 @@ on_row(const struct load_row *row, const struct hooke *hk, void *vctx)
 {
 	struct log_ctx *c = vctx;
 
-	if (c->fp) {
-		load_table_row(c->fp, row, c->axis, 1, hk->K, hk->G);
-		fflush(c->fp);
+	if (c->log) {
+		load_table_row(c->log->fp, row, c->axis, 1, hk->K, hk->G);
+		file_out_flush(c->log);
 	}
 	cli_progress("%zu grains  increment %ld (at most %ld)  sigma_c %.4g Pa  sliding %.4f  K %.3g  G %.3g  iter %ld  residual %.2e",
 	    c->grains, row->inc, o.fp.max_inc, row->sigma_c, row->sliding_ratio, hk->K, hk->G, row->iterations, row->res_max);
@@ -96,6 +97,11 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--window and --min-inc must not exceed --max-inc");
 	if (!(o.fp.sat_tol > 0 && o.fp.sat_tol < 1))
 		cli_usage_error("--sat-tol: must be in (0, 1)");
+	{	/* before any work: the pack and the log writable, neither over the other nor the input */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {o.log, "--log", 1}, {st->input, "the input", 0}};
+		if (file_roles_check(r, 3))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 	o.fp.lp.friction = 1;
 }
@@ -169,18 +175,31 @@ main(int argc, char **argv)
 	set_friction(&p, in);
 	check_window(&p, in);
 	if (o.log) {
+		/* the header flushed at once: a log that cannot be written (--log /dev/full) fails
+		 * the run before it starts */
 		if (file_out_open(&logout, o.log))
 			msg_die_err(EXIT_DATA);
-		lc.fp = logout.fp;
-		load_table_header(lc.fp, 1);
+		lc.log = &logout;
+		load_table_header(logout.fp, 1);
+		if (file_out_flush(&logout)) {
+			errno = logout.err;
+			file_out_abort(&logout);
+			msg_die(EXIT_DATA, "%s: write error:", o.log);
+		}
 	}
 	r = frictionalize_run(&p, &o.fp, on_row, &lc, &last);
 	cli_progress_end();
 	check_stop(r, &logout, &last);
-	if (pack_write_tool(&p, &tool, &st))
-		msg_die_err(EXIT_DATA);
-	if (o.log && file_out_commit(&logout))
-		msg_die_err(EXIT_DATA);
+	{	/* the pack and the log, all or none */
+		struct file_out packout, *outs[2] = {&packout, o.log ? &logout : NULL};
+		if (pack_write_tool_out(&p, &tool, &st, &packout)) {
+			if (o.log)
+				file_out_abort(&logout);
+			msg_die_err(EXIT_DATA);
+		}
+		if (file_out_commit_all(outs, 2))
+			msg_die_err(EXIT_DATA);
+	}
 	pack_free(&p);
 	return 0;
 }

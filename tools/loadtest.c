@@ -1,6 +1,7 @@
 /* loadtest: quasi-static loading of a pack along a path of wall displacements, one TSV row per
  * increment (physics.md §8; the path grammar is in loadpath.h and loadtest(1)). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "qs/friction.h"
 #include "qs/loadpath.h"
 #include "qs/minopts.h"
@@ -149,6 +150,11 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 		cli_usage_error("--max-steps must be positive and --max-strain in (0, 0.5]");
 	if (!isnan(o.def.to_strain) && !(fabs(o.def.to_strain) <= 0.5))
 		cli_usage_error("--to-strain: must be in [-0.5, 0.5]");
+	{	/* before any work: -o writable, and neither the input nor the table's standard output */
+		struct file_role r[] = {{st->output, "-o", 1}, {"-", "the table", 1}, {st->input, "the input", 0}};
+		if (file_roles_check(r, 3))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 	/* no stop anywhere (a bare loadtest in a pipe): 100 increments, 1 % strain at the
 	 * default step, about 9 -> 18 MPa on the default pack after frictionalize */

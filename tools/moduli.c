@@ -66,6 +66,12 @@ main(int argc, char **argv)
 		cli_usage_error("--stress: must be wall or lw");
 	if (emt_arg && material_lookup(emt_arg, &mat))
 		cli_usage_error("--emt: %s", msg_geterr());
+	{	/* before any work: -o writable, and neither the input table nor --emt's file */
+		struct file_role r[] = {{st.output ? st.output : "-", "-o", 1}, {st.input, "the input", 0},
+		    {emt_arg && material_is_file(emt_arg) ? emt_arg : NULL, "the --emt material file", 0}};
+		if (file_roles_check(r, 3))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 	if (!emt_arg)
 		ncol -= 5;

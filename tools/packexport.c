@@ -5,6 +5,7 @@
 #include "base/msg.h"
 #include "pack/packio.h"
 
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -54,22 +55,33 @@ text_close(struct text *t)
 		msg_die(EXIT_DATA, "out of memory");
 }
 
+/* t into out, opened on path (NULL or "-": stdout) and left uncommitted. */
+static void
+emit_into(struct file_out *out, const char *path, struct text *t)
+{
+	int bad;
+
+	if (file_out_open(out, path))
+		msg_die_err(EXIT_DATA);
+	errno = 0;
+	bad = fwrite(t->s, 1, t->len, out->fp) != t->len;
+	free(t->s);
+	t->s = NULL;
+	if (bad) {
+		int e = errno ? errno : EIO;
+		file_out_abort(out);
+		errno = e;
+		msg_die(EXIT_DATA, "%s: write error:", path ? path : "<stdout>");
+	}
+}
+
 /* Write t to path (NULL or "-": stdout) atomically; file_out_commit gzips a .gz name. */
 static void
 emit(const char *path, struct text *t)
 {
 	struct file_out out;
-	int bad;
 
-	if (file_out_open(&out, path))
-		msg_die_err(EXIT_DATA);
-	bad = fwrite(t->s, 1, t->len, out.fp) != t->len;
-	free(t->s);
-	t->s = NULL;
-	if (bad) {
-		file_out_abort(&out);
-		msg_die(EXIT_DATA, "%s: write error", path ? path : "<stdout>");
-	}
+	emit_into(&out, path, t);
 	if (file_out_commit(&out))
 		msg_die_err(EXIT_DATA);
 }
@@ -90,28 +102,43 @@ base_name(const char *path)
 	return s ? s + 1 : path;
 }
 
-/* -o NAME.vtm: the two .vtp files next to it, then the .vtm that names them (last, so that
- * it never points at files that are not there). */
+/* The names of the two .vtp files of -o NAME.vtm: NAME_grains.vtp and NAME_contacts.vtp
+ * (the caller frees them). */
+static void
+vtp_names(const char *vtm, char **gname, char **cname)
+{
+	size_t n = strlen(vtm) - 4;
+
+	*gname = malloc(n + 16);
+	*cname = malloc(n + 16);
+	if (!*gname || !*cname)
+		msg_die(EXIT_DATA, "out of memory");
+	snprintf(*gname, n + 16, "%.*s_grains.vtp", (int)n, vtm);
+	snprintf(*cname, n + 16, "%.*s_contacts.vtp", (int)n, vtm);
+}
+
+/* -o NAME.vtm: the two .vtp files next to it and the .vtm that names them, all three or
+ * none (the .vtp of the grains was left behind when the second file failed); the .vtm
+ * renamed last, so that it never points at files that are not there. */
 static void
 write_vtm(const struct pack *p, const char *vtm, const char *name)
 {
 	struct text g, c, m;
-	size_t n = strlen(vtm) - 4;
-	char *gname = malloc(n + 16), *cname = malloc(n + 16);
+	struct file_out go, co, mo, *outs[3] = {&go, &co, &mo};
+	char *gname, *cname;
 
-	if (!gname || !cname)
-		msg_die(EXIT_DATA, "out of memory");
-	snprintf(gname, n + 16, "%.*s_grains.vtp", (int)n, vtm);
-	snprintf(cname, n + 16, "%.*s_contacts.vtp", (int)n, vtm);
+	vtp_names(vtm, &gname, &cname);
 	if (export_vtp_grains(p, text_open(&g)) || export_vtp_contacts(p, text_open(&c)) ||
 	    export_vtm(text_open(&m), base_name(gname), base_name(cname)))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	text_close(&g);
 	text_close(&c);
 	text_close(&m);
-	emit(gname, &g);
-	emit(cname, &c);
-	emit(vtm, &m);
+	emit_into(&go, gname, &g);
+	emit_into(&co, cname, &c);
+	emit_into(&mo, vtm, &m);
+	if (file_out_commit_all(outs, 3))
+		msg_die_err(EXIT_DATA);
 	free(gname);
 	free(cname);
 }
@@ -163,6 +190,22 @@ main(int argc, char **argv)
 		cli_usage_error("--periodic goes with --xyzr only");
 	if (vtk && out && !has_suffix(out, ".vtm") && !has_suffix(out, ".vtp"))
 		cli_usage_error("--vtk: the output name must end in .vtm (grains, contacts and the .vtm) or .vtp (grains only)");
+	else if (vtk && out && has_suffix(out, ".vtm")) {	/* before any work: the three files */
+		char *gname, *cname;
+		vtp_names(out, &gname, &cname);
+		{
+			struct file_role fr[] = {{out, "-o", 1}, {gname, "the grains' .vtp of -o", 1},
+			    {cname, "the contacts' .vtp of -o", 1}, {st.input, "the input", 0}};
+			if (file_roles_check(fr, 4))
+				cli_usage_error("%s", msg_geterr());
+		}
+		free(gname);
+		free(cname);
+	} else {
+		struct file_role fr[] = {{st.output, "-o", 1}, {st.input, "the input", 0}};
+		if (file_roles_check(fr, 2))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 
 	if (lammps) {

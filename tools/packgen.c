@@ -1,6 +1,7 @@
 /* packgen: a loose, irregular pack of polydisperse elastic spheres in a box, or a static pack
  * of monodisperse spheroplates (--shape spheroplate: the platy-particle paper's samples). */
 #include "base/cli.h"
+#include "base/fileio.h"
 #include "dem/dem.h"
 #include "dem/platepack.h"
 #include "pack/hydrate.h"
@@ -222,6 +223,13 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--hydrate-volume: spheres only (not with --shape spheroplate)");
 	if (material_lookup("hydrate", &o.hydrate))
 		cli_usage_error("%s", msg_geterr());
+	{	/* before the compaction (hours at 1e6 grains): -o writable, and not a file read */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1},
+		    {strncmp(o.psd_spec, "table:", 6) == 0 ? o.psd_spec + 6 : NULL, "the --psd table", 0},
+		    {material_is_file(o.material_name) ? o.material_name : NULL, "the --material file", 0}};
+		if (file_roles_check(r, 3))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 	shape_defaults();
 	if (o.wall_E == 0)

@@ -64,7 +64,7 @@ parse_box(const char *s, double box[6])
 
 /* Checks every option; usage errors are collected, a bad material file is bad data. */
 static void
-check_options(double box[6], struct material *m, double *wall_E, double *wall_mu)
+check_options(const struct cli_state *st, double box[6], struct material *m, double *wall_E, double *wall_mu)
 {
 	int mat_ok;
 
@@ -86,6 +86,12 @@ check_options(double box[6], struct material *m, double *wall_E, double *wall_mu
 		cli_usage_error("--material: %s", msg_geterr());
 	if (wall_E_arg && (num_parse(wall_E_arg, wall_E) || !(*wall_E > 0)))
 		cli_usage_error("--wall-E: '%s' is not a positive number", wall_E_arg);
+	{	/* before any work: -o writable, and neither the input nor the material file */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {st->input, "the input", 0},
+		    {material_is_file(material_name) ? material_name : NULL, "the --material file", 0}};
+		if (file_roles_check(r, 3))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 	if (!mat_ok)
 		msg_die_err(EXIT_DATA);
@@ -117,7 +123,7 @@ main(int argc, char **argv)
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
-	check_options(box, &m, &wall_E, &wall_mu);
+	check_options(&st, box, &m, &wall_E, &wall_mu);
 
 	if (!(in = file_in_open(st.input, &name)) || xyzr_read(in, name, box_arg ? box : NULL, &p))
 		msg_die_err(EXIT_DATA);

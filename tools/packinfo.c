@@ -256,6 +256,19 @@ main(int argc, char **argv)
 	cli_parse(&tool, argc, argv, &st);
 	if (bulk_margin < 0)
 		cli_usage_error("--bulk-margin: must be >= 0 (a length in m; 0: the box itself)");
+	/* before any work: -o writable and none of the inputs (packinfo -o X X replaced its input) */
+	for (f = 0; f < st.noperands; f++) {
+		struct file_role fr[] = {{st.output ? st.output : "-", "-o", 1}, {st.operands[f], "an input", 0}};
+		if (file_roles_check(fr, 2)) {
+			cli_usage_error("%s", msg_geterr());
+			break;
+		}
+	}
+	if (st.noperands == 0) {
+		struct file_role fr = {st.output ? st.output : "-", "-o", 1};
+		if (file_roles_check(&fr, 1))
+			cli_usage_error("%s", msg_geterr());
+	}
 	cli_usage_done();
 	/* Everything is formatted in memory first: a bad pack later in the stream (or in a later
 	 * FILE) must not leave the rows of the earlier ones behind. */

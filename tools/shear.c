@@ -87,6 +87,29 @@ parse_snapshots(void)
 	}
 }
 
+/* Before the run (hours for a large pack): -o, the profile and the snapshots can be written,
+ * none over another or over the input, and none on the table's standard output (--profile
+ * nodir/p.prof failed only after the whole run). */
+static void
+check_files(const struct cli_state *st)
+{
+	static char snap[MAX_SNAPSHOTS][4096];
+	struct file_role r[4 + MAX_SNAPSHOTS] = {{st->output, "-o", 1}, {o.profile, "--profile", 1}, {"-", "the table", 1},
+	    {st->input, "the input", 0}};
+	char g[40];
+	int k;
+
+	for (k = 0; k < o.nsnap; k++) {	/* the names on_row writes */
+		num_format(g, o.snap[k]);
+		snprintf(snap[k], sizeof snap[k], "%s-%s.pack", o.prefix, g);
+		r[4 + k].path = snap[k];
+		r[4 + k].what = "a snapshot (--snapshot-prefix)";
+		r[4 + k].output = 1;
+	}
+	if (file_roles_check(r, 4 + o.nsnap))
+		cli_usage_error("%s", msg_geterr());
+}
+
 static void
 parse_args(int argc, char **argv, struct cli_state *st)
 {
@@ -125,6 +148,7 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	if (o.sp.max_steps < 1)
 		cli_usage_error("--max-steps: must be positive");
 	parse_snapshots();
+	check_files(st);
 	cli_usage_done();
 	o.sp.profile_bins = (int)o.bins;
 	if (isnan(o.sp.inertial))
@@ -244,24 +268,22 @@ on_row(const struct shear_row *row, struct pdem *d, void *vc)
 	return 0;
 }
 
+/* The profile into out, uncommitted: it is committed with the pack, all or none. */
 static void
-write_profile(const struct shear_result *res)
+write_profile(const struct shear_result *res, struct file_out *out)
 {
 	static const struct table_col pc[] = {{"y_over_yw", NULL}, {"vx_over_vw", NULL}, {"samples", NULL}};
-	struct file_out out = {0};
 	int b;
 
-	if (file_out_open(&out, o.profile))
+	if (file_out_open(out, o.profile))
 		msg_die_err(EXIT_DATA);
-	fprintf(out.fp, "## shear: <v_x>(y) / v_w over every grain, from gamma %g to %g, every 10 steps\n", o.sp.profile_from,
+	fprintf(out->fp, "## shear: <v_x>(y) / v_w over every grain, from gamma %g to %g, every 10 steps\n", o.sp.profile_from,
 	    o.sp.strain);
-	table_header(out.fp, pc, 3);
+	table_header(out->fp, pc, 3);
 	for (b = 0; b < o.sp.profile_bins; b++) {
 		double v[3] = {(b + 0.5) / o.sp.profile_bins, res->profile[b], res->profile_n[b]};
-		table_row(out.fp, v, 3);
+		table_row(out->fp, v, 3);
 	}
-	if (file_out_commit(&out))
-		msg_die_err(EXIT_DATA);
 }
 
 int
@@ -271,6 +293,7 @@ main(int argc, char **argv)
 	struct pack p;
 	struct shear_result res;
 	struct run_ctx c = {&p, &res, &st, 0, 0, 0};
+	struct file_out profout, packout;
 	const char *in;
 	char buf[40];
 
@@ -287,10 +310,18 @@ main(int argc, char **argv)
 	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, I %.4g, kappa %.4g; %ld rows",
 	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.inertial, res.kappa, c.rows);
 	if (o.profile)
-		write_profile(&res);
+		write_profile(&res, &profout);
 	if (st.output) {
 		num_format(buf, o.sp.strain);
-		if (pack_set_meta(&p, "shear_gamma", buf) || pack_write_tool(&p, &tool, &st))
+		if (pack_set_meta(&p, "shear_gamma", buf) || pack_write_tool_out(&p, &tool, &st, &packout)) {
+			if (o.profile)
+				file_out_abort(&profout);
+			msg_die_err(EXIT_DATA);
+		}
+	}
+	{	/* the profile and the pack, all or none */
+		struct file_out *outs[2] = {o.profile ? &profout : NULL, st.output ? &packout : NULL};
+		if (file_out_commit_all(outs, 2))
 			msg_die_err(EXIT_DATA);
 	}
 	shear_result_free(&res);

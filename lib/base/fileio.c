@@ -137,6 +137,113 @@ file_is_gz(const char *path)
 	return n > 3 && strcmp(path + n - 3, ".gz") == 0;
 }
 
+/* path's directory part, "." for none, "/" for the root; NULL when out of memory. */
+static char *
+dir_of(const char *path)
+{
+	const char *b = strrchr(path, '/');
+
+	return b ? (b == path ? strdup("/") : strndup(path, (size_t)(b - path))) : strdup(".");
+}
+
+int
+file_same(const char *a, const char *b, int b_output)
+{
+	struct stat sa, sb;
+	const char *ba, *bb;
+	char *da, *db;
+	int same;
+
+	if (!a || !b || strcmp(a, "-") == 0 || strcmp(b, "-") == 0)
+		return 0;
+	if (strcmp(a, b) == 0)
+		return 1;
+	if (stat(a, &sa) == 0 && (b_output ? lstat(b, &sb) : stat(b, &sb)) == 0)
+		return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+	ba = strrchr(a, '/') ? strrchr(a, '/') + 1 : a;
+	bb = strrchr(b, '/') ? strrchr(b, '/') + 1 : b;
+	if (strcmp(ba, bb) != 0)
+		return 0;
+	da = dir_of(a);
+	db = dir_of(b);
+	same = da && db && stat(da, &sa) == 0 && stat(db, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+	free(da), free(db);
+	return same;
+}
+
+/* A path that exists and is neither a regular file nor a directory: a device or a FIFO,
+ * which an output writes into. */
+static int
+is_special(const char *path)
+{
+	struct stat st;
+
+	return stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+
+/* An output named by path can be written: 0, or -1 with the slot set. */
+static int
+output_writable(const char *path, const char *what)
+{
+	struct stat st;
+	char *dir;
+	int r = 0;
+
+	if (stat(path, &st) == 0) {
+		if (S_ISDIR(st.st_mode)) {
+			msg_seterr("%s: '%s' is a directory", what, path);
+			return -1;
+		}
+		if (!S_ISREG(st.st_mode))
+			return 0;
+	}
+	if (!(dir = dir_of(path))) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	if (stat(dir, &st) != 0 || (!S_ISDIR(st.st_mode) && (errno = ENOTDIR)) || access(dir, W_OK | X_OK) != 0) {
+		msg_seterr("%s: cannot write in directory '%s': %s", what, dir, strerror(errno));
+		r = -1;
+	}
+	free(dir);
+	return r;
+}
+
+int
+file_roles_check(const struct file_role *r, int n)
+{
+	int i, j;
+
+	for (i = 0; i < n; i++) {
+		if (!r[i].path || !r[i].output)
+			continue;
+		for (j = 0; j < n; j++) {
+			const struct file_role *o = &r[j];
+
+			if (j == i || !o->path || (o->output && j < i))
+				continue;
+			if (o->output && strcmp(r[i].path, "-") == 0 && strcmp(o->path, "-") == 0) {
+				msg_seterr("%s and %s both go to standard output; give one of them a file", o->what, r[i].what);
+				return -1;
+			}
+			if (is_special(r[i].path) || is_special(o->path))
+				continue;
+			if (file_same(o->path, r[i].path, 1)) {
+				if (o->output)
+					msg_seterr("%s and %s name the same file '%s': one would replace the other; give each its own",
+					    r[i].what, o->what, r[i].path);
+				else
+					msg_seterr("%s '%s' is %s: write to another file (the input would be replaced)", r[i].what,
+					    r[i].path, o->what);
+				return -1;
+			}
+		}
+		if (strcmp(r[i].path, "-") != 0 && output_writable(r[i].path, r[i].what))
+			return -1;
+	}
+	return 0;
+}
+
 /* A device or a pipe (-o /dev/null, -o /dev/stderr, a FIFO) is written into: the temporary
  * file and rename would replace the device node with a regular file (as root, /dev/null
  * itself).  1: path is one and o is open on it (or -1 on failure); 0: a regular file or none. */
@@ -285,39 +392,71 @@ gzip_in_place(const char *tmp)
 	return 0;
 }
 
-int
-file_out_commit(struct file_out *o)
+/* Keep the errno of the first failure on o (e, or EIO when a failure left no errno). */
+static void
+keep_err(struct file_out *o, int e)
 {
-	int bad;
+	if (!o->err)
+		o->err = e ? e : EIO;
+}
 
+int
+file_out_flush(struct file_out *o)
+{
 	if (!o->fp)
 		return -1;
-	bad = fflush(o->fp) != 0 || ferror(o->fp);
+	errno = 0;
+	if (fflush(o->fp) != 0)
+		keep_err(o, errno);
+	else if (ferror(o->fp))	/* a write failed before, and the flush had nothing left */
+		keep_err(o, 0);
+	return o->err ? -1 : 0;
+}
+
+int
+file_out_ready(struct file_out *o)
+{
+	if (o->ready)
+		return 0;
+	if (!o->fp)
+		return -1;
+	file_out_flush(o);
 	if (o->fp == stdout) {
 		o->fp = NULL;
-		if (bad) {
-			msg_seterr("<stdout>: write error: %s", strerror(errno));
+		if (o->err) {
+			msg_seterr("<stdout>: write error: %s", strerror(o->err));
 			return -1;
 		}
+		o->ready = 1;
 		return 0;
 	}
+	errno = 0;
 	if (fclose(o->fp) != 0)
-		bad = 1;
+		keep_err(o, errno);
 	o->fp = NULL;
-	if (bad) {
-		msg_seterr("%s: write error: %s", o->path, strerror(errno));
+	if (o->err) {
+		msg_seterr("%s: write error: %s", o->path, strerror(o->err));
 		file_out_abort(o);
 		return -1;
 	}
-	if (!o->tmp) {	/* written straight into a device or pipe */
-		free(o->path);
-		o->path = NULL;
-		return 0;
-	}
-	if (file_is_gz(o->path) && gzip_in_place(o->tmp)) {
+	if (o->tmp && file_is_gz(o->path) && gzip_in_place(o->tmp)) {
 		msg_seterr("%s: cannot compress: %s", o->path, strerror(errno));
 		file_out_abort(o);
 		return -1;
+	}
+	o->ready = 1;
+	return 0;
+}
+
+/* The rename of an output that is ready. */
+static int
+file_out_finish(struct file_out *o)
+{
+	o->ready = 0;
+	if (!o->tmp) {	/* stdout, or written straight into a device or pipe */
+		free(o->path);
+		o->path = NULL;
+		return 0;
 	}
 	if (rename(o->tmp, o->path) != 0) {
 		msg_seterr("%s: cannot rename temporary file: %s", o->path, strerror(errno));
@@ -331,12 +470,41 @@ file_out_commit(struct file_out *o)
 	return 0;
 }
 
+int
+file_out_commit(struct file_out *o)
+{
+	if (file_out_ready(o))
+		return -1;
+	return file_out_finish(o);
+}
+
+int
+file_out_commit_all(struct file_out *const *o, int n)
+{
+	int k, j, bad = 0;
+
+	for (k = 0; k < n && !bad; k++)
+		if (o[k] && file_out_ready(o[k]))
+			bad = 1;
+	if (bad) {
+		for (j = 0; j < n; j++)
+			if (o[j])
+				file_out_abort(o[j]);
+		return -1;
+	}
+	for (k = 0; k < n; k++)
+		if (o[k] && file_out_finish(o[k]))
+			bad = 1;
+	return bad ? -1 : 0;
+}
+
 void
 file_out_abort(struct file_out *o)
 {
 	if (o->fp && o->fp != stdout)
 		fclose(o->fp);
 	o->fp = NULL;
+	o->ready = 0;
 	if (o->tmp) {
 		unlink(o->tmp);
 		forget_tmp(o->tmp);

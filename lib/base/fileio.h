@@ -20,18 +20,57 @@ FILE *file_in_open(const char *path, const char **display);
 /* 1 when the name ends in ".gz" (and is more than the suffix). */
 int file_is_gz(const char *path);
 
+/* Whether paths a and b (b may be NULL or "-": never) name the same file: the same inode
+ * when both exist, else the same directory (by inode) and the same last component.
+ * b_output: b is an output, which the rename of file_out_commit replaces, so a symbolic
+ * link there is a file of its own (lstat). */
+int file_same(const char *a, const char *b, int b_output);
+
+/* The checks a tool makes before any work on the files it is given, so that a run of hours
+ * does not find out at its end that it cannot write, or that it wrote one output over
+ * another or over its input (densify --log X -o X kept the log as X and lost the pack;
+ * packinfo -o X X replaced its input).  Each file is a role: its path (NULL: not given), how
+ * the messages name it ("-o", "--log", "the input") and whether it is written.  0 when no
+ * output is the same file as another role (file_same), no two outputs are standard output
+ * ("-"), and every output named by a path can be written: it is not a directory, and its
+ * directory exists and is writable (a device or a FIFO, written into, is not checked, nor
+ * compared: /dev/null may take two outputs).  Otherwise -1 with the first problem in the
+ * slot, for the tool to report as a usage error. */
+struct file_role {
+	const char *path;
+	const char *what;
+	int output;
+};
+int file_roles_check(const struct file_role *r, int n);
+
 /* An output in progress: write to fp, then file_out_commit or file_out_abort. */
 struct file_out {
 	FILE *fp;
 	char *path;	/* final path, NULL for stdout */
 	char *tmp;	/* temporary path, NULL for stdout, a device or a pipe */
+	int err;	/* the errno of the first failed write or flush seen, 0 if none */
+	int ready;	/* file_out_ready has run: only the rename is left */
 };
 
 /* NULL or "-" gives stdout; 0 on success. */
 int file_out_open(struct file_out *o, const char *path);
-/* Checked flush and close, gzip for a .gz name, rename over the target; 0 on success,
- * otherwise the temporary file is removed. */
+/* fflush, keeping the errno of a failure (or of an earlier failed write, which only leaves
+ * the stream's error flag: its errno is the one at hand right after the write) for the
+ * commit's message: the errno at the commit was another one (--log /dev/full said
+ * "Inappropriate ioctl for device").  A tool that writes rows as it runs calls it after
+ * each; 0, or -1 once a write has failed. */
+int file_out_flush(struct file_out *o);
+/* Checked flush and close, gzip for a .gz name: everything but the rename, which cannot
+ * fail for want of room.  0, or -1 with the slot set and o aborted. */
+int file_out_ready(struct file_out *o);
+/* file_out_ready, then the rename over the target; 0 on success, otherwise the temporary
+ * file is removed. */
 int file_out_commit(struct file_out *o);
+/* Commit n outputs all or none: every one made ready first, and only when all are, each
+ * renamed over its target; when one fails, all are aborted and none reaches its target (a
+ * pack committed before its log failed to write was left behind, with a status of 1).
+ * NULL entries are skipped.  0, or -1 with the first failure in the slot. */
+int file_out_commit_all(struct file_out *const *o, int n);
 /* Close and remove the temporary file; nothing reaches the target. */
 void file_out_abort(struct file_out *o);
 

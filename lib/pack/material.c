@@ -74,6 +74,12 @@ read_preset_file(const char *path, struct material *m)
 }
 
 int
+material_is_file(const char *name)
+{
+	return strchr(name, '/') || strstr(name, ".mat");
+}
+
+int
 material_lookup(const char *name, struct material *m)
 {
 	size_t k;
@@ -83,7 +89,7 @@ material_lookup(const char *name, struct material *m)
 			*m = presets[k];
 			return 0;
 		}
-	if (strchr(name, '/') || strstr(name, ".mat"))
+	if (material_is_file(name))
 		return read_preset_file(name, m);
 	msg_seterr("unknown material '%s' (presets: %s; or a file path)", name, material_preset_names);
 	return -1;

@@ -19,6 +19,9 @@ struct material {
 /* Look up a built-in preset, or read a preset file if name contains '/' or ends in .mat;
  * 0 on success, -1 with the error slot set. */
 int material_lookup(const char *name, struct material *m);
+/* Whether material_lookup reads name as a file (it has a '/' or ".mat" in it; a preset
+ * name otherwise): for a tool's check that no output replaces it. */
+int material_is_file(const char *name);
 /* Draw E and nu from normal distributions truncated to E > 0 and -1 < nu < 0.5 (redrawn,
  * so the distribution keeps its shape away from the bounds). */
 void material_sample(const struct material *m, gsl_rng *rng, double *E, double *nu);

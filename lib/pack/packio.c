@@ -1281,10 +1281,9 @@ pack_validate(const struct pack *p)
 }
 
 int
-pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cli_state *st)
+pack_write_tool_out(struct pack *p, const struct cli_tool *tool, const struct cli_state *st, struct file_out *o)
 {
 	char *hist = cli_history_line(tool, st);
-	int r;
 
 	if (!hist || pack_add_history(p, hist)) {
 		free(hist);
@@ -1292,6 +1291,22 @@ pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cli_st
 		return -1;
 	}
 	free(hist);
-	r = pack_write_path(p, st->output);
-	return r;
+	if (file_out_open(o, st->output))
+		return -1;
+	if (pack_write_stream(p, o->fp, 0)) {	/* file_out_commit gzips a *.gz output */
+		msg_seterr("%s: write error", st->output ? st->output : "<stdout>");
+		file_out_abort(o);
+		return -1;
+	}
+	return 0;
+}
+
+int
+pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cli_state *st)
+{
+	struct file_out o;
+
+	if (pack_write_tool_out(p, tool, st, &o))
+		return -1;
+	return file_out_commit(&o);
 }

@@ -55,5 +55,10 @@ int pack_validate(const struct pack *p);
  * command line and every option's value, cli_history_line) and write the pack to the
  * output of st, atomically.  0, or -1 with msg_seterr. */
 int pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cli_state *st);
+/* The same into o, opened here on st->output and left uncommitted, for a tool that commits
+ * the pack with its other outputs, all or none (file_out_commit_all: a log that fails to
+ * write leaves no pack either).  0, or -1 with msg_seterr and nothing left open. */
+struct file_out;
+int pack_write_tool_out(struct pack *p, const struct cli_tool *tool, const struct cli_state *st, struct file_out *o);
 
 #endif

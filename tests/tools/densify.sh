@@ -296,6 +296,19 @@ rm -f nothing.ck link.pack
 expect_error "-o in a missing directory" 2 "^densify: -o: cannot write in directory 'no-such-dir'" densify --checkpoint x.ck -o no-such-dir/x.pack loose.pack
 expect_fail "--checkpoint in a missing directory" 2 "^densify: --checkpoint: cannot write in directory 'no-such-dir'" --checkpoint no-such-dir/x.ck loose.pack
 expect_fail "--checkpoint -" 2 "^densify: --checkpoint: '-' is" --checkpoint - loose.pack
+# the log and the pack over each other, or either over the input, refused before any work
+# (--log X -o X exited 0 with the log as X and the pack lost); a log that cannot be written
+# fails before the run, with its own error, and leaves no pack (--log /dev/full exited 1
+# after committing -o, saying "No such file or directory")
+expect_fail "--log the output" 2 "^densify: -o and --log name the same file 'nothing.pack': one would replace the other" --log nothing.pack loose.pack
+expect_fail "--log the output by another path" 2 "^densify: -o and --log name the same file" --log ./nothing.pack loose.pack
+cp loose.pack in.pack
+expect_fail "--log the input" 2 "^densify: --log 'in.pack' is the input: write to another file" --log in.pack in.pack
+expect_error "-o the input" 2 "^densify: -o 'in.pack' is the input: write to another file" densify -o in.pack in.pack
+expect_same "-o the input: the input untouched" in.pack loose.pack
+expect_error "--log to standard output with the pack" 2 "^densify: --log and -o both go to standard output" densify --log - loose.pack
+expect_fail "--log in a missing directory" 2 "^densify: --log: cannot write in directory 'no-such-dir'" --log no-such-dir/l.tsv loose.pack
+expect_fail "--log /dev/full" 1 '^densify: /dev/full: write error: No space left on device$' --log /dev/full loose.pack
 expect_fail "--time-limit -1" 2 '^densify: --time-limit' --checkpoint x.ck --time-limit -1 loose.pack
 expect_fail "--max-iter 0" 2 '^densify: --max-iter' --max-iter 0 loose.pack
 expect_fail "unknown option" 2 '^densify: unknown option' --bogus loose.pack

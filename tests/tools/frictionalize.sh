@@ -147,6 +147,18 @@ expect_fail "missing input file" 1 '^frictionalize: .*no-such\.pack' no-such.pac
 expect_fail "pack without reference box" 1 '^frictionalize: loose\.pack: no reference box' loose.pack
 expect_fail "increment limit" 1 '^frictionalize: .*did not saturate in 3 increments.*--allow-limit' --max-inc 3 --window 2 --window-overlap 0 dense.pack
 expect_fail "iteration limit" 1 '^frictionalize: .*iteration limit.*--allow-limit' --max-iter 3 dense.pack
+# the log and the pack over each other or over the input, refused before any work; a log that
+# cannot be written, before the run with its own error and no pack
+expect_refused "no output file" nothing.pack "--log the output" 2 "^frictionalize: -o and --log name the same file 'nothing.pack'" \
+    frictionalize --log nothing.pack -o nothing.pack dense.pack
+cp dense.pack in.pack
+expect_error "-o the input" 2 "^frictionalize: -o 'in.pack' is the input" frictionalize -o in.pack in.pack
+expect_same "-o the input: the input untouched" in.pack dense.pack
+expect_error "--log the input" 2 "^frictionalize: --log 'in.pack' is the input" frictionalize --log in.pack in.pack
+expect_refused "no output file" nothing.pack "--log /dev/full" 1 '^frictionalize: /dev/full: write error: No space left on device$' \
+    frictionalize --log /dev/full -o nothing.pack dense.pack
+expect_refused "no log" nothing.tsv "-o in a missing directory" 2 "^frictionalize: -o: cannot write in directory 'no-such-dir'" \
+    frictionalize --log nothing.tsv -o no-such-dir/x.pack dense.pack
 # the same on stdout: a failing run writes no half pack
 expect_error "increment limit, no -o: nothing on stdout" 1 'did not saturate' frictionalize --max-inc 3 --window 2 --window-overlap 0 dense.pack
 

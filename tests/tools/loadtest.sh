@@ -254,6 +254,13 @@ expect_fail "--to-stress 0" 2 '^loadtest: --to-stress' --to-stress 0 fr.pack
 expect_fail "--axis w" 2 '^loadtest: --axis' --axis w --steps 3 fr.pack
 expect_fail "missing input file" 1 '^loadtest: .*no-such\.pack' --steps 3 no-such.pack
 expect_fail "pack without reference box" 1 '^loadtest: loose\.pack: no reference box' --steps 3 loose.pack
+# -o that cannot be written, over the input or on the table's standard output: refused before
+# the test (it was found only after the last increment)
+expect_error "-o in a missing directory" 2 "^loadtest: -o: cannot write in directory 'no-such-dir'" loadtest --steps 3 -o no-such-dir/x.pack fr.pack
+cp fr.pack in.pack
+expect_error "-o the input" 2 "^loadtest: -o 'in.pack' is the input" loadtest --steps 3 -o in.pack in.pack
+expect_same "-o the input: the input untouched" in.pack fr.pack
+expect_error "-o - with the table" 2 "^loadtest: the table and -o both go to standard output" loadtest --steps 3 -o - fr.pack
 awk '/^end$/ { on = 1; print; next }
      on && NF == 7 && $2 !~ /^[xyz](lo|hi)$/ && !done { $4 = 1000 * $3 + 1; done = 1 } { print }' fr.pack >corrupt.pack
 expect_fail "history far above mu P0 refused" 1 '^loadtest: corrupt\.pack: contact [0-9]+ [0-9]+: ' --steps 3 corrupt.pack

@@ -229,6 +229,10 @@ expect_fail() {
 }
 cut -f 1-6,8- synth.tsv >nosigyy.tsv
 expect_fail "a missing column" 1 "^moduli: nosigyy\.tsv: no column 'sig_yy'" nosigyy.tsv
+cp synth.tsv in.tsv
+expect_error "-o the input" 2 "^moduli: -o 'in.tsv' is the input" moduli -o in.tsv in.tsv
+expect_same "-o the input: the input untouched" in.tsv synth.tsv
+expect_error "-o in a missing directory" 2 "^moduli: -o: cannot write in directory 'no-such-dir'" moduli -o no-such-dir/x.tsv synth.tsv
 awk 'NR == 4 { held = $0; next } { print } NR == 5 { print held }' synth.tsv >order.tsv
 expect_fail "rows out of order" 1 '^moduli: order\.tsv:5: rows out of order' order.tsv
 # a pack where a table belongs is named as such (it said only "no header line"; issue 19)

@@ -38,6 +38,20 @@ packexport --vtk -o only.vtp in.pack
 expect_same "vtk -o NAME.vtp is the grains .vtp" only.vtp set_grains.vtp
 packexport --vtk -o again.vtm in.pack
 expect_same "vtk output is deterministic" again_contacts.vtp set_contacts.vtp
+# all three files or none: the contacts' file fails to write (a link to /dev/full), and the
+# grains' file, written first, must not be left behind; a name that cannot be written is
+# refused before any work
+ln -s /dev/full full_contacts.vtp
+expect_error "vtk -o NAME.vtm, the contacts' file fails" 1 '^packexport: full_contacts\.vtp: write error: No space left on device$' \
+    packexport --vtk -o full.vtm in.pack
+if [ ! -e full.vtm ] && [ ! -e full_grains.vtp ] && ! ls -a | grep -q '^\.full'; then pass "vtk: a failed file leaves none of the three"; else fail "vtk: a failed file leaves none of the three" "$(ls -a | tr '\n' ' ')"; fi
+mkdir dir_contacts.vtp
+expect_refused "none of the three written" "nothing.vtm" "vtk -o NAME.vtm, NAME_contacts.vtp a directory" 2 "^packexport: the contacts' .vtp of -o: 'dir_contacts.vtp' is a directory" \
+    packexport --vtk -o dir.vtm in.pack
+if [ ! -e dir.vtm ] && [ ! -e dir_grains.vtp ]; then pass "vtk: refused before any file"; else fail "vtk: refused before any file" "$(ls)"; fi
+cp in.pack in2.pack
+expect_error "-o the input" 2 "^packexport: -o 'in2.pack' is the input" packexport --xyzr -o in2.pack in2.pack
+expect_same "-o the input: the input untouched" in2.pack in.pack
 
 if [ "$have_py" = 1 ]; then
 	cat >check_vtk.py <<'EOF'

@@ -64,6 +64,14 @@ expect_error "negative friction" 2 '^packgen: --friction' packgen --friction -1
 expect_error "bad aspect" 2 '^packgen: --aspect' packgen --aspect 1,0,1
 expect_error "operand not allowed" 2 '^packgen: too many operands' packgen extra.pack
 expect_error "NaN option" 2 'not a finite number' packgen --overlap nan
+# -o that cannot be written, or a file packgen reads, refused before the compaction (it was
+# found only when the pack was done: hours at 1e6 grains)
+expect_error "-o in a missing directory" 2 "^packgen: -o: cannot write in directory 'no-such-dir': No such file or directory" \
+    packgen -n 30 -o no-such-dir/x.pack
+printf '1e-4 1\n' >sizes.txt
+expect_error "-o the --psd table" 2 "^packgen: -o 'sizes.txt' is the --psd table" packgen -n 30 --psd table:sizes.txt -o sizes.txt
+printf 'E 7e10\nnu 0.2\nrho 2420\n' >g.mat
+expect_error "-o the --material file" 2 "^packgen: -o './g.mat' is the --material file" packgen -n 30 --material ./g.mat -o ./g.mat
 rm -f fail.pack
 packgen -n 40 --max-steps 10 -o fail.pack 2>fail.err
 rc=$?

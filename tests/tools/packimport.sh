@@ -106,6 +106,9 @@ if gzip -dc out.pack.gz | sed 1,2d | cmp -s - a.body; then pass "-o NAME.gz writ
 # --- data errors: exit 1, nothing on stdout, one line "packimport: FILE:LINE: ..." --------
 printf '0.001 0.001 0.001 0.0005\n0.002 0.002 0.0005\n' >cols.xyzr
 expect_error "malformed line" 1 '^packimport: cols.xyzr:2: expected 4 columns \(x y z r\), found 3$' packimport cols.xyzr
+cp cols.xyzr same-io.xyzr
+expect_error "-o the input" 2 "^packimport: -o 'same-io.xyzr' is the input" packimport -o same-io.xyzr same-io.xyzr
+expect_same "-o the input: the input untouched" same-io.xyzr cols.xyzr
 printf '0.001 0.001 0.001 0.0005 1\n' >cols5.xyzr
 expect_error "five columns" 1 '^packimport: cols5.xyzr:1: expected 4 columns' packimport cols5.xyzr
 printf '# c\n0.001 nan 0.001 0.0005\n' >nan.xyzr

@@ -150,4 +150,12 @@ expect_num "phase column, no hydrate: porosity_hydrate_as_pore = porosity" "$(re
 expect_error "--bulk-margin negative" 2 '^packinfo: --bulk-margin: must be >= 0' packinfo --bulk-margin -1e-4 dense.pack
 expect_error "--bulk-margin nan" 2 "^packinfo: --bulk-margin: 'nan' is not a finite number" packinfo --bulk-margin nan dense.pack
 expect_error "--bulk-margin not a number" 2 "^packinfo: --bulk-margin: '2d' is not a finite number" packinfo --bulk-margin 2d dense.pack
+# -o over an input is refused before any work (packinfo -o X X replaced the pack by its
+# report), as is -o in a directory that is not there
+cp dense.pack in.pack
+expect_error "-o the input" 2 "^packinfo: -o 'in.pack' is an input: write to another file" packinfo -o in.pack in.pack
+expect_same "-o the input: the input untouched" in.pack dense.pack
+expect_error "-o the second input" 2 "^packinfo: -o './in.pack' is an input" packinfo -o ./in.pack dense.pack in.pack
+expect_refused "nothing written" nothing.info "-o in a missing directory" 2 "^packinfo: -o: cannot write in directory 'no-such-dir': No such file or directory" \
+    packinfo -o no-such-dir/nothing.info dense.pack
 expect_help_version packinfo --bulk-margin --tsv

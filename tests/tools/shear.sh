@@ -74,6 +74,21 @@ expect_error "shear: too few plates for periodic x and z" 1 '^shear: t.pack: .*t
 expect_error "shear: --inertial 1" 2 '^shear: --inertial' shear --inertial 1 s.pack
 expect_error "shear: --snapshots bad" 2 '^shear: --snapshots' shear --snapshots 0.1,x s.pack
 expect_error "shear: --every above --strain" 2 '^shear: --every' shear --strain 0.1 --every 0.2 s.pack
+# the outputs checked before the run (--profile nodir/p.prof failed only after the whole
+# shear): a missing directory, an output over another, over the input, or a snapshot's
+expect_error "shear: --profile in a missing directory" 2 "^shear: --profile: cannot write in directory 'no-such-dir'" \
+    shear --strain 0.1 --profile no-such-dir/p.prof s.pack
+expect_error "shear: -o in a missing directory" 2 "^shear: -o: cannot write in directory 'no-such-dir'" \
+    shear --strain 0.1 -o no-such-dir/x.pack s.pack
+expect_error "shear: snapshots in a missing directory" 2 "^shear: a snapshot \\(--snapshot-prefix\\): cannot write in directory 'no-such-dir'" \
+    shear --strain 0.1 --snapshots 0.05 --snapshot-prefix no-such-dir/snap s.pack
+expect_error "shear: --profile the output" 2 "^shear: -o and --profile name the same file 'x.out'" \
+    shear --strain 0.1 --profile x.out -o x.out s.pack
+expect_error "shear: -o the input" 2 "^shear: -o 's.pack' is the input" shear --strain 0.1 -o s.pack s.pack
+expect_error "shear: a snapshot over -o" 2 "^shear: -o and a snapshot \\(--snapshot-prefix\\) name the same file 'snap-0.05.pack'" \
+    shear --strain 0.1 --snapshots 0.05 --snapshot-prefix snap -o snap-0.05.pack s.pack
+expect_error "shear: --profile - with the table" 2 "^shear: the table and --profile both go to standard output" \
+    shear --strain 0.1 --profile - s.pack
 
 # A steady shear of 216 plates (eta 0.5) at I = 1e-2 to gamma 1.2, the profile over 0.6-1.2
 # in 10 bins.  Linear: over the 8 bins between the glued layers a straight line fits with
