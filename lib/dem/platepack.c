@@ -71,10 +71,9 @@ wall_ratio(const struct pdem *d, double target)
 	int a, nw = 0;
 
 	for (a = 0; a < 3; a++) {
-		int b = (a + 1) % 3, e = (a + 2) % 3;
 		if (d->periodic[a])
 			continue;
-		s += (d->wallf[2 * a] + d->wallf[2 * a + 1]) / (2 * (d->hi[b] - d->lo[b]) * (d->hi[e] - d->lo[e]));
+		s += pack_wall_stress(d->lo, d->hi, a, d->wallf[2 * a] + d->wallf[2 * a + 1]);
 		nw++;
 	}
 	return nw ? s / nw / target : 0;

@@ -1,6 +1,7 @@
 /* servo: the wall servo and the unbalanced force the DEM compactions share (see servo.h). */
 #include "dem/servo.h"
 #include "base/par.h"
+#include "pack/pack.h"
 
 #include <math.h>
 
@@ -15,14 +16,12 @@ dem_servo(double lo[3], double hi[3], const double wallf[6], double ptarget, dou
 	for (a = 0; a < 3; a++)
 		nw += !(periodic && periodic[a]);
 	for (a = 0; a < 3; a++) {
-		int b = (a + 1) % 3, e = (a + 2) % 3;
-		double area = (hi[b] - lo[b]) * (hi[e] - lo[e]), sig, ratio, g;
+		double ratio, g;
 
 		c[a] = 0.5 * (lo[a] + hi[a]);
 		if (periodic && periodic[a])
 			continue;
-		sig = (wallf[2 * a] + wallf[2 * a + 1]) / (2 * area);
-		ratio = sig / ptarget;
+		ratio = pack_wall_stress(lo, hi, a, wallf[2 * a] + wallf[2 * a + 1]) / ptarget;
 		rs += ratio / nw;
 		g = fmax(-1, fmin(1, 1 - ratio));
 		de[a] = g * rate;

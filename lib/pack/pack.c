@@ -197,7 +197,7 @@ pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, d
 int
 pack_contact_at_limit(const struct pack *p, const struct pack_contact *c)
 {
-	double qlim = (PACK_IS_WALL(c->j) ? p->wall_mu : p->mu) * c->P0;
+	double qlim = pack_contact_mu(p, c->j) * c->P0;
 
 	return qlim > 0 && vec3_norm(c->Q0) >= qlim * (1 - 1e-9);
 }
@@ -397,6 +397,14 @@ double
 pack_box_volume(const double box[6])
 {
 	return pack_box_length(box, 0) * pack_box_length(box, 1) * pack_box_length(box, 2);
+}
+
+double
+pack_wall_stress(const double lo[3], const double hi[3], int a, double force)
+{
+	int u = (a + 1) % 3, v = (a + 2) % 3;
+
+	return force / (2 * ((hi[u] - lo[u]) * (hi[v] - lo[v])));
 }
 
 double

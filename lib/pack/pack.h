@@ -167,6 +167,14 @@ int pack_add_contact(struct pack *p, const struct pack_contact *c);
  * meta.  For a tool that tries something on a pack and keeps the original (dissociate's
  * probe of the bulk modulus).  0, or -1 (msg_seterr; dst freed) when out of memory. */
 int pack_copy(struct pack *dst, const struct pack *src);
+/* The friction-coefficient rule, the one place that says it: a contact of a grain with grain j
+ * slides at p->mu, with a wall (j = PACK_WALL(w)) at p->wall_mu.  The laws' pair setup
+ * (contact/law.h, struct law_pair's mu) and every check of a history line ask it. */
+static inline double
+pack_contact_mu(const struct pack *p, long j)
+{
+	return PACK_IS_WALL(j) ? p->wall_mu : p->mu;
+}
 /* Whether history line c is at its Coulomb limit: |Q0| >= mu P0 (1 - 1e-9) with mu P0 > 0 (the
  * wall friction for a wall line).  The paper's sliding count (fr_commit) and packinfo's
  * sliding_ratio_lines both count these. */
@@ -203,6 +211,11 @@ double pack_box_length(const double box[6], int axis);
 /* Wrap n centres x (3n) into [lo, hi) along the axes where periodic is set. */
 void pack_wrap_centres(double *x, size_t n, const double lo[3], const double hi[3], const int periodic[3]);
 double pack_box_volume(const double box[6]);
+/* The wall stress along axis a of the box [lo, hi]: force, the normal force on both walls of
+ * the axis together (N), over twice the area of one, (hi - lo) along the other two axes
+ * (Pa, compression positive).  The one formula of every consumer: the functional's
+ * qs_wall_stress, packinfo's measures, the DEM compactions and their servo. */
+double pack_wall_stress(const double lo[3], const double hi[3], int a, double force);
 /* The sum of the grains' volumes, spheres and spheroplates (shape_volume), overlaps not
  * subtracted (m^3). */
 double pack_grain_volume(const struct pack *p);
