@@ -5,6 +5,7 @@
 #include "base/vec3.h"
 #include "analysis/fabric.h"
 #include "contact/hertz.h"
+#include "contact/linear.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
 
@@ -387,9 +388,10 @@ measure_contact(const struct pack *p, const struct geo_contact *c, struct pack_m
 		 * a line above them where its normal force fell, and the pack transmits only the
 		 * limit there.  Without the clamp a settled pack read 1.1e-4 here while loadtest
 		 * found 9.5e-5 on it (a 200-grain frictionalized pack). */
-		double mu = wall ? p->wall_mu : p->mu, qlim = mu * c->P, qn;
-		double Rs = wall ? p->r[i] : hertz_Rstar(p->r[i], p->r[c->j]);
-		double mlim = 3 * M_PI / 16 * sqrt(Rs * fmax(c->h, 0)) * qlim;
+		double qlim = law_coulomb_limit(pack_contact_mu(p, c->j), c->P), qn, Es, Rs, mlim;
+
+		hertz_pair_moduli(p, i, c->j, &Es, &Rs);
+		mlim = mindlin_twist_ratio(hertz_radius(Rs, fmax(c->h, 0))) * qlim;
 
 		pack_contact_q0_on(&p->c[c->hist], i, Q);
 		Mt = p->c[c->hist].M0;
@@ -480,10 +482,8 @@ measure_forces(const struct pack *p, size_t nct, const struct balance *b, struct
 	size_t k, nres = 0;
 	int a;
 
-	for (a = 0; a < 3; a++) {
-		double area = pack_box_length(p->box, (a + 1) % 3) * pack_box_length(p->box, (a + 2) % 3);
-		m->sig_wall[a] /= 2 * area;
-	}
+	for (a = 0; a < 3; a++)
+		m->sig_wall[a] = pack_wall_stress(p->box, p->box + 3, a, m->sig_wall[a]);
 	m->sigma_c = (m->sig_wall[0] + m->sig_wall[1] + m->sig_wall[2]) / 3;
 	for (a = 0; a < 6; a++)
 		m->sig_lw[a] /= m->volume;
@@ -695,7 +695,7 @@ fabric_add(struct plate_pass *pp, const double n[3], const double l[3], const do
 		e->n[a] = n[a], e->l[a] = l[a], e->F[a] = F[a];
 		Ft[a] = F[a] - fn * n[a];
 	}
-	e->sliding = P > 0 && vec3_norm(Ft) >= 0.99 * pp->p->mu * P;
+	e->sliding = P > 0 && vec3_norm(Ft) >= 0.99 * pp->p->mu * P;	/* a pair: mu grain-grain */
 	add_dyad(pp->sig_pairs, l, F);
 	return 0;
 }
@@ -744,13 +744,13 @@ on_plate_record(const struct contact *c, void *v)
 	for (k = 0; k < it.m; k++) {
 		double h = fmax(it.e[k].h, 0);
 
-		P += pp->kn * h;
+		P += linear_force(pp->kn, h);
 		if (wall) {
 			/* the element's own lever: its foot on the wall plane */
 			for (a = 0; a < 3; a++) {
 				arm[a] = xi[a] - it.e[k].pj[a];
 				foot[a] += h * it.e[k].pj[a];
-				fk[a] = pp->kn * h * n[a];
+				fk[a] = linear_force(pp->kn, h) * n[a];
 			}
 			add_dyad(m->sig_lw, arm, fk);
 			hsum += h;
@@ -873,10 +873,8 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m)
 			m->sig_wall[a] = NAN;
 		m->force_mean = m->force_max = m->residual_mean = NAN;
 	} else {
-		for (a = 0; a < 3; a++) {
-			double area = pack_box_length(p->box, (a + 1) % 3) * pack_box_length(p->box, (a + 2) % 3);
-			m->sig_wall[a] = p->periodic[a] ? NAN : m->sig_wall[a] / (2 * area);
-		}
+		for (a = 0; a < 3; a++)
+			m->sig_wall[a] = p->periodic[a] ? NAN : pack_wall_stress(p->box, p->box + 3, a, m->sig_wall[a]);
 		for (a = 0; a < 6; a++)
 			m->sig_lw[a] /= V;
 		size_t nres = 0;

@@ -1,6 +1,5 @@
 /* contacts: geometric contact detection (see contacts.h). */
 #include "contact/contacts.h"
-#include "contact/hertz.h"
 #include "base/msg.h"
 
 #include <math.h>
@@ -35,21 +34,6 @@ push(struct geo_contacts *gc, const struct geo_contact *c)
 	}
 	gc->c[gc->n++] = *c;
 	return 0;
-}
-
-void
-contacts_moduli(const struct pack *p, const struct geo_contact *c, double *Es, double *Rs)
-{
-	size_t i = c->i;
-
-	if (PACK_IS_WALL(c->j)) {
-		*Es = hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu);
-		*Rs = p->r[i];
-	} else {
-		size_t j = (size_t)c->j;
-		*Es = hertz_Estar(p->E[i], p->nu[i], p->E[j], p->nu[j]);
-		*Rs = hertz_Rstar(p->r[i], p->r[j]);
-	}
 }
 
 int
@@ -412,7 +396,7 @@ on_contact(const struct contact *c, void *vctx)
 	g.d = c->d;
 	contact_normal(c, g.n);
 	g.hist = -1;
-	contacts_moduli(ctx->p, &g, &Es, &Rs);
+	hertz_pair_moduli(ctx->p, g.i, g.j, &Es, &Rs);
 	g.P = hertz_force(Es, Rs, g.h);
 	return push(PACK_IS_WALL(c->j) ? &ctx->walls : ctx->gc, &g);
 }

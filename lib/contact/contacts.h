@@ -29,6 +29,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+#include "contact/hertz.h"
 #include "contact/nlist.h"
 #include "pack/pack.h"
 
@@ -351,16 +352,17 @@ contact_lever_lengths(int wall, double Ri, double Rj, double d, double h, double
  * positions x, with p's box and boundary, whether they touch or not (no history slot). */
 void contact_between(const struct pack *p, const double *x, size_t i, long j, struct contact *c);
 
-/* Effective radius R* = (1/r_i + 1/r_j)^-1; r_i for a wall. */
+/* Effective radius R* = (1/r_i + 1/r_j)^-1 (hertz_Rstar); r_i for a wall. */
 static inline double
 contact_Rstar(const struct contact *c, const double *r)
 {
-	return PACK_IS_WALL(c->j) ? r[c->i] : r[c->i] * r[c->j] / (r[c->i] + r[c->j]);
+	return PACK_IS_WALL(c->j) ? r[c->i] : hertz_Rstar(r[c->i], r[c->j]);
 }
 
 /* The contact network at the pack's own positions: every contact with h > 0, grain-grain
  * first (i < j, ascending), then grain-wall in grain order, each with its unit normal, its
- * Hertz normal force and the pack's history line for the pair. */
+ * Hertz normal force (hertz.h: hertz_pair_moduli, hertz_force) and the pack's history line
+ * for the pair. */
 struct geo_contact {
 	size_t i;
 	long j;		/* grain index or PACK_WALL(w) */
@@ -396,7 +398,5 @@ int contacts_store_in(struct pack *p, struct contact_enum *e, int keep_history);
  * new line.  A frictional increment's commit and the start of the next settle pass, at the
  * same positions, then walk the contacts once instead of twice.  0 or -1. */
 int contacts_store_found(struct pack *p, struct contact_enum *e, int keep_history, struct geo_contacts *found);
-/* The E* and R* of contact c. */
-void contacts_moduli(const struct pack *p, const struct geo_contact *c, double *Es, double *Rs);
 
 #endif

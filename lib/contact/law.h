@@ -1,32 +1,50 @@
-/* law: a contact law as an interface, so that the enumerator and the engines never name one.
+/* law: a contact law as an interface, so that the enumerator and the engines never name one,
+ * the pieces every law shares, and the table of the laws.
  *
- * A law gives, for one contact with its pair parameters (struct law_pair, from the two
- * grains' materials or a grain and a wall): its quasi-static normal energy, force and
- * stiffness at an overlap h (the functional and the minimisers' stiffness bound); its
- * frozen tangential and torsional stiffnesses and sliding limits at a reference state (the
- * friction of an increment, physics.md §3-5); and its force in an explicit DEM step, with
- * the history doubles it keeps per contact (the tangential spring).  Two laws:
+ * A law gives, for one contact with its pair parameters (struct law_pair, set once per pair
+ * by the law's pair setup from the two grains' materials, or a grain and a wall): its
+ * quasi-static normal energy, force and stiffness at an overlap h (the functional and the
+ * minimisers' stiffness bound); its frozen tangential and torsional stiffnesses and sliding
+ * limits at a reference state (the friction of an increment, physics.md §3-5); and its force
+ * in an explicit DEM step, with the history doubles it keeps per contact (the tangential
+ * spring).
  *
- *  - contact_law_hertz_mindlin: Hertz normal, U = 8/15 E* sqrt(R*) h^(5/2) (hertz.h), with
- *    Mindlin-Deresiewicz stick stiffness k* = 8 a / ((2-nu_i)/G_i + (2-nu_j)/G_j), sliding
- *    limit mu P, torsion k*_t = 16/3 a^3 / (1/G_i + 1/G_j) and M_max = 3 pi / 16 a mu P,
- *    a = sqrt(R* h); in DEM a viscous normal damping 2 zeta sqrt(m* k_n) and a tangential
- *    spring of kt_ratio k_n with a Coulomb limit.  The functional inlines it (its fast path).
- *  - contact_law_linear: a linear spring, U = k_n h^2 / 2, tangential k_t = kt_ratio k_n with
- *    a Coulomb limit, torsion none; the same DEM damping.  For spheroplates' explicit DEM
- *    (the platy-particle paper uses linear springs); k_n (N/m) is a field of the law.
- * SI units. */
+ * Each law's closed forms live once, as stateless inline kernels in the law's own header,
+ * and the law's interface functions and every fast path call them (the way LAMMPS
+ * GRANULAR's sub-model kernels serve its generic and its accelerated paths):
+ *
+ *  - contact/hertz.h, contact_law_hertz_mindlin (contact/hertz.c): Hertz normal,
+ *    U = 8/15 E* sqrt(R*) h^(5/2), Mindlin-Deresiewicz stick stiffness
+ *    k* = 8 a / ((2-nu_i)/G_i + (2-nu_j)/G_j), sliding limit mu P, torsion
+ *    k*_t = 16/3 a^3 / (1/G_i + 1/G_j) and M_max = 3 pi / 16 a mu P, a = sqrt(R* h); in DEM a
+ *    viscous normal damping 2 zeta sqrt(m* k_n) and a tangential spring of kt_ratio k_n with
+ *    a Coulomb limit.  The functional, friction, the contact network, the measures and the
+ *    sphere DEM (and its two-lane copy) call its kernels.
+ *  - contact/linear.h, contact_law_linear (contact/linear.c): a linear spring,
+ *    U = k_n h^2 / 2, tangential k_t = kt_ratio k_n with a Coulomb limit, torsion none; the
+ *    same DEM damping; and the spring-dashpot element force of the spheroplates' DEM (the
+ *    platy-particle paper's law).  k_n (N/m) is a field of the law.
+ *
+ * Here: the interface, the kernels every law's DEM force shares (the Coulomb limit, the
+ * viscous damping coefficient, the tangential spring, the damped force; each with its
+ * two-lane twin for the sphere DEM's pair loop), and the table (CONTACT_LAWS), through which
+ * a law is found by name or by a pack's contact-law key.  Adding a law: one file and one
+ * row of CONTACT_LAWS (share/doc/library.md, "How to add a law").  SI units. */
 #ifndef QUSGM_LAW_H
 #define QUSGM_LAW_H
 
 #include <math.h>
+#include "base/lanes.h"
 #include "pack/pack.h"
 
+/* A pair's physics, set once per pair by the law's pair setup (struct contact_law's pair;
+ * hertz_mindlin_pair for both laws of the table). */
 struct law_pair {
 	double Es;	/* E* (Pa) */
 	double Rs;	/* R* (m) */
 	double Ct;	/* (2 - nu_i)/G_i + (2 - nu_j)/G_j (1/Pa): Mindlin tangential compliance */
 	double Ctor;	/* 1/G_i + 1/G_j (1/Pa): torsional compliance */
+	double mu;	/* friction coefficient (pack_contact_mu: grain-grain or grain-wall) */
 };
 
 /* The frozen tangential state of a contact at its reference overlap. */
@@ -36,9 +54,9 @@ struct law_tangent {
 };
 
 /* One explicit step's input for a contact: overlap, unit normal on i, relative velocity
- * of the contact point (i minus j), reduced mass, time step, friction coefficient. */
+ * of the contact point (i minus j), reduced mass, time step. */
 struct law_dem_in {
-	double h, n[3], vr[3], meff, dt, mu;
+	double h, n[3], vr[3], meff, dt;
 };
 
 struct contact_law {
@@ -47,29 +65,64 @@ struct contact_law {
 	double kn;		/* linear law: normal stiffness (N/m) */
 	double kt_ratio;	/* DEM: tangential spring over normal stiffness */
 	double zeta;		/* DEM: viscous normal damping ratio */
-	/* Pair parameters of grain i and grain j, or wall w when j = PACK_WALL(w). */
+	/* The pair's physics, of grain i and grain j, or wall w when j = PACK_WALL(w). */
 	void (*pair)(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
 	/* Energy at overlap h > 0; the force dU/dh into *P and the stiffness dP/dh into *k
 	 * unless NULL. */
 	double (*normal)(const struct contact_law *law, const struct law_pair *lp, double h, double *P, double *k);
-	/* The tangential state at overlap h carrying normal force P, with friction mu. */
-	void (*tangent)(const struct contact_law *law, const struct law_pair *lp, double h, double P, double mu,
-	    struct law_tangent *t);
+	/* The tangential state at overlap h carrying normal force P, with the pair's mu. */
+	void (*tangent)(const struct contact_law *law, const struct law_pair *lp, double h, double P, struct law_tangent *t);
 	/* DEM: the normal force magnitude (returned, >= 0, damping included), its elastic part
 	 * into *fel, and the tangential force on i into ft, updating the contact's history
-	 * (law->history doubles). */
+	 * (law->history doubles); the Coulomb limit at the pair's mu. */
 	double (*dem_force)(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in,
 	    double *hist, double ft[3], double *fel);
+	/* The value of a pack's meta key contact-law that names this law (pack_claim_hertz
+	 * writes 'hertz'; the plate engine writes 'linear'). */
+	const char *pack_key;
 };
 
-/* The DEM force pieces, inline so that the DEM's force loop, which uses Hertz-Mindlin by
- * design, inlines them (through the law's pointer they cost a call per contact and step:
- * packgen 20 % more instructions, measured with callgrind). */
+/* The table of the laws, one row each: X(C name of the law's object, after contact_law_).
+ * The first row is the default, the law of a pack without a contact-law key. */
+#define CONTACT_LAWS(X) \
+	X(hertz_mindlin) \
+	X(linear)
+
+#define CONTACT_LAW_EXTERN(id) extern const struct contact_law contact_law_##id;
+CONTACT_LAWS(CONTACT_LAW_EXTERN)
+#undef CONTACT_LAW_EXTERN
+
+/* The laws of the table, in its order, NULL-terminated. */
+extern const struct contact_law *const contact_laws[];
+/* Find a law by name ("hertz-mindlin", "linear") or by its pack key ("hertz"); NULL when
+ * unknown. */
+const struct contact_law *contact_law_find(const char *name);
+/* The law of pack p: its meta contact-law key's (contact_law_find), the table's first
+ * (Hertz-Mindlin) without the key; NULL, with the error slot set, for a key no law has. */
+const struct contact_law *contact_law_of_pack(const struct pack *p);
+
+/* The DEM kernels, inline so that the DEM's force loop, which uses Hertz-Mindlin by design,
+ * inlines them (through the law's pointer they cost a call per contact and step: packgen
+ * 20 % more instructions, measured with callgrind). */
 #if defined(__GNUC__)
 #define LAW_INLINE static inline __attribute__((always_inline))
 #else
 #define LAW_INLINE static inline
 #endif
+
+/* The Coulomb limit: the largest tangential force mu P a contact carries at normal force P. */
+LAW_INLINE double
+law_coulomb_limit(double mu, double P)
+{
+	return mu * P;
+}
+
+/* The viscous damping coefficient 2 zeta sqrt(m k) of damping ratio zeta, mass m, stiffness k. */
+LAW_INLINE double
+law_damping(double zeta, double m, double k)
+{
+	return 2 * zeta * sqrt(m * k);
+}
 
 /* The tangential spring xi (3 doubles of history): turned into the current tangent plane
  * with its length kept, advanced by the sliding velocity, its force clamped to the Coulomb
@@ -99,41 +152,90 @@ law_dem_spring(double *xi, const double n[3], const double vt[3], double dt, dou
 	}
 }
 
-/* The DEM force for normal stiffness kn and elastic normal force fn0.  (lib/dem/dem.c's
- * contact_force2 repeats this and law_dem_spring, two contacts at a time in lanes: a change
- * here goes there too; tests/unit/test_dem.c's test_lanes catches a difference.) */
+/* The DEM force of a law of DEM damping ratio zeta and tangential ratio kt_ratio, for normal
+ * stiffness kn, elastic normal force fn0 and friction coefficient mu: the normal force
+ * fn0 - law_damping(zeta, m*, kn) v_n, not below 0 (returned; fn0 into *fel), and the
+ * spring's tangential force at kt_ratio kn within law_coulomb_limit(mu, fn). */
 LAW_INLINE double
-law_dem_damped(const struct contact_law *law, const struct law_dem_in *in, double kn, double fn0, double *hist,
-    double ft[3], double *fel)
+law_dem_damped(double zeta, double kt_ratio, double mu, const struct law_dem_in *in, double kn, double fn0,
+    double *hist, double ft[3], double *fel)
 {
 	double vn = in->vr[0] * in->n[0] + in->vr[1] * in->n[1] + in->vr[2] * in->n[2], vt[3], fn;
 	int a;
 
 	*fel = fn0;
-	fn = fn0 - 2 * law->zeta * sqrt(in->meff * kn) * vn;
+	fn = fn0 - law_damping(zeta, in->meff, kn) * vn;
 	if (fn < 0)
 		fn = 0;
 	for (a = 0; a < 3; a++)
 		vt[a] = in->vr[a] - vn * in->n[a];
-	law_dem_spring(hist, in->n, vt, in->dt, law->kt_ratio * kn, in->mu * fn, ft);
+	law_dem_spring(hist, in->n, vt, in->dt, kt_ratio * kn, law_coulomb_limit(mu, fn), ft);
 	return fn;
 }
 
-LAW_INLINE double
-law_hertz_dem_force(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in, double *hist,
-    double ft[3], double *fel)
+#if LANES_OK
+/* The twins of the kernels above on two contacts at once, one in each lane of v2d (lanes.h):
+ * lane by lane the same operations in the same order, so the scalar kernel's bytes
+ * (tests/unit/test_dem.c's test_lanes checks the sphere DEM both ways); both branches of a
+ * clamp computed and one chosen by a mask.  A change above goes here too. */
+LAW_INLINE v2d
+law_coulomb_limit2(double mu, v2d P)
 {
-	double kn = 2 * lp->Es * sqrt(lp->Rs * in->h);
-
-	return law_dem_damped(law, in, kn, kn * in->h * (2.0 / 3.0), hist, ft, fel);
+	return mu * P;
 }
 
-extern const struct contact_law contact_law_hertz_mindlin;
-extern const struct contact_law contact_law_linear;
+LAW_INLINE v2d
+law_damping2(double zeta, v2d m, v2d k)
+{
+	return 2 * zeta * V2_SQRT(m * k);
+}
 
-/* The shared pair parameters from the grains' (and walls') moduli and radii. */
-void law_pair_from_pack(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
-/* Find a law by name ("hertz-mindlin", "linear"); NULL when unknown. */
-const struct contact_law *contact_law_find(const char *name);
+/* law_dem_spring: xi and ft three-vectors of v2d. */
+LAW_INLINE void
+law_dem_spring2(v2d xi[3], const v2d n[3], const v2d vt[3], double dt, v2d kt, v2d fmaxt, v2d ft[3])
+{
+	const v2d zero = {0, 0}, one = {1, 1};
+	v2d xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2], old, now, sc;
+	v2m m;
+	int a;
+
+	old = V2_SQRT(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+	for (a = 0; a < 3; a++)
+		xi[a] -= xn * n[a];
+	now = V2_SQRT(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+	m = now > 0;
+	sc = V2_SELECT(m, old / V2_SELECT(m, now, one), zero);
+	for (a = 0; a < 3; a++) {
+		xi[a] = xi[a] * sc + vt[a] * dt;
+		ft[a] = -kt * xi[a];
+	}
+	now = V2_SQRT(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+	m = (now > fmaxt) & (now > 0);
+	if (m[0] | m[1]) {
+		sc = fmaxt / V2_SELECT(m, now, one);
+		for (a = 0; a < 3; a++) {
+			ft[a] = V2_SELECT(m, ft[a] * sc, ft[a]);
+			xi[a] = V2_SELECT(m, -ft[a] / kt, xi[a]);
+		}
+	}
+}
+
+/* law_dem_damped: unit normals n, relative velocities vr, reduced masses meff, springs xi. */
+LAW_INLINE v2d
+law_dem_damped2(double zeta, double kt_ratio, double mu, const v2d n[3], const v2d vr[3], v2d meff, double dt,
+    v2d kn, v2d fn0, v2d xi[3], v2d ft[3])
+{
+	const v2d zero = {0, 0};
+	v2d vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2], vt[3], fn;
+	int a;
+
+	fn = fn0 - law_damping2(zeta, meff, kn) * vn;
+	fn = V2_SELECT(fn < 0, zero, fn);
+	for (a = 0; a < 3; a++)
+		vt[a] = vr[a] - vn * n[a];
+	law_dem_spring2(xi, n, vt, dt, kt_ratio * kn, law_coulomb_limit2(mu, fn), ft);
+	return fn;
+}
+#endif
 
 #endif

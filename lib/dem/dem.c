@@ -3,7 +3,7 @@
 #include "dem/servo.h"
 #include "contact/cell.h"
 #include "contact/contacts.h"
-#include "contact/law.h"
+#include "contact/hertz.h"
 #include "base/msg.h"
 #include "base/lanes.h"
 #include "base/par.h"
@@ -17,7 +17,9 @@
 #define E_WALL 2.0			/* grain-wall E* over grain-grain E* for rigid walls */
 /* The contact law of the settling: Hertz-Mindlin's DEM force (law.h: tangential spring
  * 2(1-nu)/(2-nu) = 0.889 of the normal stiffness at nu = 0.2, viscous damping ratio 0.3),
- * with the scaled E* of dem.h, called inline (law_hertz_dem_force). */
+ * with the scaled E* of dem.h and the settling's friction coefficient dem_params.mu for
+ * pairs and walls alike, called inline (hertz.h: hertz_dem_force, and hertz_dem_force2 on
+ * two pairs at once). */
 #define DEM_LAW (&contact_law_hertz_mindlin)
 
 struct dem {
@@ -206,9 +208,9 @@ contact_force(const struct dem *d, const struct contact *c, double F[3], double 
 	contact_normal(c, in.n);
 	lp.Es = wall ? E_WALL : E_GRAIN;
 	lp.Rs = contact_Rstar(c, d->r);
+	lp.mu = d->mu;
 	in.h = c->h;
 	in.dt = d->dt;
-	in.mu = d->mu;
 	for (a = 0; a < 3; a++)
 		wr[a] = -ri * in.n[a];
 	vec3_cross(d->w + 3 * i, wr, ca);
@@ -225,7 +227,7 @@ contact_force(const struct dem *d, const struct contact *c, double F[3], double 
 		for (a = 0; a < 3; a++)
 			in.vr[a] = d->v[3 * i + a] + ca[a];
 	}
-	fn = law_hertz_dem_force(DEM_LAW, &lp, &in, c->hist, ft, fel);
+	fn = hertz_dem_force(DEM_LAW->zeta, DEM_LAW->kt_ratio, &lp, &in, c->hist, ft, fel);
 	for (a = 0; a < 3; a++)
 		F[a] = fn * in.n[a] + ft[a];
 	vec3_cross(in.n, ft, cr);
@@ -263,10 +265,9 @@ contact_force2(const struct dem *d, const struct contact *A, const struct contac
 	const double *v = d->v, *w = d->w;
 	double *hA = A->hist, *hB = B->hist;
 	v2d dd = {A->d, B->d}, h = {A->h, B->h}, ri = {d->r[i0], d->r[i1]}, rj = {d->r[j0], d->r[j1]};
-	v2d mi = {d->m[i0], d->m[i1]}, mj = {d->m[j0], d->m[j1]}, zero = {0, 0}, one = {1, 1};
-	v2d n[3], wi[3], wj[3], wr[3], ca[3], cb[3], vr[3], vt[3], xi[3], ft[3], Fv[3], cv[3];
-	v2d Rs, meff, kn, fn0, vn, fn, kt, fmaxt, xn, old, now, sc;
-	v2m m;
+	v2d mi = {d->m[i0], d->m[i1]}, mj = {d->m[j0], d->m[j1]};
+	v2d n[3], wi[3], wj[3], wr[3], ca[3], cb[3], vr[3], xi[3], ft[3], Fv[3], cv[3];
+	v2d Rs, meff, fn;
 	int a;
 
 	for (a = 0; a < 3; a++) {
@@ -275,7 +276,7 @@ contact_force2(const struct dem *d, const struct contact *A, const struct contac
 		wj[a] = (v2d){w[3 * j0 + a], w[3 * j1 + a]};
 		xi[a] = (v2d){hA[a], hB[a]};
 	}
-	Rs = ri * rj / (ri + rj);
+	Rs = hertz_Rstar2(ri, rj);
 	for (a = 0; a < 3; a++)
 		wr[a] = -ri * n[a];
 	V2_CROSS(wi, wr, ca);
@@ -285,37 +286,8 @@ contact_force2(const struct dem *d, const struct contact *A, const struct contac
 	V2_CROSS(wj, wr, cb);
 	for (a = 0; a < 3; a++)
 		vr[a] = (v2d){v[3 * i0 + a], v[3 * i1 + a]} + ca[a] - (v2d){v[3 * j0 + a], v[3 * j1 + a]} - cb[a];
-	/* law_hertz_dem_force and law_dem_damped, E* = E_GRAIN */
-	kn = 2 * E_GRAIN * V2_SQRT(Rs * h);
-	fn0 = kn * h * (2.0 / 3.0);
-	vn = vr[0] * n[0] + vr[1] * n[1] + vr[2] * n[2];
-	fn = fn0 - 2 * law->zeta * V2_SQRT(meff * kn) * vn;
-	fn = V2_SELECT(fn < 0, zero, fn);
-	for (a = 0; a < 3; a++)
-		vt[a] = vr[a] - vn * n[a];
-	kt = law->kt_ratio * kn;
-	fmaxt = d->mu * fn;
-	/* law_dem_spring */
-	xn = xi[0] * n[0] + xi[1] * n[1] + xi[2] * n[2];
-	old = V2_SQRT(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-	for (a = 0; a < 3; a++)
-		xi[a] -= xn * n[a];
-	now = V2_SQRT(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-	m = now > 0;
-	sc = V2_SELECT(m, old / V2_SELECT(m, now, one), zero);
-	for (a = 0; a < 3; a++) {
-		xi[a] = xi[a] * sc + vt[a] * d->dt;
-		ft[a] = -kt * xi[a];
-	}
-	now = V2_SQRT(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
-	m = (now > fmaxt) & (now > 0);
-	if (m[0] | m[1]) {
-		sc = fmaxt / V2_SELECT(m, now, one);
-		for (a = 0; a < 3; a++) {
-			ft[a] = V2_SELECT(m, ft[a] * sc, ft[a]);
-			xi[a] = V2_SELECT(m, -ft[a] / kt, xi[a]);
-		}
-	}
+	/* hertz_dem_force's twin, E* = E_GRAIN */
+	fn = hertz_dem_force2(law->zeta, law->kt_ratio, d->mu, E_GRAIN, Rs, h, n, vr, meff, d->dt, xi, ft);
 	for (a = 0; a < 3; a++)
 		Fv[a] = fn * n[a] + ft[a];
 	V2_CROSS(n, ft, cv);
@@ -662,12 +634,14 @@ max_overlap(const struct dem *d, double *coord)
 	return o.mo;
 }
 
-/* Time step from the stiffest likely contact: the two smallest grains, or the smallest
- * grain on a wall, at overlap h (relative to the radius). */
+/* Time step from the stiffest likely contact: the two smallest grains (R* = rmin / 2), or
+ * the smallest grain on a wall (R* = rmin), at overlap h rmin (h relative to the radius).
+ * hertz_stiffness_t's sqrt(R* overlap) as (R* h) rmin, the product in the order of the
+ * steps packgen has always taken. */
 static void
 dt_for_overlap(struct dem *d, double mmin, double rmin, double h)
 {
-	double k = fmax(2 * sqrt(0.5 * rmin * h * rmin), 2 * E_WALL * sqrt(rmin * h * rmin));
+	double k = fmax(hertz_stiffness_t(E_GRAIN, 0.5 * rmin * h, rmin), hertz_stiffness_t(E_WALL, rmin * h, rmin));
 
 	d->dt = d->dt_safety * sqrt(0.5 * mmin / k);
 }
@@ -731,10 +705,8 @@ stress_ratio(const struct dem *d, double ptarget)
 	double s = 0;
 	int a;
 
-	for (a = 0; a < 3; a++) {
-		int b = (a + 1) % 3, e = (a + 2) % 3;
-		s += (d->wallf[2 * a] + d->wallf[2 * a + 1]) / (2 * (d->hi[b] - d->lo[b]) * (d->hi[e] - d->lo[e]));
-	}
+	for (a = 0; a < 3; a++)
+		s += pack_wall_stress(d->lo, d->hi, a, d->wallf[2 * a] + d->wallf[2 * a + 1]);
 	return s / 3 / ptarget;
 }
 
@@ -900,7 +872,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	 * first jammed at a stress 'preload' times larger (mean overlap ~ 30x) and then
 	 * unloaded to the target: unloading is nearly elastic and the frictional contact
 	 * network, hence the loose structure, survives it. */
-	pfinal = 4.5 * 0.6 * (4.0 / 3.0 * sqrt(0.5) * pow(dp->overlap, 1.5)) / (4 * M_PI);
+	pfinal = 4.5 * 0.6 * (hertz_coef(E_GRAIN, sqrt(0.5)) * pow(dp->overlap, 1.5)) / (4 * M_PI);
 	if (dem_settle(&d, dp, pfinal, vol, mmin, rmin, fn, ctx, st) || dem_write_back(&d, p, order, rmean))
 		goto out;
 	status = 0;

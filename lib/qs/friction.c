@@ -91,7 +91,7 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	c->bi = 1 / p->r[i];
 	c->aj = wall ? 0 : lj / p->r[g->j];
 	c->bj = wall ? 0 : 1 / p->r[g->j];
-	law->tangent(law, &lp, g->h, g->P, wall ? p->wall_mu : p->mu, &t);
+	law->tangent(law, &lp, g->h, g->P, &t);
 	c->k = t.k;
 	c->qmax = t.qmax;
 	c->kt = t.kt;
@@ -129,23 +129,11 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	c->M = c->mp;
 }
 
-/* E* and R* of a history line's pair. */
-static void
-line_moduli(const struct pack *p, const struct pack_contact *c, double *Es, double *Rs)
-{
-	size_t i = c->i;
-	int wall = PACK_IS_WALL(c->j);
-
-	*Es = wall ? hertz_Estar(p->E[i], p->nu[i], p->wall_E, p->wall_nu) :
-	             hertz_Estar(p->E[i], p->nu[i], p->E[c->j], p->nu[c->j]);
-	*Rs = wall ? p->r[i] : hertz_Rstar(p->r[i], p->r[c->j]);
-}
-
 /* M_max of a contact of moduli Es, Rs at normal force P (physics.md §5): a = sqrt(R* h(P)). */
 static double
 mmax_at(double Es, double Rs, double mu, double P)
 {
-	return 3 * M_PI / 16 * sqrt(Rs * hertz_overlap(Es, Rs, P)) * mu * P;
+	return mindlin_twist_limit(hertz_radius(Rs, hertz_overlap(Es, Rs, P)), mu, P);
 }
 
 /* M_max of a history line's contact at normal force P. */
@@ -154,7 +142,7 @@ line_mmax(const struct pack *p, const struct pack_contact *c, double mu, double 
 {
 	double Es, Rs;
 
-	line_moduli(p, c, &Es, &Rs);
+	hertz_pair_moduli(p, c->i, c->j, &Es, &Rs);
 	return mmax_at(Es, Rs, mu, P);
 }
 
@@ -176,16 +164,16 @@ history_mean_P(const struct pack *p)
 static double
 history_mmax_floor(const struct pack *p, double Pmean)
 {
-	double cmin = INFINITY, rmin = INFINITY, wall_comp = (1 - p->wall_nu * p->wall_nu) / p->wall_E;
+	double cmin = INFINITY, rmin = INFINITY, wall_comp = hertz_compliance(p->wall_E, p->wall_nu);
 	size_t i;
 
 	for (i = 0; i < p->n; i++) {
-		cmin = fmin(cmin, (1 - p->nu[i] * p->nu[i]) / p->E[i]);
+		cmin = fmin(cmin, hertz_compliance(p->E[i], p->nu[i]));
 		rmin = fmin(rmin, p->r[i]);
 	}
 	if (!(Pmean > 0) || !(cmin > 0) || !(rmin > 0))
 		return 0;
-	return 0.999 * mmax_at(1 / (cmin + (wall_comp > 0 ? fmin(cmin, wall_comp) : cmin)), rmin / 2,
+	return 0.999 * mmax_at(hertz_Estar_c(cmin, wall_comp > 0 ? fmin(cmin, wall_comp) : cmin), rmin / 2,
 	    fmin(p->mu, p->wall_mu), Pmean);
 }
 
@@ -196,8 +184,8 @@ history_mmax_floor(const struct pack *p, double Pmean)
 static int
 line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pmean, double mfloor)
 {
-	double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, Es, Rs;
-	double qlim = mu * (c->P0 + Pmean) * (1 + 1e-9);
+	double mu = pack_contact_mu(p, c->j), Es, Rs;
+	double qlim = law_coulomb_limit(mu, c->P0 + Pmean) * (1 + 1e-9);
 
 	/* every commit checks every line: the torsional limits (two cube roots) only when the
 	 * force is within its bound and the couple is above the floor of every contact's */
@@ -205,7 +193,7 @@ line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pm
 		return 1;
 	if (fabs(c->M0) < mfloor)
 		return 0;
-	line_moduli(p, c, &Es, &Rs);
+	hertz_pair_moduli(p, c->i, c->j, &Es, &Rs);
 	return fabs(c->M0) > (mmax_at(Es, Rs, mu, c->P0) + mmax_at(Es, Rs, mu, Pmean)) * (1 + 1e-9) ? 2 : 0;
 }
 
@@ -217,7 +205,7 @@ fr_check_history(const struct pack *p)
 
 	for (k = 0; k < p->nc; k++) {
 		const struct pack_contact *c = &p->c[k];
-		double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, qn = vec3_norm(c->Q0);
+		double mu = pack_contact_mu(p, c->j), qn = vec3_norm(c->Q0);
 		int beyond = line_beyond_commit(p, c, Pmean, mfloor);
 		char jn[32];
 
@@ -230,7 +218,7 @@ fr_check_history(const struct pack *p)
 		if (beyond == 1)
 			msg_seterr("contact %ld %s: |Q0| = %.6g N is far above its sliding limit mu P0 = %.6g N (mu %g; "
 			           "a committed pack exceeds it by less than mu times the mean normal force, %.6g N)",
-			    p->id[c->i], jn, qn, mu * c->P0, mu, mu * Pmean);
+			    p->id[c->i], jn, qn, law_coulomb_limit(mu, c->P0), mu, law_coulomb_limit(mu, Pmean));
 		else
 			msg_seterr("contact %ld %s: |M0| = %.6g N m is far above its torsional limit %.6g N m (mu %g)",
 			    p->id[c->i], jn, fabs(c->M0), line_mmax(p, c, mu, c->P0), mu);
@@ -924,12 +912,12 @@ fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x)
 
 		for (k = 0; k < p->nc; k++) {
 			struct pack_contact *c = &p->c[k];
-			double mu = PACK_IS_WALL(c->j) ? p->wall_mu : p->mu, qn, qm, mm;
+			double mu = pack_contact_mu(p, c->j), qn, qm, mm;
 			int a;
 
 			if (!line_beyond_commit(p, c, Pmean, mfloor))
 				continue;
-			qn = vec3_norm(c->Q0), qm = mu * c->P0, mm = line_mmax(p, c, mu, c->P0);
+			qn = vec3_norm(c->Q0), qm = law_coulomb_limit(mu, c->P0), mm = line_mmax(p, c, mu, c->P0);
 			if (qn > qm)
 				for (a = 0; a < 3; a++)
 					c->Q0[a] *= qm / qn;
@@ -943,7 +931,7 @@ fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x)
 	f->ntrial_slip = 0;
 	for (k = 0; k < f->n; k++) {
 		const struct fr_contact *c = &f->c[k];
-		double qlim = (PACK_IS_WALL(c->j) ? p->wall_mu : p->mu) * normal_force_now(p, c);
+		double qlim = law_coulomb_limit(pack_contact_mu(p, c->j), normal_force_now(p, c));
 		if (qlim > 0 && c->qtrial >= qlim * (1 - 1e-9))
 			f->ntrial_slip++;
 	}

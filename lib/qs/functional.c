@@ -37,11 +37,11 @@ qs_init(struct qs_system *s, struct pack *p, double skin)
 	}
 	s->rmin = INFINITY;
 	for (i = 0; i < p->n; i++) {
-		s->comp[i] = (1 - p->nu[i] * p->nu[i]) / p->E[i];
+		s->comp[i] = hertz_compliance(p->E[i], p->nu[i]);
 		s->rmin = fmin(s->rmin, p->r[i]);
 		s->rmax = fmax(s->rmax, p->r[i]);
 	}
-	s->wall_comp = (1 - p->wall_nu * p->wall_nu) / p->wall_E;
+	s->wall_comp = hertz_compliance(p->wall_E, p->wall_nu);
 	s->skin = skin * s->rmin;
 	return contact_enum_init(&s->ce, p->n, p->r, p->box, p->box + 3, p->periodic, s->skin, 0);
 }
@@ -196,14 +196,20 @@ struct qs_block_sums {
 	size_t nc;
 };
 
-/* Hertz's normal force of a pair record (E* from the per-grain compliances): one function
- * for the rows and for the threads' gathers, so that both compute the same bytes. */
+/* Hertz's coefficient 4/3 E* sqrt(R*) of grains i and j (hertz.h), E* from the per-grain
+ * compliances. */
+CONTACT_INLINE double
+hertz_pair_coef(const struct qs_system *s, size_t i, size_t j, double ri, double rj)
+{
+	return hertz_coef(hertz_Estar_c(s->comp[i], s->comp[j]), sqrt(hertz_Rstar(ri, rj)));
+}
+
+/* Hertz's normal force of a pair record: one function for the rows and for the threads'
+ * gathers, so that both compute the same bytes. */
 CONTACT_INLINE double
 hertz_pair_P(const struct qs_system *s, const struct contact *c)
 {
-	double Es = 1.0 / (s->comp[c->i] + s->comp[c->j]), sRs = sqrt(c->ri * c->rj / (c->ri + c->rj));
-
-	return 4.0 / 3.0 * Es * sRs * c->h * sqrt(c->h);
+	return hertz_force_c(hertz_pair_coef(s, c->i, (size_t)c->j, c->ri, c->rj), c->h);
 }
 
 /* Hertz's coefficient 4/3 E* sqrt(R*) of every pair of the list, once a rebuild: the
@@ -228,9 +234,7 @@ hertz_coefficients(struct qs_system *s)
 	}
 	for (i = 0; i < s->n; i++)
 		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
-			size_t j = nl->nbr[k];
-			double Es = 1.0 / (s->comp[i] + s->comp[j]), sRs = sqrt(r[i] * r[j] / (r[i] + r[j]));
-			s->hertz_coef[k] = 4.0 / 3.0 * Es * sRs;
+			s->hertz_coef[k] = hertz_pair_coef(s, i, nl->nbr[k], r[i], r[nl->nbr[k]]);
 		}
 	s->coef_builds = s->ce.rebuilds;
 	return 0;
@@ -243,9 +247,9 @@ CONTACT_INLINE int
 on_hertz_pair(const struct contact *c, void *vacc)
 {
 	struct normal_acc *a = vacc;
-	double P = a->s->hertz_coef[c->k] * c->h * sqrt(c->h);
+	double P = hertz_force_c(a->s->hertz_coef[c->k], c->h);
 
-	normal_add_pair(a, c, P, 0.4 * P * c->h);
+	normal_add_pair(a, c, P, hertz_energy_P(P, c->h));
 	return 0;
 }
 
@@ -254,12 +258,11 @@ on_hertz_wall(const struct contact *c, void *vacc)
 {
 	struct normal_acc *a = vacc;
 	const struct qs_system *s = a->s;
-	double Es = 1.0 / (s->comp[c->i] + s->wall_comp), sRs = sqrt(c->ri);
-	double P = 4.0 / 3.0 * Es * sRs * c->h * sqrt(c->h);
+	double P = hertz_force_c(hertz_coef(hertz_Estar_c(s->comp[c->i], s->wall_comp), sqrt(c->ri)), c->h);
 	size_t i = c->i;
 	int w = PACK_WALL_INDEX(c->j);
 
-	a->E += 0.4 * P * c->h;
+	a->E += hertz_energy_P(P, c->h);
 	a->sumf += P;
 	a->nc++;
 	a->wf[w] += P;
@@ -405,10 +408,11 @@ on_stiffness(const struct contact *c, void *vacc)
 		if (!PACK_IS_WALL(c->j))
 			a->k[c->j] += 1.5 * kk;
 	} else if (PACK_IS_WALL(c->j)) {
-		a->k[c->i] += 2 / (s->comp[c->i] + s->wall_comp) * sqrt(r[c->i] * c->h);
+		/* 2 (1/x) is 2/x to the bit: a factor of two rounds as nothing */
+		a->k[c->i] += hertz_stiffness_t(hertz_Estar_c(s->comp[c->i], s->wall_comp), r[c->i], c->h);
 	} else {
-		double Es = 1 / (s->comp[c->i] + s->comp[c->j]), Rs = r[c->i] * r[c->j] / (r[c->i] + r[c->j]);
-		double kk = 2 * Es * sqrt(Rs * c->h) * 1.5;
+		double kk = hertz_stiffness_t(hertz_Estar_c(s->comp[c->i], s->comp[c->j]), hertz_Rstar(r[c->i], r[c->j]), c->h) *
+		    1.5;
 		a->k[c->i] += kk;
 		a->k[c->j] += kk;
 	}
@@ -472,7 +476,7 @@ on_hessian(const struct contact *c, void *vacc)
 	return hessian_add(a, c, P, k);
 }
 
-/* Hertz inlined, with the bytes of the law's interface (law_pair_from_pack's E* and R*,
+/* Hertz inlined, with the bytes of the law's interface (hertz_mindlin_pair's E* and R*,
  * hertz_normal's P and k) but without the pair's tangential parameters, which the normal
  * block does not use: E* from the grains' compliances is hertz_Estar's sum and division.
  * The preconditioner of every frictional increment and settle pass assembles this: through
@@ -485,10 +489,10 @@ on_hessian_hertz(const struct contact *c, void *vacc)
 	double Es, Rs;
 
 	if (PACK_IS_WALL(c->j)) {
-		Es = 1.0 / (s->comp[c->i] + s->wall_comp);
+		Es = hertz_Estar_c(s->comp[c->i], s->wall_comp);
 		Rs = c->ri;
 	} else {
-		Es = 1.0 / (s->comp[c->i] + s->comp[c->j]);
+		Es = hertz_Estar_c(s->comp[c->i], s->comp[c->j]);
 		Rs = hertz_Rstar(c->ri, c->rj);
 	}
 	return hessian_add(a, c, hertz_force(Es, Rs, c->h), hertz_stiffness(Es, Rs, c->h));
@@ -624,11 +628,8 @@ qs_wall_stress(const struct qs_system *s, double sig[3])
 	const double *b = s->p->box;
 	int a;
 
-	for (a = 0; a < 3; a++) {
-		int u = (a + 1) % 3, v = (a + 2) % 3;
-		double area = (b[3 + u] - b[u]) * (b[3 + v] - b[v]);
-		sig[a] = (s->wall_force[2 * a] + s->wall_force[2 * a + 1]) / (2 * area);
-	}
+	for (a = 0; a < 3; a++)
+		sig[a] = pack_wall_stress(b, b + 3, a, s->wall_force[2 * a] + s->wall_force[2 * a + 1]);
 }
 
 static int

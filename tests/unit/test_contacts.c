@@ -9,7 +9,9 @@
 #include "unit_pack.h"
 #include "base/msg.h"
 #include "contact/contacts.h"
+#include "contact/hertz.h"
 #include "contact/law.h"
+#include "contact/linear.h"
 #include "qs/functional.h"
 #include "qs/hessian.h"
 #include "qs/minimize.h"
@@ -329,13 +331,13 @@ static void
 test_law_closed_forms(void)
 {
 	const struct contact_law *hm = &contact_law_hertz_mindlin, *ln = &contact_law_linear;
-	struct law_pair lp = {5e10, 6e-5, 3e-11, 2e-11};
+	struct law_pair lp = {5e10, 6e-5, 3e-11, 2e-11, 0.3};
 	struct law_tangent t;
-	struct law_dem_in in = {2e-7, {0, 0, 1}, {0, 0, 0}, 3e-9, 1e-8, 0.3};
+	struct law_dem_in in = {2e-7, {0, 0, 1}, {0, 0, 0}, 3e-9, 1e-8};
 	double hist[3] = {0, 0, 0}, ft[3], fel, fn, a = sqrt(lp.Rs * in.h), P = 1.5;
 	double kn = 2 * lp.Es * sqrt(lp.Rs * in.h);
 
-	hm->tangent(hm, &lp, in.h, P, 0.3, &t);
+	hm->tangent(hm, &lp, in.h, P, &t);
 	CHECK(unit_close(t.k, 8 * a / lp.Ct, 1e-14, 0) && unit_close(t.qmax, 0.3 * P, 1e-14, 0) &&
 	    unit_close(t.kt, 16.0 / 3 * a * a * a / lp.Ctor, 1e-14, 0) &&
 	    unit_close(t.mmax, 3 * M_PI / 16 * a * 0.3 * P, 1e-14, 0), "laws: Hertz-Mindlin's tangential state in closed form");
@@ -352,13 +354,124 @@ test_law_closed_forms(void)
 	fn = hm->dem_force(hm, &lp, &in, hist, ft, &fel);
 	CHECK(unit_close(-ft[0], fmin(hm->kt_ratio * kn * 1e-2 * in.dt, 0.3 * fn), 1e-12, 0),
 	    "laws: the tangential spring gives k_t v dt below the Coulomb limit (%.6g N)", -ft[0]);
-	ln->tangent(ln, &lp, in.h, P, 0.3, &t);
+	ln->tangent(ln, &lp, in.h, P, &t);
 	CHECK(t.k == ln->kt_ratio * ln->kn && t.qmax == 0.3 * P && t.kt == 0 && t.mmax == 0,
 	    "laws: the linear law's tangential state is kt_ratio k_n, mu P, no torsion");
 	in.vr[0] = 0;
 	hist[0] = hist[1] = hist[2] = 0;
 	fn = ln->dem_force(ln, &lp, &in, hist, ft, &fel);
 	CHECK(unit_close(fn, ln->kn * in.h, 1e-14, 0), "laws: the linear DEM force at rest is k_n h (%.6g N)", fn);
+}
+
+/* The table of the laws: found by name and by a pack's contact-law key, the first row the
+ * default; the pair setup's mu is the friction-coefficient rule's (pack_contact_mu), the
+ * grain-grain coefficient for a pair and the wall's for a wall; the wall stress is the wall
+ * force over twice a face's area. */
+static void
+test_law_table(gsl_rng *rng)
+{
+	struct pack p;
+	struct law_pair lp;
+	const struct contact_law *const *l;
+	double lo[3] = {-1, 0, 2}, hi[3] = {3, 0.5, 4.5};
+	size_t nl = 0;
+
+	for (l = contact_laws; *l; l++)
+		nl++;
+	CHECK(nl == 2 && contact_laws[0] == &contact_law_hertz_mindlin && contact_laws[1] == &contact_law_linear,
+	    "law table: Hertz-Mindlin first (the default), then linear (%zu rows)", nl);
+	CHECK(contact_law_find("hertz-mindlin") == &contact_law_hertz_mindlin && contact_law_find("hertz") ==
+	    &contact_law_hertz_mindlin && contact_law_find("linear") == &contact_law_linear && !contact_law_find("hooke"),
+	    "law table: found by name and by pack key, NULL for another");
+	random_pack(&p, rng, 20, 1e-4, 0.5, 0.02);
+	p.mu = 0.3, p.wall_mu = 0.1;
+	CHECK(contact_law_of_pack(&p) == &contact_law_hertz_mindlin, "law table: a pack without contact-law is Hertz-Mindlin's");
+	pack_set_meta(&p, "contact-law", "linear");
+	CHECK(contact_law_of_pack(&p) == &contact_law_linear, "law table: contact-law linear");
+	pack_set_meta(&p, "contact-law", "hertz");
+	CHECK(contact_law_of_pack(&p) == &contact_law_hertz_mindlin, "law table: contact-law hertz");
+	pack_set_meta(&p, "contact-law", "hooke");
+	CHECK(contact_law_of_pack(&p) == NULL && strstr(msg_geterr(), "hooke"), "law table: an unknown key is an error (%s)",
+	    msg_geterr());
+	for (l = contact_laws; *l; l++) {
+		double Es, Rs;
+
+		(*l)->pair(*l, &p, 3, 7, &lp);
+		hertz_pair_moduli(&p, 3, 7, &Es, &Rs);
+		CHECK(lp.mu == 0.3 && lp.mu == pack_contact_mu(&p, 7) && lp.Es == Es && lp.Rs == Rs,
+		    "%s pair setup: a pair's mu, E*, R*", (*l)->name);
+		(*l)->pair(*l, &p, 3, PACK_WALL(WALL_ZHI), &lp);
+		hertz_pair_moduli(&p, 3, PACK_WALL(WALL_ZHI), &Es, &Rs);
+		CHECK(lp.mu == 0.1 && lp.mu == pack_contact_mu(&p, PACK_WALL(WALL_ZHI)) && lp.Es == Es && lp.Rs == p.r[3],
+		    "%s pair setup: a wall's mu, E*, R* = r_i", (*l)->name);
+	}
+	CHECK(pack_wall_stress(lo, hi, 0, 5) == 5 / (2 * (0.5 * 2.5)) && pack_wall_stress(lo, hi, 1, 5) == 5 / (2 * (2.5 * 4)) &&
+	    pack_wall_stress(lo, hi, 2, 5) == 5 / (2 * (4 * 0.5)), "wall stress: the force over twice a face's area");
+	pack_free(&p);
+}
+
+/* The linear law's spring-dashpot element kernels against the arithmetic that
+ * dem/platedem.c's interaction_force writes out (copied here as it stands), bit for bit on
+ * random states, in the plate engine's units (k_n = 1): the elements' normal forces and
+ * elastic sums, then the tangential spring on force increments, dashpot and cap. */
+static void
+test_linear_elements(gsl_rng *rng)
+{
+	long bad = 0, capped = 0;
+	int trial;
+
+	for (trial = 0; trial < 2000; trial++) {
+		double meff = 0.5 + gsl_rng_uniform(rng), zeta = 0.1 + 0.5 * gsl_rng_uniform(rng), kt_ratio = 0.5;
+		double dt = 1e-2 * (0.5 + gsl_rng_uniform(rng)), mu = 0.6 * gsl_rng_uniform(rng);
+		double n[3], vt[3], h0[3], h1[3], ft0[3], ft1[3], fsum0 = 0, fsum1 = 0, fel0 = 0, fel1 = 0, nn = 0, vn;
+		int M = 1 + (int)gsl_rng_uniform_int(rng, 4), k, a;
+		double gn0 = 2 * zeta * sqrt(meff / M), gn1 = law_damping(zeta, meff / M, 1.0), Kt = M * kt_ratio;
+
+		for (a = 0; a < 3; a++)
+			n[a] = gsl_ran_gaussian(rng, 1), nn += n[a] * n[a];
+		for (a = 0; a < 3; a++)
+			n[a] /= sqrt(nn);
+		for (k = 0; k < M; k++) {
+			double h = 0.02 * (gsl_rng_uniform(rng) - 0.2), f0, f1, e1;
+
+			vn = 0.05 * gsl_ran_gaussian(rng, 1);
+			/* platedem.c */
+			f0 = (h > 0 ? h : 0) - gn0 * vn;
+			if (f0 < 0)
+				f0 = 0;
+			fel0 += h > 0 ? h : 0, fsum0 += f0;
+			/* linear.h */
+			f1 = linear_element_force(1.0, gn1, h, vn, &e1);
+			fel1 += e1, fsum1 += f1;
+		}
+		vn = 0;
+		for (a = 0; a < 3; a++) {
+			vt[a] = 0.005 * gsl_ran_gaussian(rng, 1);
+			h0[a] = 0.002 * gsl_ran_gaussian(rng, 1);
+			vn += vt[a] * n[a];
+		}
+		for (a = 0; a < 3; a++)
+			vt[a] -= vn * n[a], h1[a] = h0[a];
+		{	/* platedem.c */
+			double tn = mu * fsum0, kv[3] = {Kt * vt[0], Kt * vt[1], Kt * vt[2]}, gt, fm;
+
+			law_dem_spring(h0, n, kv, dt, 1.0, tn, ft0);
+			gt = 2 * zeta * sqrt(meff * Kt);
+			for (a = 0; a < 3; a++)
+				ft0[a] -= gt * vt[a];
+			fm = sqrt(ft0[0] * ft0[0] + ft0[1] * ft0[1] + ft0[2] * ft0[2]);
+			if (fm > tn && fm > 0) {
+				capped++;
+				for (a = 0; a < 3; a++)
+					ft0[a] *= tn / fm;
+			}
+		}
+		linear_tangential_force(h1, n, vt, dt, Kt, law_damping(zeta, meff, Kt), law_coulomb_limit(mu, fsum1), ft1);
+		if (fsum0 != fsum1 || fel0 != fel1 || memcmp(ft0, ft1, sizeof ft0) || memcmp(h0, h1, sizeof h0))
+			bad++;
+	}
+	CHECK(bad == 0 && capped > 100 && capped < 1900, "linear.h: the element and tangential kernels give platedem's bytes (%ld of 2000 "
+	    "differ; %ld capped)", bad, capped);
 }
 
 /* The steppable minimiser: the loop of qs_minimize, to the bit; and moving grains between
@@ -606,6 +719,8 @@ main(void)
 	test_find_in(rng);
 	test_skin_auto(rng);
 	test_hertz_coefficients(rng);
+	test_law_table(rng);
+	test_linear_elements(rng);
 	gsl_rng_free(rng);
 	return unit_summary();
 }
