@@ -36,7 +36,7 @@ pdem_free(struct pdem *d)
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
 	free(d->pcache), free(d->q0), free(d->turn), free(d->gen), free(d->wl);
-	free(d->prec), free(d->colk), free(d->colk_first), free(d->wrec), free(d->sums), free(d->ptouch), free(d->wtouch);
+	free(d->prec), free(d->colk), free(d->colk_first), free(d->sums), free(d->ptouch), free(d->frow);
 	contact_enum_free(&d->ce);
 	memset(d, 0, sizeof *d);
 }
@@ -86,9 +86,9 @@ pdem_alloc(struct pdem *d, size_t n)
 	d->turn = calloc(n, sizeof *d->turn), d->q0 = calloc(4 * n, sizeof *d->q0);
 	d->gen = calloc(n, sizeof *d->gen);
 	d->wl = calloc(3 * n, sizeof *d->wl), d->colk_first = calloc(n + 1, sizeof *d->colk_first);
-	d->wrec = malloc(NWALLS * n * sizeof *d->wrec), d->wtouch = calloc(n, 1);
+	d->frow = calloc(6 * n, sizeof *d->frow);
 	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
-	    !d->rb || !d->turn || !d->q0 || !d->gen || !d->wl || !d->colk_first || !d->wrec || !d->wtouch) {
+	    !d->rb || !d->turn || !d->q0 || !d->gen || !d->wl || !d->colk_first || !d->frow) {
 		msg_seterr("out of memory for %zu grains", n);
 		return -1;
 	}
@@ -164,7 +164,7 @@ point_velocity(const struct pdem *d, size_t i, const double *xi, const double p[
 }
 
 /* Force F at point p of a grain centred at xi: into the force F and torque T it gets. */
-static void
+static inline void
 apply(const double *xi, const double p[3], const double Fk[3], double F[3], double T[3])
 {
 	double arm[3] = {p[0] - xi[0], p[1] - xi[1], p[2] - xi[2]}, c[3];
@@ -178,20 +178,20 @@ apply(const double *xi, const double p[3], const double Fk[3], double F[3], doub
 }
 
 /* The forces of interaction it between grain i and grain j (j < 0: a wall), with j's centre
- * xj (its nearest image): into rec (the force on i, j getting its opposite, and the torques
- * on both) and the block's sums; hist is the tangential spring. */
+ * xj (its nearest image): the force F and torque Ti on i, and for a pair into rec what j gets
+ * (the opposite force, rec->F = F, and the torque about its centre); the block's sums; hist
+ * is the tangential spring. */
 static void
 interaction_force(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it,
-    double *hist, struct pdem_rec *rec, struct pdem_sums *sums)
+    double *hist, double F[3], double Ti[3], struct pdem_rec *rec, struct pdem_sums *sums)
 {
 	const double *n = it->n, *xi = d->x + 3 * i;
 	int wall = PACK_IS_WALL(j), M = it->m, k, a, gi, gj;
 	double meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
 	double gn = 2 * d->zeta * sqrt(meff / M), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
 	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn, c[3];
-	double *F = rec->F, *Ti = rec->Ti;
 
-	memset(rec, 0, sizeof *rec);
+	F[0] = F[1] = F[2] = Ti[0] = Ti[1] = Ti[2] = 0;
 	if (wall)	/* a moving wall's velocity (0 for the walls of a compaction) */
 		memcpy(vj, d->wallv[PACK_WALL_INDEX(j)], sizeof vj);
 
@@ -254,8 +254,10 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 		double br[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
 
 		vec3_cross(br, F, c);
-		for (a = 0; a < 3; a++)
+		for (a = 0; a < 3; a++) {
+			rec->F[a] = F[a];
 			rec->Tj[a] = -(Ti[a] + c[a]);
+		}
 	}
 	gi = d->glue ? d->glue[i] : 0;
 	gj = d->glue && !wall ? d->glue[j] : 0;
@@ -335,23 +337,26 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 	return m;
 }
 
-/* One walk of a block of rows: its sums. */
+/* One walk of a block of rows: its sums, and the force and torque the row's grain has got
+ * so far from its own pairs and walls. */
 struct force_walk {
 	struct pdem *d;
 	struct pdem_sums s;
+	double F[3], T[3];
 };
 
-/* Each interaction of the walk into its record (a pair's by its list entry, a wall's by
- * grain and wall), flagged in ptouch or wtouch (cleared for the row before its walk). */
+/* Each interaction of the row into the row's sums, and a pair's share for j into its record
+ * (by list entry), flagged in ptouch (cleared for the row before its walk). */
 static int
 on_contact(const struct contact *c, void *vw)
 {
 	struct force_walk *fw = vw;
 	struct pdem *d = fw->d;
 	struct plate_interaction it;
-	struct pdem_rec *rec;
-	double xj[3];
-	int wall = PACK_IS_WALL(c->j), m;
+	struct pdem_rec jrec;
+	double xj[3], F[3], T[3];
+	int wall = PACK_IS_WALL(c->j), m, a;
+	size_t k = 0;
 
 	if (c->h <= 0)
 		return 0;	/* bounding spheres apart (their spring zeroed by the enumerator) */
@@ -365,16 +370,13 @@ on_contact(const struct contact *c, void *vw)
 		c->hist[0] = c->hist[1] = c->hist[2] = 0;
 		return 0;
 	}
-	if (wall) {
-		int w = PACK_WALL_INDEX(c->j);
-		rec = &d->wrec[NWALLS * c->i + w];
-		d->wtouch[c->i] |= (unsigned char)(1u << w);
-	} else {
-		size_t k = contact_pair_index(&d->ce, c);
-		rec = &d->prec[k];
+	if (!wall)
+		k = contact_pair_index(&d->ce, c);
+	interaction_force(d, c->i, c->j, wall ? NULL : xj, &it, c->hist, F, T, wall ? &jrec : &d->prec[k], &fw->s);
+	if (!wall)
 		d->ptouch[k] = 1;
-	}
-	interaction_force(d, c->i, c->j, wall ? NULL : xj, &it, c->hist, rec, &fw->s);
+	for (a = 0; a < 3; a++)
+		fw->F[a] += F[a], fw->T[a] += T[a];
 	return 0;
 }
 
@@ -537,8 +539,9 @@ pdem_forces(struct pdem *d)
 			memset(&fw, 0, sizeof fw);
 			fw.d = d;
 			for (i = i0; i < i1; i++) {
-				d->wtouch[i] = 0;
 				memset(d->ptouch + e->nl.first[i], 0, e->nl.first[i + 1] - e->nl.first[i]);
+				memset(fw.F, 0, sizeof fw.F);
+				memset(fw.T, 0, sizeof fw.T);
 				/* the pairs whose bounding spheres are apart are not visited (the enumerator
 				 * zeroes their springs), nor the walls beyond a grain's bounding sphere */
 				if (contact_foreach_row(e, d->x, i, CONTACT_TOUCHING, e->any_periodic, 3, on_contact, on_contact,
@@ -546,13 +549,15 @@ pdem_forces(struct pdem *d)
 #pragma omp atomic write
 					err = 1;
 				}
+				memcpy(d->frow + 6 * i, fw.F, sizeof fw.F);
+				memcpy(d->frow + 6 * i + 3, fw.T, sizeof fw.T);
 			}
 			d->sums[bb] = fw.s;
 		}
 		/* the gather (the implicit barrier above: every record is written) */
 #pragma omp for schedule(static)
 		for (bb = 0; bb < (long)n; bb++) {
-			size_t i = (size_t)bb, k, q;
+			size_t i = (size_t)bb, q;
 			double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
 
 			for (q = d->colk_first[i]; q < d->colk_first[i + 1]; q++)
@@ -561,18 +566,8 @@ pdem_forces(struct pdem *d)
 					for (a = 0; a < 3; a++)
 						F[a] -= r->F[a], T[a] += r->Tj[a];
 				}
-			for (k = e->nl.first[i]; k < e->nl.first[i + 1]; k++)
-				if (d->ptouch[k]) {
-					const struct pdem_rec *r = &d->prec[k];
-					for (a = 0; a < 3; a++)
-						F[a] += r->F[a], T[a] += r->Ti[a];
-				}
-			for (w = 0; w < NWALLS; w++)
-				if (d->wtouch[i] & (1u << w)) {
-					const struct pdem_rec *r = &d->wrec[NWALLS * i + w];
-					for (a = 0; a < 3; a++)
-						F[a] += r->F[a], T[a] += r->Ti[a];
-				}
+			for (a = 0; a < 3; a++)
+				F[a] += d->frow[6 * i + a], T[a] += d->frow[6 * i + 3 + a];
 			memcpy(d->f + 3 * i, F, sizeof F);
 			memcpy(d->t + 3 * i, T, sizeof T);
 		}

@@ -43,10 +43,10 @@ struct pdem_params {
 	double dt_factor;	/* dt = dt_factor sqrt(m_min / k_n) */
 };
 
-/* One interaction's forces in a pass of pdem_forces: the force on i (j gets its opposite) and
- * the torques on i and j about their centres. */
+/* A pair's share for its grain j in a pass of pdem_forces: the force on i (j gets its
+ * opposite) and the torque on j about its centre. */
 struct pdem_rec {
-	double F[3], Ti[3], Tj[3];
+	double F[3], Tj[3];
 };
 
 /* A pair's narrow-phase cache: the word of plate_interaction_cached, and the branch vector,
@@ -112,12 +112,13 @@ struct pdem {
 	double cache_margin;
 	double *q0, *turn;
 	unsigned *gen;
-	/* pdem_forces' records (pairs by list entry, walls by grain: NWALLS n) and which hold
-	 * this pass's interactions (ptouch per list entry, wtouch per grain a bit per wall), the
-	 * columns' entries for the gather, the block sums, the lab-frame angular velocities (3n),
-	 * and whether the passes run on threads */
-	struct pdem_rec *prec, *wrec;
-	unsigned char *ptouch, *wtouch;
+	/* pdem_forces' records: a pair's share for j by list entry and whether it holds this
+	 * pass's interaction (ptouch), each grain's force and torque from its own row (frow,
+	 * 6n), the columns' entries for the gather, the block sums, the lab-frame angular
+	 * velocities (3n), and whether the passes run on threads */
+	struct pdem_rec *prec;
+	unsigned char *ptouch;
+	double *frow;
 	size_t *colk, *colk_first, rcap;
 	long rec_builds;
 	struct pdem_sums *sums;
