@@ -1,6 +1,7 @@
 /* platedem: explicit DEM of spheroplates (see platedem.h). */
 #include "dem/platedem.h"
 #include "contact/law.h"
+#include "contact/linear.h"
 #include "dem/servo.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
@@ -187,9 +188,11 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 {
 	const double *n = it->n, *xi = d->x + 3 * i;
 	int wall = PACK_IS_WALL(j), M = it->m, k, a, gi, gj;
-	double meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
-	double gn = 2 * d->zeta * sqrt(meff / M), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
-	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], Kt = M * d->kt_ratio, tn, c[3];
+	double meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]), Kt = M * d->kt_ratio;
+	/* the linear law's element forces (contact/linear.h), k_n = 1 in these units; the
+	 * interaction's damping ratio zeta whether it has one element or M (gn at m* / M) */
+	double gn = law_damping(d->zeta, meff / M, 1.0), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
+	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], c[3];
 
 	F[0] = F[1] = F[2] = Ti[0] = Ti[1] = Ti[2] = 0;
 	if (wall)	/* a moving wall's velocity (0 for the walls of a compaction) */
@@ -197,17 +200,14 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 
 	for (k = 0; k < M; k++) {
 		const struct plate_element *e = &it->e[k];
-		double fk, h = e->h > 0 ? e->h : 0;
+		double fk, fe, h = e->h > 0 ? e->h : 0;
 
 		point_velocity(d, i, xi, e->p, vi);
 		if (!wall)
 			point_velocity(d, (size_t)j, xj, e->p, vj);
 		vn = (vi[0] - vj[0]) * n[0] + (vi[1] - vj[1]) * n[1] + (vi[2] - vj[2]) * n[2];
-		/* k_n = 1 in these units; dh/dt = -vn */
-		fk = h - gn * vn;
-		if (fk < 0)
-			fk = 0;
-		fel += h, fsum += fk;
+		fk = linear_element_force(1.0, gn, e->h, vn, &fe);
+		fel += fe, fsum += fk;
 		for (a = 0; a < 3; a++) {
 			Fk[a] = fk * n[a];
 			pc[a] += h * e->p[a];
@@ -228,27 +228,14 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 	vn = vec3_dot(vt, n);
 	for (a = 0; a < 3; a++)
 		vt[a] -= vn * n[a];
-	tn = (wall ? d->wall_mu : d->mu) * fsum;
-	/* the spring keeps its force, not its displacement (hist = minus the force on i): when an
-	 * element comes or goes, M and so the stiffness change, and a stored displacement would
-	 * make the force jump by k_t times it at every touch of a rocking corner, a pump that
-	 * kept 27 plates from rest (unbalanced 1e-2 for 2e6 steps); increments of force do not */
-	{
-		double kv[3] = {Kt * vt[0], Kt * vt[1], Kt * vt[2]};
-
-		law_dem_spring(hist, n, kv, d->dt, 1.0, tn, ft);
-	}
-	/* P eq. 4's tangential dashpot, at the normal's damping ratio, within the Coulomb cap */
-	{
-		double gt = 2 * d->zeta * sqrt(meff * Kt), fm;
-
-		for (a = 0; a < 3; a++)
-			ft[a] -= gt * vt[a];
-		fm = vec3_norm(ft);
-		if (fm > tn && fm > 0)
-			for (a = 0; a < 3; a++)
-				ft[a] *= tn / fm;
-	}
+	/* one tangential force at the overlap-weighted point, P eqs. 3-4: a spring that keeps its
+	 * force, not its displacement (hist = minus the force on i; when an element comes or goes,
+	 * M and so the stiffness change, and a stored displacement would make the force jump by
+	 * k_t times it at every touch of a rocking corner, a pump that kept 27 plates from rest,
+	 * unbalanced 1e-2 for 2e6 steps; increments of force do not), and P eq. 4's dashpot at the
+	 * normal's damping ratio, within the Coulomb cap */
+	linear_tangential_force(hist, n, vt, d->dt, Kt, law_damping(d->zeta, meff, Kt),
+	    law_coulomb_limit(wall ? d->wall_mu : d->mu, fsum), ft);
 	apply(xi, pc, ft, F, Ti);
 	if (!wall) {	/* on j: -F at the same points, the torque about xj */
 		double br[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
