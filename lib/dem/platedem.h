@@ -25,6 +25,13 @@
  * (quat_step_body).  Optionally Cundall's local damping (P uses none; packgen uses it to
  * reach rest sooner: it removes kinetic energy, not the equilibrium).
  *
+ * The narrow phase is kept between steps: per listed pair, the features (vertex-square, edge
+ * pairs) that can be within reach while the pair's cores move against each other by less
+ * than cache_margin (contact/plate.h's plate_interaction_cached; the same elements to the
+ * bit as computing them all).  The force pass runs on the library's threads (base/par.h):
+ * blocks of rows compute their interactions, each grain gathers its column's in a fixed
+ * order, so the bytes are the same for any thread count.
+ *
  * Units inside: length r0 (the mean spheroradius), mass rho0 r0^3, stiffness k_n, so time
  * sqrt(rho0 r0^3 / k_n) and stress k_n / r0; the pack (SI) is converted in and out. */
 #ifndef QUSGM_PLATEDEM_H
