@@ -309,10 +309,12 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 		b.x[q] = a.x[q] - c->dx[q];
 	}
 	memcpy(xj, b.x, sizeof b.x);
-	memcpy(a.R, d->R + 9 * i, sizeof a.R);
-	memcpy(b.R, d->R + 9 * j, sizeof b.R);
 	a.half = d->half[i], a.r = d->r[i];
 	b.half = d->half[j], b.r = d->r[j];
+	if (a.half > 0 || b.half > 0) {	/* two spheres need no frame */
+		memcpy(a.R, d->R + 9 * i, sizeof a.R);
+		memcpy(b.R, d->R + 9 * j, sizeof b.R);
+	}
 	m = plate_interaction_cached(&a, &b, d->cache_margin, &pc->word, build, it);
 	if (build) {
 		memcpy(pc->dx, c->dx, sizeof pc->dx);
