@@ -56,6 +56,7 @@ static const struct cli_tool tool = {
 };
 
 struct out_ctx {
+	const struct pack *p;	/* for the header, printed with the first row */
 	const struct load_path *path;
 	long rows;
 	size_t grains;
@@ -63,11 +64,15 @@ struct out_ctx {
 	long seg_inc;
 };
 
+static void print_header(const struct pack *p, const struct load_path *path);
+
 static int
 on_row(int seg, const struct load_row *row, void *vctx)
 {
 	struct out_ctx *c = vctx;
 
+	if (c->rows == 0)	/* only now: a test that cannot start (its stop passed) writes nothing */
+		print_header(c->p, c->path);
 	/* sig_lat: the lateral axes of the row's own segment (the first one for the start row) */
 	load_table_row(stdout, row, c->path->seg[seg < 0 ? 0 : seg].axis, 0, 0, 0);
 	fflush(stdout);	/* a curve can be followed (tail -f, a pipe) while it grows */
@@ -191,7 +196,7 @@ run_test(struct pack *p, const struct load_path *path, const char *in, struct ou
 	if (loader_open(&L, p, &o.lp))
 		msg_die_err(EXIT_DATA);
 	continue_increments(&L, p, in);
-	print_header(p, path);
+	oc->p = p;
 	r = path_run(&L, path, &o.lim, on_row, oc);
 	cli_progress_end();
 	snprintf(buf, sizeof buf, "%ld", L.inc);
@@ -224,7 +229,7 @@ main(int argc, char **argv)
 {
 	struct cli_state st;
 	struct load_path path;
-	struct out_ctx oc = {&path, 0, 0, -1, 0};
+	struct out_ctx oc = {NULL, &path, 0, 0, -1, 0};
 	struct pack p;
 	const char *in;
 	size_t stale;

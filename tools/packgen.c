@@ -157,10 +157,12 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	if (material_lookup(o.material_name, &o.mat))
 		cli_usage_error("--material: %s", msg_geterr());
 	if (sscanf(o.aspect_spec, "%lf,%lf,%lf%15s", &o.aspect[0], &o.aspect[1], &o.aspect[2], extra) != 3 ||
-	    !(o.aspect[0] > 0 && o.aspect[1] > 0 && o.aspect[2] > 0) || !isfinite(o.aspect[0] * o.aspect[1] * o.aspect[2]))
+	    !(o.aspect[0] > 0 && o.aspect[1] > 0 && o.aspect[2] > 0) || !isnormal(o.aspect[0] * o.aspect[1] * o.aspect[2]))
 		cli_usage_error("--aspect: expected three positive numbers AX,AY,AZ, got '%s'", o.aspect_spec);
 	if (o.wall_E < 0)
 		cli_usage_error("--wall-E: must be positive (or 0 for 100 x E)");
+	else if (o.wall_E != 0 && !(o.wall_E >= PACK_E_MIN && o.wall_E <= PACK_WALL_E_MAX))
+		cli_usage_error("--wall-E: %g Pa is outside [%g, %g] Pa (or 0 for 100 x E)", o.wall_E, PACK_E_MIN, PACK_WALL_E_MAX);
 	if (!(o.wall_nu > -1 && o.wall_nu < 0.5))
 		cli_usage_error("--wall-nu: must be in (-1, 0.5)");
 	if (strcmp(o.shape_name, "sphere") == 0)
@@ -255,6 +257,29 @@ draw_grains(struct pack *p, gsl_rng *rng)
 		material_sample(&o.mat, rng, &E, &nu);
 		pack_add_grain(p, k + 1, x, r, E, nu, o.density);
 	}
+}
+
+/* The box the sphere DEM starts from (dem_loose_pack: the grains' volume over --phi0, in the
+ * proportions of --aspect) must hold the largest grain across every axis; --aspect 1e300,1,1
+ * made it 1e-100 m thin and ended in "the time step is too long" with a stress of -nan. */
+static void
+check_aspect(const struct pack *p)
+{
+	double vol = 0, rmax = 0, L0;
+	size_t i;
+	int a;
+
+	if (o.plates)	/* the plates' grid does not use --aspect */
+		return;
+	for (i = 0; i < p->n; i++) {
+		vol += 4.0 / 3.0 * M_PI * p->r[i] * p->r[i] * p->r[i];
+		rmax = fmax(rmax, p->r[i]);
+	}
+	L0 = cbrt(vol / o.phi0 / (o.aspect[0] * o.aspect[1] * o.aspect[2]));
+	for (a = 0; a < 3; a++)
+		if (!(L0 * o.aspect[a] >= 2 * rmax))
+			msg_die(EXIT_USAGE, "--aspect %s: the starting box would be %g m along %c, less than the largest grain's diameter %g m: each side must hold it (fewer extreme ratios, more grains or a lower --phi0)",
+			    o.aspect_spec, L0 * o.aspect[a], 'x' + a, 2 * rmax);
 }
 
 /* --hydrate-volume: the smallest grains become hydrate (pack/hydrate.h), before the DEM
@@ -362,6 +387,7 @@ main(int argc, char **argv)
 	rng = gsl_rng_alloc(gsl_rng_mt19937);
 	gsl_rng_set(rng, (unsigned long)o.seed);
 	draw_grains(&p, rng);
+	check_aspect(&p);
 	tag_hydrate(&p, rng);
 	if (o.plates)
 		compact_plates(&p, rng);

@@ -75,17 +75,19 @@ check_options(const struct cli_state *st, double box[6], struct material *m, dou
 		    box_arg);
 	if (seed < 0)
 		cli_usage_error("--seed: %ld is negative", seed);
-	if (!(friction >= 0))
-		cli_usage_error("--friction: %g is negative", friction);
+	if (!(friction >= 0 && friction <= PACK_MU_MAX))
+		cli_usage_error("--friction: %g is outside [0, %g] (the range of every tool's --mu)", friction, PACK_MU_MAX);
 	if (!(wall_nu > -1 && wall_nu < 0.5))
 		cli_usage_error("--wall-nu: %g is outside (-1, 0.5)", wall_nu);
-	if (wall_friction_arg && (num_parse(wall_friction_arg, wall_mu) || !(*wall_mu >= 0)))
-		cli_usage_error("--wall-friction: '%s' is not a number >= 0", wall_friction_arg);
+	if (wall_friction_arg && (num_parse(wall_friction_arg, wall_mu) || !(*wall_mu >= 0 && *wall_mu <= PACK_MU_MAX)))
+		cli_usage_error("--wall-friction: '%s' is not a number in [0, %g]", wall_friction_arg, PACK_MU_MAX);
 	mat_ok = material_lookup(material_name, m) == 0;
 	if (!mat_ok && !strchr(material_name, '/') && !strstr(material_name, ".mat"))
 		cli_usage_error("--material: %s", msg_geterr());
 	if (wall_E_arg && (num_parse(wall_E_arg, wall_E) || !(*wall_E > 0)))
 		cli_usage_error("--wall-E: '%s' is not a positive number", wall_E_arg);
+	else if (wall_E_arg && !(*wall_E >= PACK_E_MIN && *wall_E <= PACK_WALL_E_MAX))
+		cli_usage_error("--wall-E: %s Pa is outside [%g, %g] Pa", wall_E_arg, PACK_E_MIN, PACK_WALL_E_MAX);
 	{	/* before any work: -o writable, and neither the input nor the material file */
 		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {st->input, "the input", 0},
 		    {material_is_file(material_name) ? material_name : NULL, "the --material file", 0}};

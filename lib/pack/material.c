@@ -1,5 +1,6 @@
 /* material: presets, preset files and sampling (see material.h). */
 #include "pack/material.h"
+#include "pack/packio.h"
 #include "base/lines.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
@@ -20,16 +21,24 @@ const char *const material_preset_names = "glass, quartz, hydrate";
 /* The blanks of a preset file: what sscanf's %s stopped at, which the reader used to use. */
 #define BLANKS " \t\n\v\f\r"
 
-/* A "key value" line into m; *seen gets bit 1, 2, 4 for E, nu, rho. */
+/* A "key value" line into m; *seen gets bit 1, 2, 4, 8 for E, nu, rho, spread.  A key given
+ * twice is refused (the second E silently replaced the first); E is in the range a pack
+ * takes (packio.h), so that a file never makes grains no reader would read back. */
 static int
 preset_line(struct lines *in, char *s, struct material *m, int *seen)
 {
+	static const char *const keys[] = {"E", "nu", "rho", "spread"};
 	char *tok[2];
 	double v;
-	int n = lines_split(s, BLANKS, tok, 2);
+	int n = lines_split(s, BLANKS, tok, 2), k;
 
 	if (n != 2 || num_parse(tok[1], &v))
 		return lines_error(in, "expected 'key value' with a finite number");
+	for (k = 0; k < 4; k++)
+		if (strcmp(tok[0], keys[k]) == 0 && (*seen & 1 << k))
+			return lines_error(in, "%s given twice (each key once)", tok[0]);
+	if (strcmp(tok[0], "E") == 0 && v > 0 && !(v >= PACK_E_MIN && v <= PACK_E_MAX))
+		return lines_error(in, "E %s Pa is outside [%g, %g] Pa", tok[1], PACK_E_MIN, PACK_E_MAX);
 	if (strcmp(tok[0], "E") == 0 && v > 0)
 		m->E = v, *seen |= 1;
 	else if (strcmp(tok[0], "nu") == 0 && v > -1 && v < 0.5)
@@ -37,7 +46,7 @@ preset_line(struct lines *in, char *s, struct material *m, int *seen)
 	else if (strcmp(tok[0], "rho") == 0 && v > 0)
 		m->rho = v, *seen |= 4;
 	else if (strcmp(tok[0], "spread") == 0 && v >= 0 && v < 1)
-		m->spread = v;
+		m->spread = v, *seen |= 8;
 	else
 		return lines_error(in, "unknown key or value out of range: %s %s", tok[0], tok[1]);
 	return 0;
@@ -66,7 +75,7 @@ read_preset_file(const char *path, struct material *m)
 	lines_close(in);
 	if (r < 0)
 		return -1;
-	if (seen != 7) {
+	if ((seen & 7) != 7) {
 		msg_seterr("%s: a material file needs E, nu and rho", path);
 		return -1;
 	}
@@ -98,9 +107,9 @@ material_lookup(const char *name, struct material *m)
 void
 material_sample(const struct material *m, gsl_rng *rng, double *E, double *nu)
 {
-	do
+	do	/* in the range a pack takes, which for any real material is E > 0 */
 		*E = m->E + gsl_ran_gaussian(rng, m->spread * m->E);
-	while (!(*E > 0));
+	while (!(*E >= PACK_E_MIN && *E <= PACK_E_MAX));
 	do
 		*nu = m->nu + gsl_ran_gaussian(rng, m->spread * fabs(m->nu));
 	while (!(*nu > -1 && *nu < 0.5));

@@ -22,8 +22,9 @@ int material_lookup(const char *name, struct material *m);
 /* Whether material_lookup reads name as a file (it has a '/' or ".mat" in it; a preset
  * name otherwise): for a tool's check that no output replaces it. */
 int material_is_file(const char *name);
-/* Draw E and nu from normal distributions truncated to E > 0 and -1 < nu < 0.5 (redrawn,
- * so the distribution keeps its shape away from the bounds). */
+/* Draw E and nu from normal distributions truncated to PACK_E_MIN <= E <= PACK_E_MAX (the
+ * range a pack takes, pack/packio.h: for a real material simply E > 0) and -1 < nu < 0.5
+ * (redrawn, so the distribution keeps its shape away from the bounds). */
 void material_sample(const struct material *m, gsl_rng *rng, double *E, double *nu);
 /* Names of the built-in presets, for --help. */
 extern const char *const material_preset_names;

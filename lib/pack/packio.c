@@ -155,6 +155,9 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 		snprintf(why, len, "grain %ld: radius %g is not positive", p->id[i], p->r[i]);
 	else if (!(p->E[i] > 0))
 		snprintf(why, len, "grain %ld: Young's modulus %g is not positive", p->id[i], p->E[i]);
+	else if (!(p->E[i] >= PACK_E_MIN && p->E[i] <= PACK_E_MAX))
+		snprintf(why, len, "grain %ld: Young's modulus %g Pa is outside [%g, %g] Pa", p->id[i], p->E[i], PACK_E_MIN,
+		    PACK_E_MAX);
 	else if (!(p->nu[i] > -1 && p->nu[i] < 0.5))
 		snprintf(why, len, "grain %ld: Poisson ratio %g is outside (-1, 0.5)", p->id[i], p->nu[i]);
 	else if (!(p->rho[i] > 0))
@@ -174,6 +177,15 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 			if (x[a] < p->box[a] || x[a] > p->box[a + 3]) {
 				snprintf(why, len, "grain %ld: centre %c = %g is outside the box [%g, %g]",
 				    p->id[i], 'x' + a, x[a], p->box[a], p->box[a + 3]);
+				return why;
+			}
+		/* no grain larger than the box: its radius at most the box length along each axis,
+		 * so that it presses into the two walls of an axis by at most R together (a grain
+		 * pressed between them has 2 r a little above the length) */
+		for (a = 0; a < 3; a++)
+			if (p->r[i] > p->box[a + 3] - p->box[a]) {
+				snprintf(why, len, "grain %ld: radius %g m is larger than the box along %c (%g m): the radius must be at most the box length",
+				    p->id[i], p->r[i], 'x' + a, p->box[a + 3] - p->box[a]);
 				return why;
 			}
 		return NULL;
@@ -454,10 +466,15 @@ kw_walls(struct header *h, char **tok, int n)
 		return -1;
 	if (!(v[0] > 0))
 		return rd_error(h->rd, "walls: Young's modulus %g is not positive", v[0]);
+	if (!(v[0] >= PACK_E_MIN && v[0] <= PACK_WALL_E_MAX))
+		return rd_error(h->rd, "walls: Young's modulus %g Pa is outside [%g, %g] Pa", v[0], PACK_E_MIN, PACK_WALL_E_MAX);
 	if (!(v[1] > -1 && v[1] < 0.5))
 		return rd_error(h->rd, "walls: Poisson ratio %g is outside (-1, 0.5)", v[1]);
 	if (!(v[2] >= 0))
 		return rd_error(h->rd, "walls: friction coefficient %g is negative", v[2]);
+	if (!(v[2] <= PACK_MU_MAX))
+		return rd_error(h->rd, "walls: friction coefficient %g is outside [0, %g] (the range of the tools' --mu)", v[2],
+		    PACK_MU_MAX);
 	h->p->wall_E = v[0];
 	h->p->wall_nu = v[1];
 	h->p->wall_mu = v[2];
@@ -475,6 +492,9 @@ kw_friction(struct header *h, char **tok, int n)
 		return -1;
 	if (!(mu >= 0))
 		return rd_error(h->rd, "friction: coefficient %g is negative", mu);
+	if (!(mu <= PACK_MU_MAX))
+		return rd_error(h->rd, "friction: coefficient %g is outside [0, %g] (the range of the tools' --mu)", mu,
+		    PACK_MU_MAX);
 	h->p->mu = mu;
 	return 0;
 }
@@ -813,8 +833,31 @@ parse_end(struct pack_reader *rd, const struct pack *p, const size_t *sorted, co
 	return 0;
 }
 
+/* The Hertz force at an overlap equal to the contact's radius R*, (4/3) E* R*^2: the most a
+ * contact line may hold (P0; |Q0| and |M0| / R* up to PACK_MU_MAX times it), far past the
+ * small strains of Hertz's law.  Grain i against grain j >= 0, or against wall j. */
 static int
-read_contact_line(struct pack_reader *rd, struct pack *p, const size_t *sorted, char *s)
+contact_force_bound(struct pack_reader *rd, const struct pack *p, size_t i, long j, const double v[5])
+{
+	double Ej = PACK_IS_WALL(j) ? p->wall_E : p->E[j], nuj = PACK_IS_WALL(j) ? p->wall_nu : p->nu[j];
+	double Rs = PACK_IS_WALL(j) ? p->r[i] : p->r[i] * p->r[j] / (p->r[i] + p->r[j]);
+	double Es = 1 / ((1 - p->nu[i] * p->nu[i]) / p->E[i] + (1 - nuj * nuj) / Ej);
+	double Pmax = 4.0 / 3.0 * Es * Rs * Rs, q = hypot(hypot(v[1], v[2]), v[3]);
+
+	if (v[0] > Pmax)
+		return rd_error(rd, "contact: normal force P0 = %g N is outside [0, %g] N, the Hertz force at an overlap as large as the contact's radius R* = %g m",
+		    v[0], Pmax, Rs);
+	if (q > PACK_MU_MAX * Pmax)
+		return rd_error(rd, "contact: tangential force |Q0| = %g N is outside [0, %g] N (%g times the Hertz force at an overlap of R*)",
+		    q, PACK_MU_MAX * Pmax, PACK_MU_MAX);
+	if (fabs(v[4]) > PACK_MU_MAX * Pmax * Rs)
+		return rd_error(rd, "contact: couple |M0| = %g N m is outside [0, %g] N m (%g times the Hertz force at an overlap of R*, times R*)",
+		    fabs(v[4]), PACK_MU_MAX * Pmax * Rs, PACK_MU_MAX);
+	return 0;
+}
+
+static int
+read_contact_line(struct pack_reader *rd, struct pack *p, const size_t *sorted, char *s, int hertz)
 {
 	char *tok[MAXTOK];
 	struct pack_contact c;
@@ -832,6 +875,8 @@ read_contact_line(struct pack_reader *rd, struct pack *p, const size_t *sorted, 
 		return -1;
 	if (v[0] < 0)
 		return rd_error(rd, "contact: normal force P0 = %g is negative", v[0]);
+	if (hertz && contact_force_bound(rd, p, (size_t)i, j, v))
+		return -1;
 	c.i = (size_t)i;
 	c.j = j;
 	c.P0 = v[0];
@@ -848,6 +893,8 @@ read_contacts(const struct header *h, const size_t *sorted)
 	struct pack_reader *rd = h->rd;
 	long k, first = lines_lineno(rd->in) + 1;
 	size_t dup;
+	const char *law = pack_get_meta(h->p, "contact-law");
+	int hertz = !law || strcmp(law, "linear") != 0;	/* the plate engine's law is not held to Hertz's bound */
 	char *s;
 
 	for (k = 0; k < h->nco; k++) {
@@ -858,7 +905,7 @@ read_contacts(const struct header *h, const size_t *sorted)
 		if (r == 0)
 			return rd_error_at(rd, line_after_last(rd),
 			    "unexpected end of input: %ld contacts declared, %ld found", h->nco, k);
-		if (read_contact_line(rd, h->p, sorted, s))
+		if (read_contact_line(rd, h->p, sorted, s, hertz))
 			return -1;
 	}
 	dup = find_duplicate_contact(h->p);
@@ -1250,8 +1297,10 @@ pack_validate(const struct pack *p)
 			msg_seterr("box: upper bound not above lower bound on axis %c", (int)('x' + k));
 			return -1;
 		}
-	if (!(p->wall_E > 0) || !(p->wall_nu > -1 && p->wall_nu < 0.5) || !(p->wall_mu >= 0) || !(p->mu >= 0)) {
-		msg_seterr("walls or friction out of range");
+	if (!(p->wall_E >= PACK_E_MIN && p->wall_E <= PACK_WALL_E_MAX) || !(p->wall_nu > -1 && p->wall_nu < 0.5) ||
+	    !(p->wall_mu >= 0 && p->wall_mu <= PACK_MU_MAX) || !(p->mu >= 0 && p->mu <= PACK_MU_MAX)) {
+		msg_seterr("walls or friction out of range (walls E in [%g, %g] Pa, nu in (-1, 0.5), friction coefficients in [0, %g])",
+		    PACK_E_MIN, PACK_WALL_E_MAX, PACK_MU_MAX);
 		return -1;
 	}
 	if (p->n == 0) {

@@ -24,6 +24,26 @@
 #include "base/cli.h"
 #include "pack/pack.h"
 
+/* The ranges in which the reader takes a value, those where the physics of the tools holds
+ * and the bounds their options already keep (share/doc/pack-format.md, "Ranges"):
+ * - friction coefficients (the friction and walls lines) in [0, PACK_MU_MAX], the range of
+ *   every tool's --mu and --friction (a header's friction 1e300 was taken);
+ * - Young's moduli from PACK_E_MIN, 1 kPa, softer than the softest hydrogel bead of a
+ *   granular experiment, to PACK_E_MAX, 1e13 Pa, eight times diamond's 1.2e12 Pa, for a grain,
+ *   and to PACK_WALL_E_MAX, 1e15 Pa, for the walls, which the tools make 100 times stiffer
+ *   than the grains (E = 1e-300 was taken, and densify squeezed that grain by 0.47 R);
+ * - a grain no larger than the box: its radius at most the box length along each axis, so
+ *   that it presses into the two walls of an axis by at most R together (packinfo printed
+ *   porosity -inf for a grain larger than its box);
+ * - a contact force no larger than Hertz's at an overlap as large as the contact's radius:
+ *   P0 <= (4/3) E* R*^2, and |Q0| and |M0| / R* at most PACK_MU_MAX times that, far beyond
+ *   the small strains Hertz's law is for (a P0 of 1e300 N was taken); a pack of another
+ *   contact law (meta contact-law linear, the plate engine's) is not held to it. */
+#define PACK_MU_MAX 10.0
+#define PACK_E_MIN 1e3
+#define PACK_E_MAX 1e13
+#define PACK_WALL_E_MAX 1e15
+
 struct pack_reader;
 
 /* Wraps an open stream (stdin included); name is used in messages. */

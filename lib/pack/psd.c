@@ -99,6 +99,20 @@ read_table(const char *path, struct psd *d)
 		msg_seterr("%s: the size table is empty", path);
 		r = -1;
 	}
+	if (r == 0) {	/* weights all 0 made a distribution of nothing, which GSL took */
+		double sum = 0;
+		size_t k;
+
+		for (k = 0; k < t.n; k++)
+			sum += t.w[k];
+		if (!(sum > 0)) {
+			msg_seterr("%s: the weights are all 0: at least one must be positive", path);
+			r = -1;
+		} else if (!isfinite(sum)) {
+			msg_seterr("%s: the weights sum to %g, more than a double holds: scale them down", path, sum);
+			r = -1;
+		}
+	}
 	if (r == 0 && !(d->disc = gsl_ran_discrete_preproc(t.n, t.w))) {
 		msg_seterr("%s: the weights do not define a distribution", path);
 		r = -1;

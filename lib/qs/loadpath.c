@@ -366,6 +366,30 @@ reached_stop(const struct path_seg *sg, const struct load_row *prev, long n)
 	return 0;
 }
 
+/* 0, or -1 with msg_seterr when segment k's stop is already passed at its start prev: it would
+ * run no increment (a loadtest to a stress the pack was already above wrote its header and
+ * exited 0 without a word). */
+static int
+check_start(size_t k, const struct path_seg *sg, const struct load_row *prev)
+{
+	double dir = sg->step > 0 ? 1 : -1;
+
+	if (!isnan(sg->to_stress) && (prev->sigma_c - sg->to_stress) * dir >= 0) {
+		msg_seterr("segment %zu (%s): to-stress %g Pa is already passed at its start (sigma_c %.6g Pa, which a step of %g %s): nothing to load; give a stop %s %.6g Pa, or a %s step",
+		    k + 1, path_kind_name(sg->kind), sg->to_stress, prev->sigma_c, sg->step, dir > 0 ? "raises" : "lowers",
+		    dir > 0 ? "above" : "below", prev->sigma_c, dir > 0 ? "negative (unloading)" : "positive (loading)");
+		return -1;
+	}
+	if (!isnan(sg->to_strain) && (control_strain(sg, prev->eps) - sg->to_strain) * dir >= 0) {
+		msg_seterr("segment %zu (%s): to-strain %g is already passed at its start (strain %.6g, which a step of %g %s): nothing to load; give a stop %s %.6g, or a %s step",
+		    k + 1, path_kind_name(sg->kind), sg->to_strain, control_strain(sg, prev->eps), sg->step,
+		    dir > 0 ? "raises" : "lowers", dir > 0 ? "above" : "below", control_strain(sg, prev->eps),
+		    dir > 0 ? "negative (unloading)" : "positive (loading)");
+		return -1;
+	}
+	return 0;
+}
+
 /* The servo of a segment that holds its mean lateral stress (hold): its model of the
  * segment's lateral stress, d sig_lat = A de_axial + B de_lat, learnt increment by increment. */
 struct servo {
@@ -465,6 +489,8 @@ run_segment(struct walk *w, size_t k, const struct path_seg *sg)
 	long n;
 	int a, r;
 
+	if (check_start(k, sg, &w->prev))
+		return -1;
 	servo_start(&sv, sg, &w->prev);
 	for (n = 0; !reached_stop(sg, &w->prev, n); n++) {
 		double de[3];
@@ -506,6 +532,9 @@ path_run(struct loader *L, const struct load_path *path, const struct path_limit
 	int r;
 
 	if (loader_measure(L, &w.prev))
+		return -1;
+	/* the first segment's stop before the first row: a test that cannot start writes nothing */
+	if (path->n > 0 && check_start(0, &path->seg[0], &w.prev))
 		return -1;
 	if (fn && fn(-1, &w.prev, ctx))
 		return 3;

@@ -87,7 +87,9 @@ typedef int (*path_row_fn)(int seg, const struct load_row *row, void *ctx);
 /* Walk the path from the loader's current state.  Returns 0 when every segment reached its
  * stop; 1 when a minimisation hit its iteration limit, 2 when a segment ran into a limit
  * (max_steps, max_strain) before its stress or strain target, 3 when fn asked to stop (nonzero);
- * -1 on error (msg_seterr says which). */
+ * -1 on error (msg_seterr says which), among them a segment whose to-stress or to-strain is
+ * already passed where it starts (it would run no increment): for the first segment before
+ * fn sees the starting row, so that a test that cannot start writes nothing. */
 int path_run(struct loader *L, const struct load_path *path, const struct path_limits *lim, path_row_fn fn,
     void *ctx);
 

@@ -276,6 +276,11 @@ expect_fail "box thinner than a grain" 1 '^densify: .*thinner than grain' thin.p
 expect_fail "--stress 0" 2 '^densify: --stress' --stress 0 loose.pack
 expect_fail "--stress -1" 2 '^densify: --stress' --stress -1 loose.pack
 expect_fail "--stress 1e12 (beyond E/100)" 2 '^densify: --stress .*small-strain' --stress 1e12 loose.pack
+# against the softest grain, not the mean: one grain of E = 1e5 Pa among glass ones would be
+# squeezed far past Hertz's small strains at 4 MPa (one of E = 1e-300 was squeezed by 0.47 R)
+awk '/^end$/ { on = 1; print; next } on && NF == 8 && !done { $6 = 1e5; id = $1; done = 1 } { print }' loose.pack >soft.pack
+expect_fail "a soft grain: --stress beyond its E/100" 2 "^densify: --stress 4e\\+06 Pa is beyond the small-strain range of Hertz contacts \\(E/100 = 1000 Pa, E of grain 1, the softest\\)$" \
+    --stress 4e6 soft.pack
 # a target absurdly far below the moduli is refused at once, not after a minute of rounds (issue 19)
 expect_fail "--stress 1e-300 (below 1e-12 E)" 2 "^densify: --stress 1e-300 Pa is below 1e-12 E of the grains \\(1e-12 E = [0-9.e+-]+ Pa\\)$" --stress 1e-300 loose.pack
 expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --onset 1e4 --stress 5e3 loose.pack

@@ -254,6 +254,21 @@ expect_fail "--to-stress 0" 2 '^loadtest: --to-stress' --to-stress 0 fr.pack
 expect_fail "--axis w" 2 '^loadtest: --axis' --axis w --steps 3 fr.pack
 expect_fail "missing input file" 1 '^loadtest: .*no-such\.pack' --steps 3 no-such.pack
 expect_fail "pack without reference box" 1 '^loadtest: loose\.pack: no reference box' --steps 3 loose.pack
+# a stop already passed where the test starts ran no increment: it wrote a header and exited 0
+# without a word; now one line that names the stop and the start, and nothing on stdout
+expect_fail "--to-stress below the start" 1 '^loadtest: segment 1 \(uniaxial\): to-stress 100000 Pa is already passed at its start \(sigma_c [0-9.e+]+ Pa, which a step of 0.0001 raises\): nothing to load' \
+    --to-stress 1e5 fr.pack
+expect_fail "--to-strain below the start" 1 '^loadtest: segment 1 \(uniaxial\): to-strain -0.01 is already passed at its start' --to-strain -0.01 fr.pack
+expect_fail "unloading to a stress above the start" 1 'to-stress 9e\+09 Pa is already passed at its start \(sigma_c [0-9.e+]+ Pa, which a step of -0.0001 lowers\)' \
+    --path 'uniaxial step=-1e-4 to-stress=9e9' fr.pack
+loadtest --path 'uniaxial steps=2; uniaxial to-stress=1e5' -o nothing.pack fr.pack >passed2.tsv 2>passed2.err
+rc=$?
+if [ "$rc" -eq 1 ] && [ "$(rows passed2.tsv | wc -l)" -eq 3 ] && [ ! -e nothing.pack ] &&
+    grep -q '^loadtest: segment 2 (uniaxial): to-stress 100000 Pa is already passed at its start' passed2.err; then
+	pass "a later segment's stop passed: exit 1, the rows so far, no pack"
+else
+	fail "a later segment's stop passed: exit 1, the rows so far, no pack" "exit $rc, $(rows passed2.tsv | wc -l) rows: $(head -c 300 passed2.err)"
+fi
 # -o that cannot be written, over the input or on the table's standard output: refused before
 # the test (it was found only after the last increment)
 expect_error "-o in a missing directory" 2 "^loadtest: -o: cannot write in directory 'no-such-dir'" loadtest --steps 3 -o no-such-dir/x.pack fr.pack

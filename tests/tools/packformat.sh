@@ -67,6 +67,12 @@ bad walls-E 8 "Young's modulus" '8s/.*/walls 0 0.495 0.3/'
 bad walls-nu 8 'Poisson' '8s/.*/walls 7e12 0.5 0.3/'
 bad walls-mu 8 'negative' '8s/.*/walls 7e12 0.495 -0.1/'
 bad friction-negative 9 'negative' '9s/.*/friction -0.3/'
+# values outside the range where the tools' physics holds, named with the range (the
+# options cap mu at 10; a header's friction 1e300 was taken)
+bad friction-above-10 9 'friction: coefficient 1e\+300 is outside \[0, 10\] \(the range of the tools. --mu\)$' '9s/.*/friction 1e300/'
+bad walls-mu-above-10 8 'walls: friction coefficient 11 is outside \[0, 10\]' '8s/.*/walls 7e12 0.495 11/'
+bad walls-E-too-stiff 8 "walls: Young's modulus 1e\+16 Pa is outside \[1000, 1e\+15\] Pa$" '8s/.*/walls 1e16 0.495 0.3/'
+bad walls-E-too-soft 8 "walls: Young's modulus 1 Pa is outside \[1000, 1e\+15\] Pa$" '8s/.*/walls 1 0.495 0.3/'
 bad grains-zero 10 'not a valid count' '10s/.*/grains 0/'
 bad grains-not-integer 10 'not a valid count' '10s/.*/grains 3.5/'
 bad end-extra 12 'after .end.' '12s/.*/end now/'
@@ -86,6 +92,11 @@ bad radius-zero 14 'radius 0 is not positive' '14s/1.0001e-4/0/'
 bad radius-negative 14 'radius -0.0001 is not positive' '14s/1.0001e-4/-1e-4/'
 bad E-zero 14 "Young's modulus 0 is not positive" '14s/7e10/0/'
 bad E-negative 14 "Young's modulus" '14s/7e10/-7e10/'
+# E = 1e-300 was taken (densify then squeezed the grain by 0.47 R), and a grain larger than
+# its box (packinfo printed porosity -inf)
+bad E-tiny 14 "grain 2: Young's modulus 1e-300 Pa is outside \[1000, 1e\+13\] Pa$" '14s/7e10/1e-300/'
+bad E-huge 14 "grain 2: Young's modulus 1e\+14 Pa is outside \[1000, 1e\+13\] Pa$" '14s/7e10/1e14/'
+bad grain-larger-than-box 14 'grain 2: radius 1 m is larger than the box along x \(0.0003 m\): the radius must be at most the box length$' '14s/1.0001e-4/1/'
 bad nu-half 14 'Poisson ratio 0.5 is outside' '14s/ 0.2 / 0.5 /'
 bad nu-minus-one 14 'Poisson ratio -1 is outside' '14s/ 0.2 / -1 /'
 bad density-zero 14 'density 0 is not positive' '14s/2420$/0/'
@@ -114,6 +125,16 @@ bad contact-missing-column 16 'expected 7 columns' '16s/ 0$//'
 bad contact-extra-column 16 'expected 7 columns' '16s/$/ 0/'
 bad contact-nan 16 "'nan' is not a finite number" '16s/0.01 0 0 0 0/0.01 nan 0 0 0/'
 bad contact-negative-P0 16 'P0 = -0.01 is negative' '16s/0.01/-0.01/'
+# a contact force past Hertz's at an overlap as large as the contact's radius (a P0 of 1e300 N
+# was taken); a pack of the plate engine's linear law is not held to Hertz's bound
+bad contact-P0-huge 16 'contact: normal force P0 = 1e\+300 N is outside \[0, [0-9.e+]+\] N, the Hertz force at an overlap as large as the contact.s radius' '16s/0.01/1e300/'
+bad contact-wall-P0-huge 17 'contact: normal force P0 = 1e\+06 N is outside' '17s/0.01/1e6/'
+bad contact-Q0-huge 16 'contact: tangential force \|Q0\| = 1e\+300 N is outside' '16s/0.01 0 0 0 0/0.01 1e300 0 0 0/'
+bad contact-M0-huge 16 'contact: couple \|M0\| = 1e\+300 N m is outside' '16s/0.01 0 0 0 0/0.01 0 0 0 -1e300/'
+sed '4a\
+meta contact-law linear
+16s/0.01/1e3/' good.pack >linear-law.pack
+expect_ok contact-P0-linear-law packinfo linear-law.pack
 
 # --- counts and the end of the stream ---
 bad fewer-grains 16 '4 grains declared, 3 found' '10s/3/4/;11s/3/0/;16,$d'

@@ -62,6 +62,12 @@ expect_error "bad psd" 2 '^packgen: --psd' packgen --psd uniform:2,1
 expect_error "unknown material" 2 "^packgen: --material: unknown material 'steel'" packgen --material steel
 expect_error "negative friction" 2 '^packgen: --friction' packgen --friction -1
 expect_error "bad aspect" 2 '^packgen: --aspect' packgen --aspect 1,0,1
+# a starting box that cannot hold the largest grain (--aspect 1e300,1,1 ended in "the time
+# step is too long" with a stress of -nan), refused before the DEM with the side named
+expect_error "aspect 1e300,1,1" 2 '^packgen: --aspect 1e300,1,1: the starting box would be [0-9.e+-]+ m along y, less than the largest grain.s diameter' \
+    packgen -n 30 --aspect 1e300,1,1 -o nothing.pack
+expect_error "aspect underflowing" 2 "^packgen: --aspect: expected three positive numbers" packgen -n 30 --aspect 1e-300,1e-300,1e-300
+expect_error "wall-E past the range" 2 '^packgen: --wall-E: 1e\+20 Pa is outside \[1000, 1e\+15\] Pa' packgen -n 30 --wall-E 1e20
 expect_error "operand not allowed" 2 '^packgen: too many operands' packgen extra.pack
 expect_error "NaN option" 2 'not a finite number' packgen --overlap nan
 # -o that cannot be written, or a file packgen reads, refused before the compaction (it was

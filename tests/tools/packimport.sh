@@ -149,5 +149,8 @@ expect_error "unknown material" 2 "^packimport: --material: unknown material 'un
 expect_error "negative seed" 2 '^packimport: --seed: ' packimport --seed -1 in.xyzr
 expect_error "negative friction" 2 '^packimport: --friction: ' packimport --friction -0.1 in.xyzr
 expect_error "wall-E not positive" 2 '^packimport: --wall-E: ' packimport --wall-E 0 in.xyzr
+expect_error "friction above 10" 2 '^packimport: --friction: 11 is outside \[0, 10\]' packimport --friction 11 in.xyzr
+expect_error "wall-friction above 10" 2 "^packimport: --wall-friction: '1e300' is not a number in \[0, 10\]" packimport --wall-friction 1e300 in.xyzr
+expect_error "wall-E past the range" 2 '^packimport: --wall-E: 1e20 Pa is outside \[1000, 1e\+15\] Pa' packimport --wall-E 1e20 in.xyzr
 expect_error "wall-nu out of range" 2 '^packimport: --wall-nu: ' packimport --wall-nu 0.5 in.xyzr
 expect_error "two input files" 2 'too many operands' packimport in.xyzr in.xyzr

@@ -42,6 +42,17 @@ expect_ok "material file with CRLF lines" packgen -n 20 --seed 1 --material ./cr
 printf 'E 5e9\nnu 0.\0003\nrho 1000\n' >nul.mat
 expect_error "material file: a NUL byte" 2 '^packgen: --material: \./nul\.mat:2: binary data \(NUL byte\)' \
     packgen -n 20 --material ./nul.mat
+# a key given twice (the second E replaced the first without a word), and E out of the range a
+# pack takes (E = 1e-300 made grains that densify squeezed by 0.47 R)
+printf 'E 5e9\nnu 0.3\nE 7e10\nrho 1000\n' >twice.mat
+expect_error "material file: E given twice" 2 '^packgen: --material: \./twice\.mat:3: E given twice \(each key once\)' \
+    packgen -n 20 --material ./twice.mat
+printf 'E 5e9\nnu 0.3\nrho 1000\nspread 0.1\nspread 0\n' >spread2.mat
+expect_error "material file: spread given twice" 2 '^packgen: --material: \./spread2\.mat:5: spread given twice' \
+    packgen -n 20 --material ./spread2.mat
+printf 'E 1e-300\nnu 0.3\nrho 1000\n' >tiny.mat
+expect_error "material file: E 1e-300" 2 '^packgen: --material: \./tiny\.mat:1: E 1e-300 Pa is outside \[1000, 1e\+13\] Pa' \
+    packgen -n 20 --material ./tiny.mat
 
 # --- size tables -------------------------------------------------------------------------
 {
@@ -65,6 +76,13 @@ expect_same "size table with CRLF lines: the same pack" tc.body ts.body
 : >empty.txt
 expect_error "size table: empty" 2 '^packgen: empty\.txt: the size table is empty \(try' packgen --psd table:empty.txt
 expect_error "size table: missing" 2 '^packgen: none\.txt: cannot open size table \(try' packgen --psd table:none.txt
+# weights all 0 were taken (a distribution of nothing); an overflowing sum is no distribution
+printf '1e-4 0\n1.2e-4 0\n' >zero.txt
+expect_error "size table: every weight 0" 2 '^packgen: zero\.txt: the weights are all 0: at least one must be positive \(try' \
+    packgen -n 40 --psd table:zero.txt
+printf '1e-4 1e308\n1.2e-4 1e308\n' >huge.txt
+expect_error "size table: weights past a double" 2 '^packgen: huge\.txt: the weights sum to inf, more than a double holds' \
+    packgen -n 40 --psd table:huge.txt
 
 # --- packimport's x y z r lines ------------------------------------------------------------
 printf '0.001 0.001 0.001 0.0005\n0.002 0.002 0.002 0.0005\n' >short.xyzr

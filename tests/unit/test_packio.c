@@ -20,8 +20,10 @@
 #include <unistd.h>
 #include <zlib.h>
 
-/* A pack with awkward numbers (no short decimal form, 1e-300, -0.0, a subnormal, 1e22),
- * history, meta, a refbox, and grain-grain and grain-wall contacts with nonzero Q0 and M0. */
+/* A pack with awkward numbers (no short decimal form, 1e-300, -0.0, a subnormal, 1e-22),
+ * history, meta, a refbox, and grain-grain and grain-wall contacts with nonzero Q0 and M0,
+ * each within the reader's ranges (forces below Hertz's at an overlap of R*: a P0 of
+ * 6.02214076e23 N and a Q0 of 1e22 N, taken once, are refused now). */
 static void
 build(struct pack *p)
 {
@@ -55,13 +57,13 @@ build(struct pack *p)
 	p->E[2] = 123456789.123456789;
 	p->nu[3] = -0.0;
 	memset(&c, 0, sizeof c);
-	c.i = 0, c.j = 1, c.P0 = 0.1, c.Q0[0] = 1.0 / 3.0, c.Q0[1] = -1e-300, c.Q0[2] = -0.0, c.M0 = 123456789.123456789;
+	c.i = 0, c.j = 1, c.P0 = 0.1, c.Q0[0] = 1.0 / 3.0, c.Q0[1] = -1e-300, c.Q0[2] = -0.0, c.M0 = 0.00123456789123456789;
 	pack_add_contact(p, &c);
-	c.i = 3, c.j = 2, c.P0 = 0, c.Q0[0] = 4.9406564584124654e-324, c.Q0[1] = 0, c.Q0[2] = 1e22, c.M0 = -1.0 / 3.0;
+	c.i = 3, c.j = 2, c.P0 = 0, c.Q0[0] = 4.9406564584124654e-324, c.Q0[1] = 0, c.Q0[2] = 1e-22, c.M0 = -1.0 / 3.0 * 1e-5;
 	pack_add_contact(p, &c);
 	c.i = 2, c.j = PACK_WALL(WALL_ZHI), c.P0 = 1e-300, c.Q0[0] = 0.1, c.Q0[1] = 0.2, c.Q0[2] = 0.3, c.M0 = -0.0;
 	pack_add_contact(p, &c);
-	c.i = 4, c.j = PACK_WALL(WALL_XLO), c.P0 = 6.02214076e23, c.Q0[0] = -1.0 / 3.0, c.Q0[1] = 0, c.Q0[2] = 0, c.M0 = 1e-300;
+	c.i = 4, c.j = PACK_WALL(WALL_XLO), c.P0 = 6.02214076e-23, c.Q0[0] = -1.0 / 3.0, c.Q0[1] = 0, c.Q0[2] = 0, c.M0 = 1e-300;
 	pack_add_contact(p, &c);
 	c.i = 4, c.j = PACK_WALL(WALL_YHI), c.P0 = 2.0 / 3.0, c.Q0[0] = 0, c.Q0[1] = 0.30000000000000004, c.Q0[2] = 0, c.M0 = 0;
 	pack_add_contact(p, &c);
