@@ -1,14 +1,19 @@
 #!/bin/sh
-# make bench-plates (and make bench): the spheroplate DEM's costs (issue 13).
-#  - packgen --shape spheroplate: wall time and steps to static equilibrium, per platyness
-#    and size (the packs are kept in bench/plates-N-ETA.pack.gz and reused; BENCH_REGEN=1
-#    remakes them);
-#  - one DEM step of each pack (build/bench/platestep, 200 steps): time per step per plate
-#    and element contacts per second.
-# Knobs: BENCH_PLATE_SIZES (default "1000 8000"), BENCH_PLATE_ETAS (default "0 0.5 0.8").
-# Results: bench/plates.md, with the machine and the commit.
+# make bench-plates (and make bench): the spheroplate DEM's costs.
+#  - packgen --shape spheroplate: wall time, steps to static equilibrium and packing fraction per
+#    platyness and size (the packs are kept in bench/plates-N-ETA.pack.gz and reused;
+#    BENCH_REGEN=1 remakes them);
+#  - the shear the platy paper runs (shear, I = 1e-3, kappa 1e4): the pack is first sheared to
+#    gamma BENCH_PRESHEAR (default 0.1, past the start-up; kept as bench/plates-N-ETA-sheared.pack.gz),
+#    then sheared on for about BENCH_SHEAR_STEPS steps (default 1000) on 1 and on 2 threads:
+#    CPU seconds per step per plate on one thread (user + sys; the setup, read from a run of a
+#    few steps, taken off), the wall-time speed-up of two threads, and whether the two tables
+#    are the same bytes;
+#  - 200 DEM steps of the static pack (build/bench/platestep): CPU per step per plate.
+# Knobs: BENCH_PLATE_SIZES (default "8000"), BENCH_PLATE_ETAS (default "0 0.14 0.5 0.8").
+# Each run's rows replace that size's and platyness's row in bench/plates.md's table (the other rows stay,
+# with their own machine and source).
 set -u
-export OMP_NUM_THREADS="${BENCH_THREADS:-1}"	# one core's figures unless asked
 bin=${1:-build/bin}
 case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
 step="$bin/../bench/platestep"
@@ -16,48 +21,103 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/bench"
 mkdir -p "$out"
 export LC_ALL=C
-sizes=${BENCH_PLATE_SIZES:-"1000 8000"}
-etas=${BENCH_PLATE_ETAS:-"0 0.5 0.8"}
+sizes=${BENCH_PLATE_SIZES:-"8000"}
+etas=${BENCH_PLATE_ETAS:-"0 0.14 0.5 0.8"}
+pre=${BENCH_PRESHEAR:-0.1}
+nsteps=${BENCH_SHEAR_STEPS:-1000}
+src=$("$bin/shear" --version | awk '{print $NF}')
+machine="$(getconf _NPROCESSORS_ONLN) cores, $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//')"
+
+# the shear's steps per unit strain at I = 1e-3, kappa 1e4 (measured), to pick a strain of
+# about nsteps steps
+rate() {
+	case $1 in 0) echo 4.25e5 ;; 0.14) echo 3.6e5 ;; 0.33) echo 2.6e5 ;; 0.5) echo 1.9e5 ;; *) echo 6.9e4 ;; esac
+}
+
+# cpu SECONDS and wall SECONDS of a command (its stdout into $1), from /usr/bin/time
+timed() {
+	o=$1 t=$2
+	shift 2
+	/usr/bin/time -f '%U %S %e' -o "$t" "$@" >"$o"
+}
+
 for n in $sizes; do
 	for eta in $etas; do
-		pk="$out/plates-$n-$eta.pack.gz"
-		if [ "${BENCH_REGEN:-0}" = 1 ] || [ ! -s "$pk" ] || [ ! -s "$out/plates-$n-$eta.gen" ]; then
-			if ! /usr/bin/time -f '%e %M' -o "$out/plates-$n-$eta.time" "$bin/packgen" --shape spheroplate \
-			    --platyness "$eta" -n "$n" --seed 1 -v -o "$pk" 2>"$out/plates-$n-$eta.log"; then
-				echo "| $n | $eta | failed: $(tail -n 1 "$out/plates-$n-$eta.log") | | | | | | | |" >"$out/plates-$n-$eta.gen"
+		base="$out/plates-$n-$eta"
+		pk="$base.pack.gz"
+		if [ "${BENCH_REGEN:-0}" = 1 ] || [ ! -s "$pk" ] || [ ! -s "$base.gen" ]; then
+			if ! OMP_NUM_THREADS=1 /usr/bin/time -f '%e %M' -o "$base.time" "$bin/packgen" --shape spheroplate \
+			    --platyness "$eta" -n "$n" --seed 1 -v -o "$pk" 2>"$base.log"; then
+				echo "packgen failed: $(tail -n 1 "$base.log")" >"$base.gen"
 				continue
 			fi
-			steps=$(awk '/at rest after/ { for (i = 1; i <= NF; i++) if ($i == "after") print $(i + 1) }' "$out/plates-$n-$eta.log")
-			read -r secs kib <"$out/plates-$n-$eta.time"
-			# packing_fraction for plates and the plate engine's spheres (porosity for any other pack)
+			steps=$(awk '/at rest after/ { for (i = 1; i <= NF; i++) if ($i == "after") print $(i + 1) }' "$base.log")
+			read -r secs kib <"$base.time"
 			phi=$("$bin/packinfo" "$pk" | awk '$1 == "packing_fraction" { f = $2 } $1 == "porosity" { p = $2 }
 			    END { printf "%.4f", f != "" ? f : 1 - p }')
-			echo "$secs $kib $steps $phi $(date -u '+%Y-%m-%d') $(cd "$top" && git rev-parse --short HEAD 2>/dev/null)" >"$out/plates-$n-$eta.gen"
+			echo "$secs $kib $steps $phi $src" >"$base.gen"
+			rm -f "$base-sheared.pack.gz"
 		fi
-		"$step" "$pk" 200 >"$out/plates-$n-$eta.step" 2>&1 || echo "failed" >"$out/plates-$n-$eta.step"
+		grep -q ' ' "$base.gen" && ! grep -q failed "$base.gen" || continue
+		# past the start-up
+		if [ ! -s "$base-sheared.pack.gz" ]; then
+			OMP_NUM_THREADS=1 "$bin/shear" --threads 1 -g "$pre" --every "$pre" -o "$base-sheared.pack.gz" "$pk" \
+			    >"$base-preshear.tsv" 2>"$base-preshear.log" || { echo "preshear failed" >"$base.shear"; continue; }
+		fi
+		g=$(awk -v r="$(rate "$eta")" -v s="$nsteps" 'BEGIN { printf "%.6f", s / r }')
+		g0=$(awk -v r="$(rate "$eta")" 'BEGIN { printf "%.8f", 20 / r }')
+		run() {	# THREADS STRAIN NAME
+			OMP_NUM_THREADS=$1 timed "$base-$3.tsv" "$base-$3.t" "$bin/shear" --threads "$1" -g "$2" --every "$2" \
+			    -o /dev/null "$base-sheared.pack.gz"
+		}
+		run 1 "$g0" setup1 && run 1 "$g" one && run 2 "$g0" setup2 && run 2 "$g" two || {
+			echo "shear failed" >"$base.shear"
+			continue
+		}
+		same=no
+		cmp -s "$base-one.tsv" "$base-two.tsv" && same=yes
+		awk -v n="$n" -v same="$same" '
+		    function last(f,   l, s) { while ((getline l < f) > 0) if (l !~ /^#/) { split(l, s, "\t"); st = s[1] } close(f); return st }
+		    function tm(f, k,   a) { getline a < f; close(f); split(a, v, " "); return k == "cpu" ? v[1] + v[2] : v[3] }
+		    BEGIN {
+			s1 = last(ARGV[1]); s0 = last(ARGV[2]); ds = s1 - s0
+			cpu = (tm(ARGV[3], "cpu") - tm(ARGV[4], "cpu")) / ds / n * 1e6
+			w1 = tm(ARGV[3], "wall") - tm(ARGV[4], "wall"); w2 = tm(ARGV[5], "wall") - tm(ARGV[6], "wall")
+			printf "%d %.3f %.2f %s\n", ds, cpu, w1 / w2, same
+		    }' "$base-one.tsv" "$base-setup1.tsv" "$base-one.t" "$base-setup1.t" "$base-two.t" "$base-setup2.t" \
+		    >"$base.shear"
+		OMP_NUM_THREADS=1 "$step" "$pk" 200 >"$base.step" 2>&1 || echo "failed" >"$base.step"
+		# the shear's steady state at the snapshot (packing fraction, Z, elements per interaction)
+		awk -F '\t' '!/^#/ && NF > 16 { phi = $15; z = $16; el = $17 } END { printf "%.4f %.2f %.3f\n", phi, z, el }' \
+		    "$base-preshear.tsv" >"$base.state"
+		{
+			read -r secs kib steps phi _ <"$base.gen"
+			read -r ds cpu speed same <"$base.shear"
+			read -r sphi sz sel <"$base.state"
+			st=$(awk -F '\t' '!/^#/ && NF >= 7 { printf "%.3f", $6 }' "$base.step")
+			printf '| %d | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n' "$n" "$eta" "$secs" "$steps" \
+			    "$phi" "$sphi" "$sz" "$sel" "$ds" "$cpu" "$speed" "$same" "$st" "$src, $machine"
+		} >"$base.row"
 	done
 done
 {
 	echo "# qusgm benchmarks: spheroplate DEM"
 	echo
-	echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
-	echo "- commit: $(cd "$top" && git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-	echo "- machine: $(getconf _NPROCESSORS_ONLN) cores, $(awk -F: '/model name/ {print $2; exit}' /proc/cpuinfo | sed 's/^ *//'); every program on $OMP_NUM_THREADS thread(s) (BENCH_THREADS)"
+	echo "packgen --shape spheroplate --seed 1 (P's law and defaults: friction 0.58 between grains during compaction, kappa 1e4, rest at"
+	echo "unbalanced force 1e-3), one thread; then shear at I = 1e-3 (sigma_w from the pack, kappa 1e4) to gamma $pre (one thread),"
+	echo "then on for about $nsteps steps on one and on two threads.  CPU is user + sys per step per plate on one thread, the setup"
+	echo "(reading, gluing, the first list) taken off; the speed-up is the wall time of one thread over two; 'same' says whether the"
+	echo "two tables are the same bytes.  The static step is 200 undamped steps of packgen's pack (build/bench/platestep)."
+	echo "phi, Z and elements per interaction are the shear's at gamma $pre (P's Z: interactions per free grain)."
 	echo
-	echo "packgen --shape spheroplate --seed 1 (P's law and defaults: friction 0.58 between grains during compaction, frictionless walls, kappa 1e4,"
-	echo "rest at unbalanced force 1e-3); then 200 DEM steps of the static pack without local damping."
-	echo
-	echo "| plates | eta | packgen wall time (s) | peak memory (MiB) | steps to rest | packing fraction | interactions | element contacts | us per step per plate | element contacts per s |"
-	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-	# every pack measured so far, this run's and earlier runs'
-	for n in $(ls "$out" | sed -n 's/^plates-\([0-9]*\)-.*\.gen$/\1/p' | sort -nu); do
-		for eta in $(ls "$out" | sed -n "s/^plates-$n-\(.*\)\.gen\$/\1/p" | sort -n); do
-			g="$out/plates-$n-$eta.gen" s="$out/plates-$n-$eta.step"
-			[ -s "$g" ] || continue
-			if grep -q '^|' "$g"; then cat "$g"; continue; fi
-			read -r secs kib steps phi _ _ <"$g"
-			awk -F '\t' -v n="$n" -v e="$eta" -v s="$secs" -v k="$kib" -v st="$steps" -v p="$phi" \
-			    '!/^#/ && NF >= 7 { printf "| %d | %s | %.1f | %.1f | %s | %s | %d | %d | %.3f | %.3g |\n", n, e, s, k / 1024, st, p, $3, $4, $6, $7 }' "$s"
-		done
+	echo "| plates | eta | packgen (s) | steps to rest | packing fraction | shear phi | shear Z | elements per interaction | shear steps | us per step per plate, 1 thread | speed-up, 2 threads | same bytes | static step (us per plate) | source, machine |"
+	echo "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :-: | ---: | --- |"
+	for r in $(ls "$out" | sed -n 's/^plates-\([0-9]*\)-\([0-9.]*\)\.row$/\1-\2/p' | sort -t- -k1,1n -k2,2n); do
+		cat "$out/plates-$r.row"
 	done
-} >"$out/plates.md.tmp" && mv "$out/plates.md.tmp" "$out/plates.md" && cat "$out/plates.md"
+} >"$out/plates.md.tmp" && mv "$out/plates.md.tmp" "$out/plates.md.new"
+# keep the history below the current table
+if [ -f "$out/plates.md" ] && grep -q '^## History' "$out/plates.md"; then
+	sed -n '/^## History/,$p' "$out/plates.md" >>"$out/plates.md.new"
+fi
+mv "$out/plates.md.new" "$out/plates.md" && cat "$out/plates.md"
