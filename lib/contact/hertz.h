@@ -152,11 +152,14 @@ mindlin_twist_stiffness(double a, double Ctor)
 	return 16.0 / 3.0 * a * a * a / Ctor;
 }
 
+/* pi as math.h's M_PI spells it, which strict ISO C (an installed header's user) lacks */
+#define HERTZ_PI 3.14159265358979323846
+
 /* The torsional limit's ratio to the sliding limit, 3 pi / 16 a: M_max = this times mu P. */
 LAW_INLINE double
 mindlin_twist_ratio(double a)
 {
-	return 3 * M_PI / 16 * a;
+	return 3 * HERTZ_PI / 16 * a;
 }
 
 /* The twist limit M_max = 3 pi / 16 a mu P of a contact of radius a at normal force P. */
