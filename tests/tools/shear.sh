@@ -92,8 +92,11 @@ expect_error "shear: --profile - with the table" 2 "^shear: the table and --prof
 
 # A steady shear of 216 plates (eta 0.5) at I = 1e-2 to gamma 1.2, the profile over 0.6-1.2
 # in 10 bins.  Linear: over the 8 bins between the glued layers a straight line fits with
-# R^2 above 0.97 and no bin more than 0.08 v_w off it (216 plates sheared so give R^2 0.99
-# and 0.04; shear localised in a band, as in a crystallised pack, gives R^2 below 0.95).
+# R^2 above 0.97 and no bin more than 0.12 v_w off it.  One realisation is noisy: packgen
+# seeds 3, 4 and 5 gave R^2 0.982-0.993 and largest deviations 0.041-0.080, and 0.1.0's
+# engine, which sums the same element forces in another order, 0.074 and 0.054 on seeds 3
+# and 4 (bench/plates.md); shear localised in a band, as in a crystallised pack, gives R^2
+# below 0.95, and a band across two of the 8 bins puts a bin 0.2-0.4 v_w off any line.
 if [ $san = 1 ]; then
 	echo "SKIP shear: linear profile (left to the optimised build: 20 s there, minutes here)"
 else
@@ -105,7 +108,7 @@ else
 	      printf "%.6g %.6g %.6g", 1 - ss / syy, m, b }')
 	set -- $fit
 	expect_num "shear: linear profile, R^2 (slope $3)" "$1" ">" 0.97
-	expect_num "shear: linear profile, largest deviation over v_w" "$2" "<" 0.08
+	expect_num "shear: linear profile, largest deviation over v_w" "$2" "<" 0.12
 	# the descriptors of the sheared pack (packinfo, analysis/fabric.h): the major stress and
 	# the interaction normals lie near 135 degrees, the compression axis of this sense of shear
 	# (P Figs. 14, 20: 110-135 degrees), and P eq. 28's harmonic sum comes within 20 % of the
