@@ -12,7 +12,7 @@
 #  - 200 DEM steps of the static pack (build/bench/platestep): CPU per step per plate.
 # Knobs: BENCH_PLATE_SIZES (default "8000"), BENCH_PLATE_ETAS (default "0 0.14 0.5 0.8").
 # Each run's rows replace that size's and platyness's row in bench/plates.md's table (the other rows stay,
-# with their own machine and source).
+# with their own machine and source); the sections from the first '## ' heading on are kept.
 set -u
 bin=${1:-build/bin}
 case $bin in /*) ;; *) bin=$(pwd)/$bin ;; esac
@@ -116,8 +116,9 @@ done
 		cat "$out/plates-$r.row"
 	done
 } >"$out/plates.md.tmp" && mv "$out/plates.md.tmp" "$out/plates.md.new"
-# keep the history below the current table
-if [ -f "$out/plates.md" ] && grep -q '^## History' "$out/plates.md"; then
-	sed -n '/^## History/,$p' "$out/plates.md" >>"$out/plates.md.new"
+# keep the sections below the current table (the comparisons, the history)
+if [ -f "$out/plates.md" ] && grep -q '^## ' "$out/plates.md"; then
+	echo >>"$out/plates.md.new"
+	sed -n '/^## /,$p' "$out/plates.md" >>"$out/plates.md.new"
 fi
 mv "$out/plates.md.new" "$out/plates.md" && cat "$out/plates.md"
