@@ -78,7 +78,7 @@ contact_enum_free(struct contact_enum *e)
 	nlist_free(&e->prev);
 	free(e->hpair[0]), free(e->hpair[1]), free(e->hwall), free(e->hwall_set);
 	free(e->full_first), free(e->full_nbr);
-	free(e->col_first), free(e->col_nbr);
+	free(e->col_first), free(e->col_nbr), free(e->col_k);
 	memset(e, 0, sizeof *e);
 }
 
@@ -199,14 +199,15 @@ contact_enum_columns(struct contact_enum *e)
 
 	if (e->col_first && e->col_builds == e->rebuilds)
 		return 0;
-	free(e->col_first), free(e->col_nbr);
+	free(e->col_first), free(e->col_nbr), free(e->col_k);
 	e->col_first = calloc(n + 1, sizeof *e->col_first);
 	e->col_nbr = malloc((nl->npairs + 1) * sizeof *e->col_nbr);
+	e->col_k = malloc((nl->npairs + 1) * sizeof *e->col_k);
 	fill = calloc(n ? n : 1, sizeof *fill);
-	if (!e->col_first || !e->col_nbr || !fill) {
+	if (!e->col_first || !e->col_nbr || !e->col_k || !fill) {
 		free(fill);
-		free(e->col_first), free(e->col_nbr);
-		e->col_first = e->col_nbr = NULL;
+		free(e->col_first), free(e->col_nbr), free(e->col_k);
+		e->col_first = e->col_nbr = e->col_k = NULL;
 		msg_seterr("out of memory");
 		return -1;
 	}
@@ -216,8 +217,9 @@ contact_enum_columns(struct contact_enum *e)
 		e->col_first[i + 1] += e->col_first[i];
 	for (i = 0; i < n; i++)	/* rows in ascending i: each column fills ascending */
 		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
-			size_t j = nl->nbr[k];
-			e->col_nbr[e->col_first[j] + fill[j]++] = i;
+			size_t j = nl->nbr[k], q = e->col_first[j] + fill[j]++;
+			e->col_nbr[q] = i;
+			e->col_k[q] = k;
 		}
 	free(fill);
 	e->col_builds = e->rebuilds;

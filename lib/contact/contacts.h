@@ -80,6 +80,7 @@ struct contact_enum {
 					 * walk leaves its memory alone) */
 	size_t *full_first, *full_nbr;	/* both directions of the list, for contact_foreach_grain */
 	size_t *col_first, *col_nbr;	/* per grain j, its listed lower neighbours m < j */
+	size_t *col_k;			/* ... and the list entries of those pairs (m, j) */
 	long col_builds;		/* rebuilds when col_* were made */
 	long rebuilds;			/* lists built so far (nl and prev swap: their own counts repeat) */
 	/* contact_enum_skin_auto: the skin's ceiling (0: the skin is fixed), the updates so far
@@ -111,9 +112,10 @@ int contact_enum_update(struct contact_enum *e, const double *x, int force);
 void contact_enum_skin_auto(struct contact_enum *e, double skin_max);
 /* The radii changed (grains grew): the list is rebuilt at the next update. */
 void contact_enum_radii_changed(struct contact_enum *e);
-/* Make col_first and col_nbr current for the list: the columns of the half list, i.e. for
- * each grain j its listed neighbours m < j, ascending, which is the order in which
- * contact_foreach reaches the pairs (m, j).  They let a thread gather what the rows of other
+/* Make col_first, col_nbr and col_k current for the list: the columns of the half list, i.e.
+ * for each grain j its listed neighbours m < j, ascending, which is the order in which
+ * contact_foreach reaches the pairs (m, j), and those pairs' list entries (the plate DEM's
+ * records).  They let a thread gather what the rows of other
  * threads would have scattered into its grains, in contact_foreach's order (the
  * functional's threads).  0 or -1 (out of memory). */
 int contact_enum_columns(struct contact_enum *e);

@@ -37,7 +37,7 @@ pdem_free(struct pdem *d)
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
 	free(d->pcache), free(d->q0), free(d->turn), free(d->gen), free(d->wl);
-	free(d->prec), free(d->colk), free(d->colk_first), free(d->sums), free(d->ptouch), free(d->frow);
+	free(d->prec), free(d->sums), free(d->ptouch), free(d->frow);
 	contact_enum_free(&d->ce);
 	memset(d, 0, sizeof *d);
 }
@@ -86,10 +86,10 @@ pdem_alloc(struct pdem *d, size_t n)
 	d->half = calloc(n, sizeof *d->half), d->rb = calloc(n, sizeof *d->rb);
 	d->turn = calloc(n, sizeof *d->turn), d->q0 = calloc(4 * n, sizeof *d->q0);
 	d->gen = calloc(n, sizeof *d->gen);
-	d->wl = calloc(3 * n, sizeof *d->wl), d->colk_first = calloc(n + 1, sizeof *d->colk_first);
+	d->wl = calloc(3 * n, sizeof *d->wl);
 	d->frow = calloc(6 * n, sizeof *d->frow);
 	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
-	    !d->rb || !d->turn || !d->q0 || !d->gen || !d->wl || !d->colk_first || !d->frow) {
+	    !d->rb || !d->turn || !d->q0 || !d->gen || !d->wl || !d->frow) {
 		msg_seterr("out of memory for %zu grains", n);
 		return -1;
 	}
@@ -440,13 +440,13 @@ cache_turns(struct pdem *d)
 	return 0;
 }
 
-/* The records' room for the current list: a pair's record per list entry and the columns'
- * entries (the pairs (m, j), m < j, of each grain j by ascending m).  0 or -1. */
+/* The records' room for the current list (a pair's record per list entry) and the list's
+ * columns (contact_enum_columns: the pairs (m, j), m < j, of each grain j by ascending m, and
+ * their entries), for the gather.  0 or -1. */
 static int
 records_fit(struct pdem *d)
 {
-	const struct nlist *nl = &d->ce.nl;
-	size_t np = nl->npairs, n = d->n, i, k, *fill;
+	size_t np = d->ce.nl.npairs;
 
 	if (d->rec_builds == d->ce.rebuilds)
 		return 0;
@@ -454,32 +454,17 @@ records_fit(struct pdem *d)
 		size_t cap = np + np / 4 + 16;
 		struct pdem_rec *r = realloc(d->prec, cap * sizeof *r);
 		unsigned char *t;
-		size_t *ck;
 
 		if (!r)
 			goto oom;
 		d->prec = r;
-		if (!(ck = realloc(d->colk, cap * sizeof *ck)))
-			goto oom;
-		d->colk = ck;
 		if (!(t = realloc(d->ptouch, cap)))
 			goto oom;
 		d->ptouch = t;
 		d->rcap = cap;
 	}
-	if (!(fill = calloc(n + 1, sizeof *fill)))
-		goto oom;
-	memset(d->colk_first, 0, (n + 1) * sizeof *d->colk_first);
-	for (k = 0; k < np; k++)
-		d->colk_first[nl->nbr[k] + 1]++;
-	for (i = 0; i < n; i++)
-		d->colk_first[i + 1] += d->colk_first[i];
-	for (i = 0; i < n; i++)	/* rows in ascending i: each column fills ascending */
-		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
-			size_t j = nl->nbr[k];
-			d->colk[d->colk_first[j] + fill[j]++] = k;
-		}
-	free(fill);
+	if (contact_enum_columns(&d->ce))
+		return -1;
 	d->rec_builds = d->ce.rebuilds;
 	return 0;
 oom:
@@ -549,9 +534,9 @@ pdem_forces(struct pdem *d)
 			size_t i = (size_t)bb, q;
 			double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
 
-			for (q = d->colk_first[i]; q < d->colk_first[i + 1]; q++)
-				if (d->ptouch[d->colk[q]]) {
-					const struct pdem_rec *r = &d->prec[d->colk[q]];
+			for (q = e->col_first[i]; q < e->col_first[i + 1]; q++)
+				if (d->ptouch[e->col_k[q]]) {
+					const struct pdem_rec *r = &d->prec[e->col_k[q]];
 					for (a = 0; a < 3; a++)
 						F[a] -= r->F[a], T[a] += r->Tj[a];
 				}

@@ -121,12 +121,12 @@ struct pdem {
 	unsigned *gen;
 	/* pdem_forces' records: a pair's share for j by list entry and whether it holds this
 	 * pass's interaction (ptouch), each grain's force and torque from its own row (frow,
-	 * 6n), the columns' entries for the gather, the block sums, the lab-frame angular
-	 * velocities (3n), and whether the passes run on threads */
+	 * 6n), the block sums, the lab-frame angular velocities (3n), and whether the passes
+	 * run on threads; the gather reads the enumerator's columns (contact_enum_columns) */
 	struct pdem_rec *prec;
 	unsigned char *ptouch;
 	double *frow;
-	size_t *colk, *colk_first, rcap;
+	size_t rcap;
 	long rec_builds;
 	struct pdem_sums *sums;
 	size_t sums_cap;
