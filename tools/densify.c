@@ -401,16 +401,8 @@ main(int argc, char **argv)
 		msg_info(1, "%.0f s of wall time in %ld call%s", lc.before + since(&lc.t0), lc.calls, lc.calls == 1 ? "" : "s");
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
-	{	/* the pack and the log, all or none */
-		struct file_out packout, *outs[2] = {&packout, o.log ? &logout : NULL};
-		if (pack_write_tool_out(&p, &tool, &st, &packout)) {
-			if (o.log)
-				file_out_abort(&logout);
-			msg_die_err(EXIT_DATA);
-		}
-		if (file_out_commit_all(outs, 2))
-			msg_die_err(EXIT_DATA);
-	}
+	if (pack_write_tool_with(&p, &tool, &st, o.log ? &logout : NULL))	/* the pack and the log, all or none */
+		msg_die_err(EXIT_DATA);
 	/* the run is done: a rerun starts afresh (never the pack or the log just written, even
 	 * if a name the checks above could not see through leads there) */
 	if (o.checkpoint && !file_same(o.checkpoint, st.output, 0) && !file_same(o.checkpoint, o.log, 0) &&

@@ -190,16 +190,8 @@ main(int argc, char **argv)
 	r = frictionalize_run(&p, &o.fp, on_row, &lc, &last);
 	cli_progress_end();
 	check_stop(r, &logout, &last);
-	{	/* the pack and the log, all or none */
-		struct file_out packout, *outs[2] = {&packout, o.log ? &logout : NULL};
-		if (pack_write_tool_out(&p, &tool, &st, &packout)) {
-			if (o.log)
-				file_out_abort(&logout);
-			msg_die_err(EXIT_DATA);
-		}
-		if (file_out_commit_all(outs, 2))
-			msg_die_err(EXIT_DATA);
-	}
+	if (pack_write_tool_with(&p, &tool, &st, o.log ? &logout : NULL))	/* the pack and the log, all or none */
+		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;
 }

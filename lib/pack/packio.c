@@ -1351,6 +1351,19 @@ pack_write_tool_out(struct pack *p, const struct cli_tool *tool, const struct cl
 }
 
 int
+pack_write_tool_with(struct pack *p, const struct cli_tool *tool, const struct cli_state *st, struct file_out *also)
+{
+	struct file_out packout, *outs[2] = {&packout, also};
+
+	if (pack_write_tool_out(p, tool, st, &packout)) {
+		if (also)
+			file_out_abort(also);
+		return -1;
+	}
+	return file_out_commit_all(outs, 2);
+}
+
+int
 pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cli_state *st)
 {
 	struct file_out o;

@@ -80,5 +80,9 @@ int pack_write_tool(struct pack *p, const struct cli_tool *tool, const struct cl
  * write leaves no pack either).  0, or -1 with msg_seterr and nothing left open. */
 struct file_out;
 int pack_write_tool_out(struct pack *p, const struct cli_tool *tool, const struct cli_state *st, struct file_out *o);
+/* pack_write_tool with another output the tool has been writing (a log; NULL: none),
+ * committed together, all or none: 0, or -1 with msg_seterr and neither committed (also
+ * aborted when the pack could not be written). */
+int pack_write_tool_with(struct pack *p, const struct cli_tool *tool, const struct cli_state *st, struct file_out *also);
 
 #endif
