@@ -15,7 +15,6 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
-#include <zlib.h>
 
 /* The options; the table below points into it. */
 static struct opts {
@@ -128,32 +127,13 @@ on_checkpoint(const struct pack *p, const struct densify_resume *at, void *vctx)
 static char *
 run_identity(const struct pack *p)
 {
-	const char *log = o.log, *ck = o.checkpoint;
-	double tl = o.time_limit;
-	int al = o.allow_limit;
-	uLong crc = crc32(0L, Z_NULL, 0);
-	char *res, *s, *q;
-	size_t len;
-
 	/* what only decides where output goes, when to stop, or whether a run at its limit is
 	 * kept, is left out: a run stopped by --time-limit may be finished without it */
-	o.log = o.checkpoint = NULL;
-	o.time_limit = 0;
-	o.allow_limit = 0;
-	res = cli_resolved(&tool);
-	o.log = log, o.checkpoint = ck, o.time_limit = tl, o.allow_limit = al;
-	crc = crc32(crc, (const Bytef *)p->id, (uInt)(p->n * sizeof *p->id));
-	crc = crc32(crc, (const Bytef *)p->x, (uInt)(3 * p->n * sizeof *p->x));
-	crc = crc32(crc, (const Bytef *)p->r, (uInt)(p->n * sizeof *p->r));
-	len = strlen(res) + 64;
-	if (!(s = malloc(len)))
-		msg_die(EXIT_DATA, "out of memory");
-	snprintf(s, len, "%s %s grains %zu crc32 %08lx ; %s", tool.name, QUSGM_VERSION, p->n, (unsigned long)crc, res);
-	for (q = s; *q; q++)
-		if (*q == '\n' || *q == '\r')
-			*q = ' ';
-	free(res);
-	return s;
+	static const char *const skip[] = {"log", "checkpoint", "time-limit", "allow-limit", NULL};
+	char input[64];
+
+	pack_checksum(p, input, sizeof input);
+	return cli_run_identity(&tool, skip, input);
 }
 
 /* An existing checkpoint of this run replaces the input: 1 when there was one. */

@@ -5,6 +5,7 @@
 #include "base/numfmt.h"
 #include "base/table.h"
 #include "base/fileio.h"
+#include "base/lines.h"
 #include "dem/plateshear.h"
 #include "pack/pack.h"
 #include "pack/packio.h"
@@ -14,13 +15,16 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <errno.h>
+#include <unistd.h>
 
 #define MAX_SNAPSHOTS 64
 
 static struct opts {
 	struct shear_params sp;
 	double kn, kt, restitution, mu, wall_mu, kappa;
-	const char *profile, *snapshots, *prefix;
+	const char *profile, *snapshots, *prefix, *checkpoint;
+	double time_limit, checkpoint_every;
 	double snap[MAX_SNAPSHOTS];
 	int nsnap;
 	long bins;
@@ -28,6 +32,7 @@ static struct opts {
 	.bins = 20,
 	.kappa = NAN, .kn = NAN, .kt = NAN, .restitution = NAN, .mu = NAN, .wall_mu = NAN,
 	.prefix = "shear",
+	.checkpoint_every = 600,
 };
 
 static struct cli_opt opt_table[] = {
@@ -48,6 +53,9 @@ static struct cli_opt opt_table[] = {
 	{"friction", 0, CLI_DOUBLE, &o.mu, "MU", "grain-grain friction coefficient (default: the pack's)", NULL},
 	{"wall-friction", 0, CLI_DOUBLE, &o.wall_mu, "MU", "friction of free grains on the walls (default: the pack's)", NULL},
 	{"max-steps", 0, CLI_LONG, &o.sp.max_steps, "N", "give up after N steps", NULL},
+	{"checkpoint", 0, CLI_STRING, &o.checkpoint, "FILE", "save the run's state to FILE as it goes; go on from FILE if it exists", NULL},
+	{"checkpoint-every", 0, CLI_DOUBLE, &o.checkpoint_every, "S", "with --checkpoint: save at the first row S seconds after the last save (0: at every row)", "s"},
+	{"time-limit", 0, CLI_DOUBLE, &o.time_limit, "S", "with --checkpoint: stop (exit 75) at the last row before S seconds; 0: none", "s"},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
 
@@ -94,19 +102,22 @@ static void
 check_files(const struct cli_state *st)
 {
 	static char snap[MAX_SNAPSHOTS][4096];
-	struct file_role r[4 + MAX_SNAPSHOTS] = {{st->output, "-o", 1}, {o.profile, "--profile", 1}, {"-", "the table", 1},
-	    {st->input, "the input", 0}};
+	struct file_role r[5 + MAX_SNAPSHOTS] = {{st->output, "-o", 1}, {o.profile, "--profile", 1}, {"-", "the table", 1},
+	    {st->input, "the input", 0}, {o.checkpoint, "--checkpoint", 1}};
 	char g[40];
 	int k;
 
 	for (k = 0; k < o.nsnap; k++) {	/* the names on_row writes */
 		num_format(g, o.snap[k]);
 		snprintf(snap[k], sizeof snap[k], "%s-%s.pack", o.prefix, g);
-		r[4 + k].path = snap[k];
-		r[4 + k].what = "a snapshot (--snapshot-prefix)";
-		r[4 + k].output = 1;
+		r[5 + k].path = snap[k];
+		r[5 + k].what = "a snapshot (--snapshot-prefix)";
+		r[5 + k].output = 1;
 	}
-	if (file_roles_check(r, 4 + o.nsnap))
+	/* the checkpoint is read back: not standard output */
+	if (o.checkpoint && strcmp(o.checkpoint, "-") == 0)
+		cli_usage_error("--checkpoint: give it a file of its own, not standard output");
+	if (file_roles_check(r, 5 + o.nsnap))
 		cli_usage_error("%s", msg_geterr());
 }
 
@@ -147,6 +158,12 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--friction and --wall-friction: must be in [0, 10]");
 	if (o.sp.max_steps < 1)
 		cli_usage_error("--max-steps: must be positive");
+	if (!(o.time_limit >= 0 && isfinite(o.time_limit)))
+		cli_usage_error("--time-limit: must be a number of seconds, 0 or more");
+	if (!(o.checkpoint_every >= 0 && isfinite(o.checkpoint_every)))
+		cli_usage_error("--checkpoint-every: must be a number of seconds, 0 or more");
+	if (o.time_limit > 0 && !o.checkpoint)
+		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
 	parse_snapshots();
 	check_files(st);
 	cli_usage_done();
@@ -192,6 +209,9 @@ set_law(struct pack *p, const char *in)
 	p->mu = o.mu, p->wall_mu = o.wall_mu;
 }
 
+/* The run: its table so far (also kept in a memory stream for the checkpoint, whose next
+ * call prints it again, so that its standard output is the whole table), the snapshots, the
+ * checkpoint's clock. */
 struct run_ctx {
 	struct pack *p;
 	const struct shear_result *res;
@@ -199,7 +219,20 @@ struct run_ctx {
 	int next_snap;
 	time_t start;
 	long rows;
+	FILE *table;
+	char *tablebuf;
+	size_t tablelen;
+	char *run;		/* what a checkpoint must match (cli_run_identity) */
+	struct timespec t0;
+	double last_row, last_save, longest, longest_save;	/* s since t0; the longest row and save in any call */
+	double before;		/* the wall time of the earlier calls (s) */
+	long calls;
+	double gamma;		/* the last row's strain */
+	int replay;		/* going on from a checkpoint: its table is printed before the next row */
 };
+
+/* The checkpoint's first lines (then plateshear_state_write's). */
+#define CK_MAGIC "qusgm-shear-checkpoint 1"
 
 static const struct table_col cols[] = {
 	{"step", NULL}, {"time", "s"}, {"gamma", NULL}, {"tau_sigma", NULL}, {"sigma_ratio", NULL}, {"qp", NULL},
@@ -209,14 +242,23 @@ static const struct table_col cols[] = {
 #define NCOLS ((int)(sizeof cols / sizeof cols[0]))
 
 static void
-print_header(double inertial)
+print_header(FILE *fp, double inertial)
 {
-	printf("## qusgm shear %s: simple shear along x, walls on y (the bottom fixed, the top at sigma_w), x and z periodic\n",
+	fprintf(fp, "## qusgm shear %s: simple shear along x, walls on y (the bottom fixed, the top at sigma_w), x and z periodic\n",
 	    QUSGM_VERSION);
-	printf("## sigma_w %g Pa, I %g, mu %g, wall mu %g, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
+	fprintf(fp, "## sigma_w %g Pa, I %g, mu %g, wall mu %g, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
 	       "sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
 	    o.sp.sigma_w, inertial, o.mu, o.wall_mu, o.kn, o.kt, o.restitution);
-	table_header(stdout, cols, NCOLS);
+	table_header(fp, cols, NCOLS);
+}
+
+static double
+since(const struct timespec *t0)
+{
+	struct timespec t;
+
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
 }
 
 /* A snapshot: the state as a pack, with its strain in meta shear_gamma and this run's
@@ -249,11 +291,22 @@ on_row(const struct shear_row *row, struct pdem *d, void *vc)
 	    row->elements, row->height};
 	double el = difftime(time(NULL), c->start);
 
-	if (c->rows == 0)	/* only now: a run that fails to start writes nothing */
-		print_header(c->res->inertial);	/* the run's, also under --velocity */
+	if (c->replay) {	/* only now that the state read back: a bad checkpoint writes nothing */
+		fflush(c->table);
+		fwrite(c->tablebuf, 1, c->tablelen, stdout);
+		c->replay = 0;
+	}
+	if (c->rows == 0) {	/* only now: a run that fails to start writes nothing */
+		print_header(stdout, c->res->inertial);	/* the run's, also under --velocity */
+		if (c->table)
+			print_header(c->table, c->res->inertial);
+	}
 	table_row(stdout, v, NCOLS);
 	fflush(stdout);	/* a series can be followed while it grows */
+	if (c->table)
+		table_row(c->table, v, NCOLS);
 	c->rows++;
+	c->gamma = row->gamma;
 	while (c->next_snap < o.nsnap && row->gamma >= o.snap[c->next_snap]) {
 		char path[4096], g[40];
 
@@ -266,6 +319,87 @@ on_row(const struct shear_row *row, struct pdem *d, void *vc)
 	cli_progress("gamma %.3f of %g  tau/sigma %.3f  q/p %.3f  phi %.4f  Z %.2f  ETA %.0f s", row->gamma, o.sp.strain,
 	    row->tau_ratio, row->qp, row->phi, row->z, row->gamma > 0 ? el * (o.sp.strain / row->gamma - 1) : 0);
 	return 0;
+}
+
+/* After a row: the state to the checkpoint (atomically) when --checkpoint-every seconds
+ * have passed since the last save, or when the next row, taken as long as the longest so
+ * far in any call and followed by a save as long as the longest, would end past
+ * --time-limit; then stop (1) if it would.  Each call so runs at least one row.  When the
+ * state is saved does not change the run: it goes on from any row to the same bytes. */
+static int
+on_checkpoint(const struct shear_state *ss, void *vc)
+{
+	struct run_ctx *c = vc;
+	double now = since(&c->t0), wrote;
+	struct file_out out;
+	int past;
+
+	c->longest = fmax(c->longest, now - c->last_row);
+	c->last_row = now;
+	past = o.time_limit > 0 && now + c->longest + c->longest_save > o.time_limit;
+	if (!past && now - c->last_save < o.checkpoint_every)
+		return 0;
+	if (fflush(c->table) || file_out_open(&out, o.checkpoint))
+		return -1;
+	fprintf(out.fp, "%s\nrun %s\nclock %.3f %.3f %.3f %ld\nsnapshots %d\nrows %ld %a\ntable %zu\n", CK_MAGIC, c->run,
+	    c->longest, c->longest_save, c->before + now, c->calls, c->next_snap, c->rows, c->gamma, c->tablelen);
+	fwrite(c->tablebuf, 1, c->tablelen, out.fp);
+	if (plateshear_state_write(ss, out.fp) || file_out_commit(&out)) {
+		file_out_abort(&out);
+		return -1;
+	}
+	wrote = since(&c->t0);
+	c->longest_save = fmax(c->longest_save, wrote - now);
+	c->last_save = wrote;
+	return o.time_limit > 0 && wrote + c->longest + c->longest_save > o.time_limit;
+}
+
+/* The checkpoint's preamble, when the file exists: the table so far printed again, and a
+ * reader left at the run's state (NULL when there is no checkpoint). */
+static struct lines *
+resume_from(struct run_ctx *c)
+{
+	struct lines *in;
+	char *line, *end;
+	size_t len, tlen;
+	int k;
+
+	if (access(o.checkpoint, F_OK) != 0) {
+		if (errno != ENOENT)
+			msg_die(EXIT_DATA, "%s: %s", o.checkpoint, strerror(errno));
+		return NULL;
+	}
+	if (!(in = lines_open_path(o.checkpoint)))
+		msg_die_err(EXIT_DATA);
+	if (lines_next(in, &line, NULL) != 1 || strcmp(line, CK_MAGIC) != 0)
+		msg_die(EXIT_DATA, "%s:1: not a shear checkpoint (no '%s')", o.checkpoint, CK_MAGIC);
+	if (lines_next(in, &line, NULL) != 1 || strncmp(line, "run ", 4) != 0 || strcmp(line + 4, c->run) != 0)
+		msg_die(EXIT_DATA, "%s: the checkpoint of another run (other options or another input): remove it to start afresh",
+		    o.checkpoint);
+	if (lines_next(in, &line, NULL) != 1 ||
+	    sscanf(line, "clock %lg %lg %lg %ld %n", &c->longest, &c->longest_save, &c->before, &c->calls, &k) != 4 ||
+	    line[k] || !(c->longest >= 0 && c->longest_save >= 0 && c->before >= 0) || c->calls < 1)
+		msg_die(EXIT_DATA, "%s:%ld: expected 'clock LONGEST_ROW LONGEST_SAVE WALL CALLS'", o.checkpoint, lines_lineno(in));
+	if (lines_next(in, &line, NULL) != 1 || sscanf(line, "snapshots %d %n", &c->next_snap, &k) != 1 || line[k] ||
+	    c->next_snap < 0 || c->next_snap > o.nsnap)
+		msg_die(EXIT_DATA, "%s:%ld: expected 'snapshots K' (the snapshots written)", o.checkpoint, lines_lineno(in));
+	if (lines_next(in, &line, NULL) != 1 || sscanf(line, "rows %ld %lg %n", &c->rows, &c->gamma, &k) != 2 || line[k] || c->rows < 1 ||
+	    !(c->gamma > 0 && c->gamma < o.sp.strain))
+		msg_die(EXIT_DATA, "%s:%ld: expected 'rows N GAMMA' (the rows so far, the last one's strain)", o.checkpoint,
+		    lines_lineno(in));
+	if (lines_next(in, &line, NULL) != 1 || strncmp(line, "table ", 6) != 0 ||
+	    (tlen = strtoul(line + 6, &end, 10), *end))
+		msg_die(EXIT_DATA, "%s:%ld: expected 'table BYTES'", o.checkpoint, lines_lineno(in));
+	while (tlen > 0) {	/* the table's lines, as printed */
+		if (lines_next(in, &line, &len) != 1 || len + 1 > tlen)
+			msg_die(EXIT_DATA, "%s:%ld: the table ends early", o.checkpoint, lines_lineno(in));
+		fprintf(c->table, "%s\n", line);
+		tlen -= len + 1;
+	}
+	c->replay = 1;
+	c->calls++;
+	msg_info(1, "going on from %s, at gamma %g (call %ld)", o.checkpoint, c->gamma, c->calls);
+	return in;
 }
 
 /* The profile into out, uncommitted: it is committed with the pack, all or none. */
@@ -292,10 +426,12 @@ main(int argc, char **argv)
 	struct cli_state st;
 	struct pack p;
 	struct shear_result res;
-	struct run_ctx c = {&p, &res, &st, 0, 0, 0};
+	struct run_ctx c = {&p, &res, &st, 0, 0, 0, NULL, NULL, 0, NULL, {0, 0}, 0, 0, 0, 0, 0, 1, 0, 0};
 	struct file_out profout, packout;
+	struct lines *from = NULL;
 	const char *in;
 	char buf[40];
+	int r;
 
 	msg_init(argv[0]);
 	parse_args(argc, argv, &st);
@@ -303,10 +439,35 @@ main(int argc, char **argv)
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
 	set_law(&p, in);
+	clock_gettime(CLOCK_MONOTONIC, &c.t0);
+	if (o.checkpoint) {
+		/* where output goes, when to stop or save, and the snapshots' names change no row */
+		static const char *const skip[] = {"checkpoint", "checkpoint-every", "time-limit", "profile", "snapshot-prefix", NULL};
+		char id[64];
+
+		if (!(c.table = open_memstream(&c.tablebuf, &c.tablelen)))
+			msg_die(EXIT_DATA, "out of memory");
+		pack_checksum(&p, id, sizeof id);
+		c.run = cli_run_identity(&tool, skip, id);
+		from = resume_from(&c);
+	}
 	c.start = time(NULL);
-	if (plateshear_run(&p, &o.sp, on_row, &c, &res))
+	r = plateshear_run_resumable(&p, &o.sp, on_row, &c, o.checkpoint ? on_checkpoint : NULL, from, &res);
+	if (from)
+		lines_close(from);
+	if (r == -2)	/* the checkpoint's own file:line message */
+		msg_die_err(EXIT_DATA);
+	if (r < 0)
 		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
 	cli_progress_end();
+	if (r == 2) {
+		msg_info(0, "stopped at gamma %g at the time limit (%.0f s); the same command goes on from %s", c.gamma,
+		    since(&c.t0), o.checkpoint);
+		fclose(c.table);
+		free(c.tablebuf), free(c.run);
+		pack_free(&p);
+		return EXIT_STOPPED;
+	}
 	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, I %.4g, kappa %.4g; %ld rows",
 	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.inertial, res.kappa, c.rows);
 	if (o.profile)
@@ -324,6 +485,12 @@ main(int argc, char **argv)
 		if (file_out_commit_all(outs, 2))
 			msg_die_err(EXIT_DATA);
 	}
+	/* the run is done: its checkpoint would only start it again at its last save */
+	if (o.checkpoint && remove(o.checkpoint) != 0 && errno != ENOENT)
+		msg_warn("%s: %s (the run is done; remove it)", o.checkpoint, strerror(errno));
+	if (c.table)
+		fclose(c.table);
+	free(c.tablebuf), free(c.run);
 	shear_result_free(&res);
 	pack_free(&p);
 	return 0;

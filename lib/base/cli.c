@@ -334,8 +334,17 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 	atexit(free_argv_text);
 }
 
-char *
-cli_resolved(const struct cli_tool *t)
+static int
+skipped(const char *name, const char *const *skip)
+{
+	for (; skip && *skip; skip++)
+		if (strcmp(name, *skip) == 0)
+			return 1;
+	return 0;
+}
+
+static char *
+resolved_except(const struct cli_tool *t, const char *const *skip)
 {
 	size_t n = count_opts(t->opts), i, len = 1, used = 0;
 	char *s;
@@ -350,9 +359,33 @@ cli_resolved(const struct cli_tool *t)
 		msg_die(EXIT_DATA, "out of memory");
 	s[0] = 0;
 	for (i = 0; i < n; i++) {
+		if (skipped(t->opts[i].name, skip))
+			continue;
 		format_value(&t->opts[i], val, sizeof val);
-		used += (size_t)sprintf(s + used, "%s--%s=%s", i ? " " : "", t->opts[i].name, val);
+		used += (size_t)sprintf(s + used, "%s--%s=%s", used ? " " : "", t->opts[i].name, val);
 	}
+	return s;
+}
+
+char *
+cli_resolved(const struct cli_tool *t)
+{
+	return resolved_except(t, NULL);
+}
+
+char *
+cli_run_identity(const struct cli_tool *t, const char *const *skip, const char *input)
+{
+	char *res = resolved_except(t, skip), *s, *c;
+	size_t len = strlen(t->name) + strlen(QUSGM_VERSION) + strlen(input) + strlen(res) + 16;
+
+	if (!(s = malloc(len)))
+		msg_die(EXIT_DATA, "out of memory");
+	snprintf(s, len, "%s %s %s ; %s", t->name, QUSGM_VERSION, input, res);
+	for (c = s; *c; c++)
+		if (*c == '\n' || *c == '\r')
+			*c = ' ';
+	free(res);
 	return s;
 }
 

@@ -58,6 +58,12 @@ void cli_usage_done(void);
 /* "--name=value ..." for every option in the table, as resolved: goes into history. */
 char *cli_resolved(const struct cli_tool *t);
 
+/* What a checkpoint must match to be gone on from: "tool VERSION INPUT ; --name=value ..."
+ * with every option that changes the result (all but those named in skip, a NULL-ended
+ * list: where output goes, when to stop) and input, what identifies the input (e.g.
+ * "grains N crc32 X": pack_checksum).  One line; the caller frees it. */
+char *cli_run_identity(const struct cli_tool *t, const char *const *skip, const char *input);
+
 /* A history line: "tool SOURCE_VERSION: argv ; resolved options" (cli_source_version).
  * Caller frees. */
 char *cli_history_line(const struct cli_tool *t, const struct cli_state *st);

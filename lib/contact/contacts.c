@@ -127,6 +127,76 @@ carry_history(struct contact_enum *e)
 	return 0;
 }
 
+size_t
+contact_enum_history_get(const struct contact_enum *e, long *ij, double *h)
+{
+	const struct nlist *nl = &e->nl;
+	size_t i, k, m = 0, hs = e->hsize;
+	int w;
+
+	if (!hs || !nl->first)
+		return 0;
+	for (i = 0; i < e->n; i++)
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			const double *s = e->hpair[e->hcur] + hs * k;
+			if (!row_nonzero(s, hs))
+				continue;
+			if (ij) {
+				ij[2 * m] = (long)i, ij[2 * m + 1] = (long)nl->nbr[k];
+				memcpy(h + hs * m, s, hs * sizeof *h);
+			}
+			m++;
+		}
+	for (i = 0; i < e->n; i++)
+		for (w = 0; w < NWALLS; w++) {
+			const double *s = e->hwall + hs * (NWALLS * i + (size_t)w);
+			if (!row_nonzero(s, hs))
+				continue;
+			if (ij) {
+				ij[2 * m] = (long)i, ij[2 * m + 1] = PACK_WALL(w);
+				memcpy(h + hs * m, s, hs * sizeof *h);
+			}
+			m++;
+		}
+	return m;
+}
+
+int
+contact_enum_history_set(struct contact_enum *e, const double *x, size_t m, const long *ij, const double *h)
+{
+	const struct nlist *nl = &e->nl;
+	size_t s = 0, i, k, hs = e->hsize;
+
+	if (contact_enum_update(e, x, 1))
+		return -1;
+	if (!hs)
+		return m ? (msg_seterr("the enumerator keeps no history"), -1) : 0;
+	memset(e->hpair[e->hcur], 0, hs * nl->npairs * sizeof *e->hpair[e->hcur]);
+	memset(e->hwall, 0, hs * NWALLS * e->n * sizeof *e->hwall);
+	memset(e->hwall_set, 0, e->n);
+	/* the pairs: both sequences ascend by (i, j) */
+	for (i = 0; i < e->n; i++)
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			while (s < m && !PACK_IS_WALL(ij[2 * s + 1]) &&
+			       (ij[2 * s] < (long)i || (ij[2 * s] == (long)i && ij[2 * s + 1] < (long)nl->nbr[k])))
+				s++;
+			if (s < m && ij[2 * s] == (long)i && ij[2 * s + 1] == (long)nl->nbr[k])
+				memcpy(e->hpair[e->hcur] + hs * k, h + hs * s, hs * sizeof *h);
+		}
+	while (s < m && !PACK_IS_WALL(ij[2 * s + 1]))
+		s++;
+	for (; s < m; s++) {
+		long g = ij[2 * s], j = ij[2 * s + 1];
+		if (!PACK_IS_WALL(j) || g < 0 || (size_t)g >= e->n) {
+			msg_seterr("history slot %zu: not a grain and a wall after the pairs", s);
+			return -1;
+		}
+		memcpy(e->hwall + hs * (NWALLS * (size_t)g + (size_t)PACK_WALL_INDEX(j)), h + hs * s, hs * sizeof *h);
+		e->hwall_set[g] |= (unsigned char)(1u << PACK_WALL_INDEX(j));
+	}
+	return 0;
+}
+
 void
 contact_enum_skin_auto(struct contact_enum *e, double skin_max)
 {

@@ -120,6 +120,19 @@ void contact_enum_radii_changed(struct contact_enum *e);
  * functional's threads).  0 or -1 (out of memory). */
 int contact_enum_columns(struct contact_enum *e);
 
+/* The history slots that hold something (any bit set, -0.0 too), for a checkpoint: returns
+ * their count and, when ij and h are not NULL, stores each one's pair into ij (two longs: i,
+ * then j, or PACK_WALL(w) for a wall) and its hsize doubles into h; pairs in the list's
+ * order, then the walls grain by grain.  The list must have been built. */
+size_t contact_enum_history_get(const struct contact_enum *e, long *ij, double *h);
+/* Put m slots of contact_enum_history_get back after building the list afresh for positions x
+ * (every other slot zeroed).  The contacts and their order do not depend on when a list was
+ * built (the order above; touching pairs are always listed), so a run going on from a
+ * checkpoint sees what the uninterrupted one would.  A saved pair the new list does not hold
+ * is apart (its slot would be zeroed at its next visit): it is left out.  0, or -1 (out of
+ * memory, or ij not in the order of contact_enum_history_get: msg_seterr). */
+int contact_enum_history_set(struct contact_enum *e, const double *x, size_t m, const long *ij, const double *h);
+
 /* Nearest image of a branch vector along the periodic axes. */
 CONTACT_INLINE void
 contact_min_image(const struct contact_enum *e, double dx[3])

@@ -5,6 +5,7 @@
 #include "dem/servo.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
+#include "base/lines.h"
 #include "base/msg.h"
 #include "base/par.h"
 #include "base/quat.h"
@@ -816,4 +817,147 @@ pdem_write_back(struct pdem *d, struct pack *p)
 		return -1;
 	}
 	return 0;
+}
+
+/* The numbers of a state line: exactly k of them, finite, after the keyword (NULL: none). */
+static int
+state_numbers(struct lines *in, const char *key, double *v, int k)
+{
+	char *line, *tok[32], *end;
+	int nt, a, o = key ? 1 : 0;
+
+	int r = lines_next(in, &line, NULL);
+
+	if (r != 1)
+		return r < 0 ? -1 : lines_error(in, "the engine's state ends early");
+	nt = lines_split(line, " \t", tok, 32);
+	if ((key && (nt < 1 || strcmp(tok[0], key) != 0)) || nt != k + o)
+		return lines_error(in, "expected %s%s%d numbers", key ? key : "", key ? " and " : "", k);
+	for (a = 0; a < k; a++) {
+		v[a] = strtod(tok[a + o], &end);
+		if (*end || end == tok[a + o] || !isfinite(v[a]))
+			return lines_error(in, "'%s': not a finite number", tok[a + o]);
+	}
+	return 0;
+}
+
+/* Whether spring a comes before b in contact_enum_history_get's order: the pairs by (i, j),
+ * then the walls by grain and wall index (j = PACK_WALL(w) falls as w rises). */
+static int
+spring_before(const long *a, const long *b)
+{
+	if (a[1] >= 0 && b[1] >= 0)
+		return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]);
+	if (a[1] >= 0 || b[1] >= 0)
+		return a[1] >= 0;
+	return a[0] < b[0] || (a[0] == b[0] && a[1] > b[1]);
+}
+
+int
+pdem_state_write(const struct pdem *d, FILE *fp)
+{
+	size_t i, m = contact_enum_history_get(&d->ce, NULL, NULL), hs = d->ce.hsize;
+	long *ij = malloc((m ? m : 1) * 2 * sizeof *ij);
+	double *h = malloc((m ? m : 1) * hs * sizeof *h);
+	int a, w;
+
+	if (!ij || !h) {
+		free(ij), free(h);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	contact_enum_history_get(&d->ce, ij, h);
+	fprintf(fp, "pdem-state 1 %zu\nbox", d->n);
+	for (a = 0; a < 3; a++)
+		fprintf(fp, " %a", d->lo[a]);
+	for (a = 0; a < 3; a++)
+		fprintf(fp, " %a", d->hi[a]);
+	fprintf(fp, " %d %d %d\nwallv", d->periodic[0], d->periodic[1], d->periodic[2]);
+	for (w = 0; w < NWALLS; w++)
+		for (a = 0; a < 3; a++)
+			fprintf(fp, " %a", d->wallv[w][a]);
+	fputc('\n', fp);
+	for (i = 0; i < d->n; i++) {
+		const double *x = d->x + 3 * i, *v = d->v + 3 * i, *q = d->q + 4 * i, *om = d->w + 3 * i;
+
+		fprintf(fp, "%a %a %a %a %a %a %a %a %a %a %a %a %a %d\n", x[0], x[1], x[2], v[0], v[1], v[2], q[0], q[1],
+		    q[2], q[3], om[0], om[1], om[2], d->glue ? d->glue[i] : 0);
+	}
+	fprintf(fp, "springs %zu\n", m);
+	for (i = 0; i < m; i++) {
+		fprintf(fp, "%ld %ld", ij[2 * i], ij[2 * i + 1]);
+		for (a = 0; a < (int)hs; a++)
+			fprintf(fp, " %a", h[hs * i + (size_t)a]);
+		fputc('\n', fp);
+	}
+	free(ij), free(h);
+	if (ferror(fp)) {
+		msg_seterr("write error");
+		return -1;
+	}
+	return 0;
+}
+
+int
+pdem_state_read(struct pdem *d, struct lines *in)
+{
+	double v[NWALLS * 3 + 3], *h = NULL;
+	long *ij = NULL, hdr[3];
+	size_t i, m = 0, hs = d->ce.hsize;
+	char *line, *tok[4], *end;
+	int a, w, status = -1;
+
+	if (lines_next(in, &line, NULL) != 1 || lines_split(line, " \t", tok, 4) != 3 || strcmp(tok[0], "pdem-state") ||
+	    strcmp(tok[1], "1") || (hdr[0] = strtol(tok[2], &end, 10), *end) || hdr[0] != (long)d->n)
+		return lines_error(in, "expected 'pdem-state 1 %zu' (the engine's state of these grains)", d->n);
+	if (state_numbers(in, "box", v, 9))
+		return -1;
+	for (a = 0; a < 3; a++) {
+		if ((int)v[6 + a] != d->periodic[a])
+			return lines_error(in, "the boundary is not the run's (axis %c)", "xyz"[a]);
+		d->lo[a] = v[a], d->hi[a] = v[3 + a];
+	}
+	if (state_numbers(in, "wallv", v, NWALLS * 3))
+		return -1;
+	for (w = 0; w < NWALLS; w++)
+		for (a = 0; a < 3; a++)
+			d->wallv[w][a] = v[3 * w + a];
+	for (i = 0; i < d->n; i++) {
+		if (state_numbers(in, NULL, v, 14))
+			return -1;
+		memcpy(d->x + 3 * i, v, 3 * sizeof *v);
+		memcpy(d->v + 3 * i, v + 3, 3 * sizeof *v);
+		memcpy(d->q + 4 * i, v + 6, 4 * sizeof *v);
+		memcpy(d->w + 3 * i, v + 10, 3 * sizeof *v);
+		if (!(v[13] == 0 || v[13] == 3 || v[13] == 4) || (v[13] && !d->glue))
+			return lines_error(in, "glue %g: not 0 or a y wall's", v[13]);
+		if (d->glue)
+			d->glue[i] = (unsigned char)v[13];
+	}
+	if (lines_next(in, &line, NULL) != 1 || lines_split(line, " \t", tok, 4) != 2 || strcmp(tok[0], "springs") ||
+	    (m = strtoul(tok[1], &end, 10), *end) || m > 64 * d->n + 64)
+		return lines_error(in, "expected 'springs M'");
+	if (!(ij = malloc((m ? m : 1) * 2 * sizeof *ij)) || !(h = malloc((m ? m : 1) * hs * sizeof *h))) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	for (i = 0; i < m; i++) {
+		if (state_numbers(in, NULL, v, 2 + (int)hs))
+			goto out;
+		ij[2 * i] = (long)v[0], ij[2 * i + 1] = (long)v[1];
+		if (v[0] != (double)ij[2 * i] || v[1] != (double)ij[2 * i + 1] || ij[2 * i] < 0 || ij[2 * i] >= (long)d->n ||
+		    ij[2 * i + 1] >= (long)d->n || ij[2 * i + 1] < PACK_WALL(NWALLS - 1) ||
+		    (ij[2 * i + 1] >= 0 && ij[2 * i + 1] <= ij[2 * i]) || (i && !spring_before(ij + 2 * i - 2, ij + 2 * i))) {
+			lines_error(in, "spring %zu: not a pair i < j or a grain and a wall, in order", i + 1);
+			goto out;
+		}
+		memcpy(h + hs * i, v + 2, hs * sizeof *h);
+	}
+	if (contact_enum_history_set(&d->ce, d->x, m, ij, h))
+		goto out;
+	d->cache_list = 0;	/* the turns from here */
+	status = 0;
+out:
+	free(ij), free(h);
+	return status;
 }

@@ -38,6 +38,7 @@
 #define QUSGM_PLATEDEM_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include "contact/contacts.h"
 #include "contact/plate.h"
 #include "pack/pack.h"
@@ -178,5 +179,24 @@ int pdem_write_back(struct pdem *d, struct pack *p);
 /* Set the tangential springs from p's contact lines (pdem_write_back's), for the
  * interactions that touch now; the others start from zero.  0 or -1. */
 int pdem_read_history(struct pdem *d, struct pack *p);
+
+/* The engine's state between two steps, for a checkpoint: the grains' centres, velocities,
+ * orientations, angular velocities and glue, the box and the walls' velocities, and the
+ * tangential springs that hold something (contacts.h: contact_enum_history_get), every
+ * number as a C99 hex float, so that it reads back to the bit.  What the engine rebuilds (the
+ * contact list, the narrow-phase caches, the forces of the next pass) is not saved: the
+ * contacts, their order and their elements do not depend on when those were made, so the run
+ * going on from it is the same bytes as the run that wrote it.  Lines:
+ *     pdem-state 1 N
+ *     box LO0 LO1 LO2 HI0 HI1 HI2 PX PY PZ
+ *     wallv 18 numbers (NWALLS x 3)
+ *     N lines: X0 X1 X2 V0 V1 V2 QW QX QY QZ W0 W1 W2 GLUE
+ *     springs M, then M lines: I J H0 H1 H2 (J < 0: a wall, PACK_WALL)
+ * pdem_state_write returns 0 or -1 (a write error: msg_seterr).  pdem_state_read reads them
+ * from in into d, an engine made by pdem_init for the same grains (and made periodic as the
+ * run that wrote it was), and builds its list: 0, or -1 with the file:line message. */
+struct lines;
+int pdem_state_write(const struct pdem *d, FILE *fp);
+int pdem_state_read(struct pdem *d, struct lines *in);
 
 #endif

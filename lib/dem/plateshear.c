@@ -1,5 +1,6 @@
 /* plateshear: simple shear between glued walls (see plateshear.h). */
 #include "dem/plateshear.h"
+#include "base/lines.h"
 #include "base/msg.h"
 #include "pack/shape.h"
 
@@ -111,24 +112,14 @@ profile_add(const struct pdem *d, double vw, int nb, double *sum, double *cnt)
 	}
 }
 
+static void glue_count(const struct pdem *d, struct shear_result *res, double *mtop);
+
 static int
 glue_walls(struct pdem *d, struct shear_result *res, double *mtop)
 {
-	size_t i;
-
-	if (!(d->glue = calloc(d->n, 1))) {
-		msg_seterr("out of memory");
-		return -1;
-	}
 	if (pdem_foreach_interaction(d, 1, on_glue, NULL))
 		return -1;
-	*mtop = 0;
-	for (i = 0; i < d->n; i++) {
-		if (d->glue[i] == 1 + WALL_BOTTOM)
-			res->glued_bottom++;
-		if (d->glue[i] == 1 + WALL_TOP)
-			res->glued_top++, *mtop += d->m[i];
-	}
+	glue_count(d, res, mtop);
 	if (res->glued_bottom == 0 || res->glued_top == 0) {
 		msg_seterr("no grain touches the %s wall: shear a pack compacted between walls (packgen)",
 		    res->glued_bottom == 0 ? "bottom (ylo)" : "top (yhi)");
@@ -137,15 +128,93 @@ glue_walls(struct pdem *d, struct shear_result *res, double *mtop)
 	return 0;
 }
 
+/* Where a run stands after a row: the engine, and what the loop carries from step to step
+ * (the sums of the row are empty after a row). */
+struct shear_state {
+	struct pdem *d;
+	long step;
+	double xw, next_row, vw, H0;
+	int nb;
+	double *psum, *pn;	/* the profile's sums and samples per bin */
+};
+
+int
+plateshear_state_write(const struct shear_state *s, FILE *fp)
+{
+	int b;
+
+	fprintf(fp, "shear-state 1 %d\nloop %ld %a %a %a %a\n", s->nb, s->step, s->xw, s->next_row, s->vw, s->H0);
+	for (b = 0; b < s->nb; b++)
+		fprintf(fp, "%a %a\n", s->psum[b], s->pn[b]);
+	return pdem_state_write(s->d, fp);
+}
+
+static int
+state_read(struct shear_state *s, struct lines *in)
+{
+	char *line, *tok[8], *end;
+	double v[5];
+	int b, k, nt;
+
+	if (lines_next(in, &line, NULL) != 1 || lines_split(line, " \t", tok, 8) != 3 || strcmp(tok[0], "shear-state") ||
+	    strcmp(tok[1], "1") || strtol(tok[2], &end, 10) != s->nb || *end)
+		return lines_error(in, "expected 'shear-state 1 %d' (a shear's state with this many profile bins)", s->nb);
+	if (lines_next(in, &line, NULL) != 1 || (nt = lines_split(line, " \t", tok, 8)) != 6 || strcmp(tok[0], "loop"))
+		return lines_error(in, "expected 'loop STEP XW NEXT_ROW V_W H0'");
+	s->step = strtol(tok[1], &end, 10);
+	if (*end || s->step < 0)
+		return lines_error(in, "'%s': not a step", tok[1]);
+	for (k = 0; k < 4; k++) {
+		v[k] = strtod(tok[2 + k], &end);
+		if (*end || !isfinite(v[k]))
+			return lines_error(in, "'%s': not a finite number", tok[2 + k]);
+	}
+	s->xw = v[0], s->next_row = v[1], s->vw = v[2], s->H0 = v[3];
+	for (b = 0; b < s->nb; b++) {
+		if (lines_next(in, &line, NULL) != 1 || lines_split(line, " \t", tok, 8) != 2)
+			return lines_error(in, "expected a profile bin's sum and samples");
+		for (k = 0; k < 2; k++) {
+			v[k] = strtod(tok[k], &end);
+			if (*end || !isfinite(v[k]))
+				return lines_error(in, "'%s': not a finite number", tok[k]);
+		}
+		s->psum[b] = v[0], s->pn[b] = v[1];
+	}
+	return pdem_state_read(s->d, in);
+}
+
+/* The glued grains' counts and the top body's mass. */
+static void
+glue_count(const struct pdem *d, struct shear_result *res, double *mtop)
+{
+	size_t i;
+
+	res->glued_bottom = res->glued_top = 0;
+	*mtop = 0;
+	for (i = 0; i < d->n; i++) {
+		if (d->glue[i] == 1 + WALL_BOTTOM)
+			res->glued_bottom++;
+		if (d->glue[i] == 1 + WALL_TOP)
+			res->glued_top++, *mtop += d->m[i];
+	}
+}
+
 int
 plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx, struct shear_result *res)
+{
+	return plateshear_run_resumable(p, sp, fn, ctx, NULL, NULL, res);
+}
+
+int
+plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx,
+    shear_checkpoint_fn ck, struct lines *from, struct shear_result *res)
 {
 	const int per[3] = {1, 0, 1};
 	struct pdem d;
 	struct row_sums rs;
 	struct shear_row row;
-	double mtop, sigma_s, H0, A, vw, xw = 0, vol = 0, next_row, *psum = NULL;
-	long step;
+	struct shear_state ss = {&d, 0, 0, 0, 0, 0, sp->profile_bins, NULL, NULL};
+	double mtop, sigma_s, A, vol = 0;
 	size_t i;
 	int status = -1, a, nb = sp->profile_bins;
 
@@ -158,37 +227,46 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 		return -1;
 	if ((!d.periodic[0] || !d.periodic[2]) && pdem_make_periodic(&d, per))
 		goto out;
-	/* the pack's frictional history, for the pairs that were in it (those across a new
-	 * periodic boundary start from zero) */
-	if (pdem_read_history(&d, p))
-		goto out;
-	if (glue_walls(&d, res, &mtop))
-		goto out;
-	for (i = 0; i < d.n; i++)
-		vol += shape_volume(d.r[i], 2 * d.half[i]);
-	sigma_s = sp->sigma_w / (d.u_force / (d.u_len * d.u_len));
-	A = (d.hi[0] - d.lo[0]) * (d.hi[2] - d.lo[2]);
-	H0 = d.hi[1] - d.lo[1];
-	/* I = gamma_dot r sqrt(rho / sigma_w) with r = 1 and rho = 1 in these units */
-	vw = sp->velocity > 0 ? sp->velocity * d.u_time / d.u_len : sp->inertial * sqrt(sigma_s) * H0;
-	res->inertial = vw / H0 / sqrt(sigma_s);
-	res->v_w = vw * d.u_len / d.u_time;
-	res->gamma_dot = res->v_w / (H0 * d.u_len);
-	res->kappa = 1 / sigma_s;
 	res->profile = calloc((size_t)nb, sizeof *res->profile);
-	res->profile_n = calloc((size_t)nb, sizeof *res->profile_n);
-	psum = calloc((size_t)nb, sizeof *psum);
-	if (!res->profile || !res->profile_n || !psum) {
+	res->profile_n = ss.pn = calloc((size_t)nb, sizeof *res->profile_n);
+	ss.psum = calloc((size_t)nb, sizeof *ss.psum);
+	if (!res->profile || !res->profile_n || !ss.psum || !(d.glue = calloc(d.n, 1))) {
 		msg_seterr("out of memory");
 		goto out;
 	}
-	d.wallv[WALL_TOP][0] = vw;
+	sigma_s = sp->sigma_w / (d.u_force / (d.u_len * d.u_len));
+	if (from) {	/* the state of a run of this input, after a row */
+		if (state_read(&ss, from)) {
+			status = -2;
+			goto out;
+		}
+		glue_count(&d, res, &mtop);
+	} else {
+		/* the pack's frictional history, for the pairs that were in it (those across a new
+		 * periodic boundary start from zero) */
+		if (pdem_read_history(&d, p))
+			goto out;
+		if (glue_walls(&d, res, &mtop))
+			goto out;
+		ss.H0 = d.hi[1] - d.lo[1];
+		/* I = gamma_dot r sqrt(rho / sigma_w) with r = 1 and rho = 1 in these units */
+		ss.vw = sp->velocity > 0 ? sp->velocity * d.u_time / d.u_len : sp->inertial * sqrt(sigma_s) * ss.H0;
+		ss.next_row = sp->every;
+		d.wallv[WALL_TOP][0] = ss.vw;
+	}
+	for (i = 0; i < d.n; i++)
+		vol += shape_volume(d.r[i], 2 * d.half[i]);
+	A = (d.hi[0] - d.lo[0]) * (d.hi[2] - d.lo[2]);
+	res->inertial = ss.vw / ss.H0 / sqrt(sigma_s);
+	res->v_w = ss.vw * d.u_len / d.u_time;
+	res->gamma_dot = res->v_w / (ss.H0 * d.u_len);
+	res->kappa = 1 / sigma_s;
 	memset(&rs, 0, sizeof rs);
-	next_row = sp->every;
-	for (step = 1;; step++) {
+	for (;;) {
 		double F[3], gamma;
 
-		if (step > sp->max_steps) {
+		ss.step++;
+		if (ss.step > sp->max_steps) {
 			msg_seterr("the shear did not reach gamma %g in %ld steps", sp->strain, sp->max_steps);
 			goto out;
 		}
@@ -206,21 +284,27 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 		d.wallv[WALL_TOP][1] += (F[1] - sigma_s * A) / mtop * d.dt;
 		pdem_integrate(&d);
 		d.hi[1] += d.wallv[WALL_TOP][1] * d.dt;
-		xw += vw * d.dt;
-		gamma = xw / (d.hi[1] - d.lo[1]);
-		if (gamma >= sp->profile_from && step % 10 == 0)
-			profile_add(&d, vw, nb, psum, res->profile_n);
-		if (gamma >= next_row || gamma >= sp->strain) {
+		ss.xw += ss.vw * d.dt;
+		gamma = ss.xw / (d.hi[1] - d.lo[1]);
+		if (gamma >= sp->profile_from && ss.step % 10 == 0)
+			profile_add(&d, ss.vw, nb, ss.psum, ss.pn);
+		if (gamma >= ss.next_row || gamma >= sp->strain) {
+			int r;
+
 			row_make(&rs, &d, sigma_s, &row);
-			row.step = step;
-			row.time = step * d.dt * d.u_time;
+			row.step = ss.step;
+			row.time = ss.step * d.dt * d.u_time;
 			row.gamma = gamma;
 			memset(&rs, 0, sizeof rs);
-			while (next_row <= gamma)
-				next_row += sp->every;
+			while (ss.next_row <= gamma)
+				ss.next_row += sp->every;
 			if (fn && fn(&row, &d, ctx)) {
 				if (!*msg_geterr())
 					msg_seterr("stopped");
+				goto out;
+			}
+			if (gamma < sp->strain && ck && (r = ck(&ss, ctx)) != 0) {
+				status = r > 0 ? 2 : -1;
 				goto out;
 			}
 		}
@@ -228,13 +312,13 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 			break;
 	}
 	for (a = 0; a < nb; a++)
-		res->profile[a] = res->profile_n[a] > 0 ? psum[a] / res->profile_n[a] : NAN;
+		res->profile[a] = res->profile_n[a] > 0 ? ss.psum[a] / res->profile_n[a] : NAN;
 	pdem_wrap(&d);
 	if (pdem_write_back(&d, p))
 		goto out;
 	status = 0;
 out:
-	free(psum);
+	free(ss.psum);
 	if (status)
 		shear_result_free(res);
 	pdem_free(&d);

@@ -33,6 +33,8 @@
 #include "dem/platedem.h"
 #include "pack/pack.h"
 
+#include <stdio.h>
+
 struct shear_params {
 	struct pdem_params dyn;	/* the contact law and step (damping: Cundall's, 0 in P) */
 	double sigma_w;		/* normal stress on the top wall (Pa) */
@@ -81,6 +83,24 @@ void shear_params_default(struct shear_params *sp);
  * shear_result_free). */
 int plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx, struct shear_result *res);
 void shear_result_free(struct shear_result *res);
+/* Where a run stands after a row (the engine and the loop's counters and sums), and what
+ * saves it: a checkpoint (plateshear_state_write: text of hex floats, so that it reads back to
+ * the bit; platedem.h's pdem_state_write is its engine part). */
+struct shear_state;
+int plateshear_state_write(const struct shear_state *s, FILE *fp);
+/* Called after every row but the last (after shear_row_fn) with the run's state: 0 goes on,
+ * 1 stops the run (plateshear_run_resumable returns 2: a checkpoint at a time limit), -1 is
+ * an error (message set). */
+typedef int (*shear_checkpoint_fn)(const struct shear_state *s, void *ctx);
+/* plateshear_run, with ck after every row (NULL: none), going on from a state read from
+ * `from` (NULL: the start), a reader positioned at what plateshear_state_write wrote for a
+ * run of the same pack p and parameters: the rows, the profile and the final pack are then
+ * those of the run that wrote it, to the bit.  0, 2 when ck stopped it, -1 (msg_seterr), -2
+ * when `from` could not be read (a file:line message). */
+struct lines;
+int plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx,
+    shear_checkpoint_fn ck, struct lines *from, struct shear_result *res);
+
 /* The engine's state into p, the centres wrapped into the box along the periodic axes there
  * (not in the engine, so that a run with snapshots is the run without them).  0 or -1. */
 int plateshear_snapshot(struct pdem *d, struct pack *p);

@@ -6,8 +6,10 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 const char *const pack_wall_names[NWALLS] = {"xlo", "xhi", "ylo", "yhi", "zlo", "zhi"};
 
@@ -510,4 +512,19 @@ pack_wrap_centres(double *x, size_t n, const double lo[3], const double hi[3], c
 				*y = lo[a];
 		}
 	}
+}
+
+void
+pack_checksum(const struct pack *p, char *buf, size_t len)
+{
+	uLong crc = crc32(0L, Z_NULL, 0);
+
+	crc = crc32(crc, (const Bytef *)p->id, (uInt)(p->n * sizeof *p->id));
+	crc = crc32(crc, (const Bytef *)p->x, (uInt)(3 * p->n * sizeof *p->x));
+	crc = crc32(crc, (const Bytef *)p->r, (uInt)(p->n * sizeof *p->r));
+	if (p->side)
+		crc = crc32(crc, (const Bytef *)p->side, (uInt)(p->n * sizeof *p->side));
+	if (p->q)
+		crc = crc32(crc, (const Bytef *)p->q, (uInt)(4 * p->n * sizeof *p->q));
+	snprintf(buf, len, "grains %zu crc32 %08lx", p->n, (unsigned long)crc);
 }

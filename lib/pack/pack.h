@@ -222,4 +222,9 @@ double pack_grain_volume(const struct pack *p);
 /* Index of the grain with the given id, or (size_t)-1 (binary search over a cached sort). */
 size_t pack_find_id(const struct pack *p, long id, size_t *scratch_sorted);
 
+/* What identifies a pack's grains for a checkpoint (cli_run_identity): "grains N crc32 X",
+ * X the CRC-32 of the ids, centres and radii (and sides and orientations when it has them),
+ * into buf (64 bytes are enough). */
+void pack_checksum(const struct pack *p, char *buf, size_t len);
+
 #endif

@@ -1,0 +1,63 @@
+# shear --checkpoint and --time-limit: a shear cut into several calls (each stopped at its
+# time limit with exit 75, or killed with SIGKILL) goes on from its checkpoint to the same
+# bytes as the uninterrupted run: the table, the profile, the snapshots and the final pack
+# (all but their history lines, which name the command); calls on 1 and 2 threads mixed.
+# Then the refusals: another run's checkpoint, a damaged one, --time-limit alone.
+. "$TOP/tests/tools/lib.sh"
+
+packgen --shape spheroplate --platyness 0.5 -n 125 --seed 2 -o s.pack 2>/dev/null
+args="--strain 0.08 --inertial 1e-2 --every 0.01 --profile-from 0.03 --profile-bins 8 --snapshots 0.03,0.06"
+expect_ok "shear: the uninterrupted run" shear $args --profile a.prof --snapshot-prefix a -o a.pack s.pack
+cp ok.out a.tsv
+nohist() { grep -v '^history' "$1"; }
+
+# every row saved; a time limit so short that each call runs a row or a few
+calls=0 rc=75
+while [ "$rc" -eq 75 ] && [ "$calls" -lt 100 ]; do
+	calls=$((calls + 1))
+	shear --threads $((calls % 2 + 1)) $args --profile b.prof --snapshot-prefix b -o b.pack \
+		--checkpoint b.ck --checkpoint-every 0 --time-limit 0.05 s.pack >b.tsv 2>b.err
+	rc=$?
+done
+expect_num "shear: the last call ends the run (exit 0)" "$rc" == 0
+expect_num "shear: the run was cut into calls" "$calls" ">=" 3
+expect_same "shear: resumed table = uninterrupted" a.tsv b.tsv
+expect_same "shear: resumed profile = uninterrupted" a.prof b.prof
+nohist a.pack >a.nh; nohist b.pack >b.nh
+expect_same "shear: resumed final pack = uninterrupted" a.nh b.nh
+for g in 0.03 0.06; do
+	nohist a-$g.pack >a$g.nh 2>/dev/null; nohist b-$g.pack >b$g.nh 2>/dev/null
+	if [ -s a$g.nh ]; then expect_same "shear: resumed snapshot $g = uninterrupted" a$g.nh b$g.nh
+	else fail "shear: snapshot $g" "a-$g.pack missing"; fi
+done
+[ ! -e b.ck ] && pass "shear: the finished run removes its checkpoint" || fail "shear: checkpoint removed" "b.ck left"
+
+# SIGKILL at a random moment, then the same command: on from the last save
+shear $args --profile c.prof --snapshot-prefix c -o c.pack --checkpoint c.ck --checkpoint-every 0 s.pack >c.tsv 2>/dev/null &
+pid=$!
+k=0
+while [ ! -s c.ck ] && [ $k -lt 600 ]; do sleep 0.05; k=$((k + 1)); done
+kill -9 $pid 2>/dev/null
+wait $pid 2>/dev/null
+if [ -s c.ck ]; then
+	head -1 c.ck | grep -q '^qusgm-shear-checkpoint 1$' && pass "shear: the checkpoint a kill left" ||
+		fail "shear: the checkpoint a kill left" "$(head -c 100 c.ck)"
+	cp c.ck c2.ck
+	expect_ok "shear: going on after SIGKILL" shear $args --profile c.prof --snapshot-prefix c -o c.pack --checkpoint c.ck \
+		--checkpoint-every 0 s.pack
+	cp ok.out c.tsv
+	expect_same "shear: after SIGKILL, table = uninterrupted" a.tsv c.tsv
+	nohist c.pack >c.nh
+	expect_same "shear: after SIGKILL, final pack = uninterrupted" a.nh c.nh
+	# another run (another strain) refuses it; so does a damaged one
+	expect_error "shear: the checkpoint of another run" 1 "^shear: c2.ck: the checkpoint of another run" \
+		shear --strain 0.2 --inertial 1e-2 --every 0.01 --profile-from 0.03 --profile-bins 8 --snapshots 0.03,0.06 \
+		--checkpoint c2.ck s.pack
+	head -n -3 c2.ck >c3.ck
+	expect_error "shear: a truncated checkpoint" 1 "^shear: c3.ck:[0-9]+: " shear $args --checkpoint c3.ck s.pack
+	sed '9s/^\([^ ]*\) /nonsense /' c2.ck >c4.ck
+	expect_error "shear: a damaged checkpoint" 1 "^shear: c4.ck:[0-9]+: " shear $args --checkpoint c4.ck s.pack
+else
+	fail "shear: the checkpoint a kill left" "none after 30 s"
+fi
+expect_error "shear: --time-limit needs --checkpoint" 2 "^shear: --time-limit needs --checkpoint" shear --time-limit 10 s.pack
