@@ -53,6 +53,8 @@ static struct cli_opt opt_table[] = {
 	{"friction", 0, CLI_DOUBLE, &o.mu, "MU", "grain-grain friction coefficient (default: the pack's)", NULL},
 	{"wall-friction", 0, CLI_DOUBLE, &o.wall_mu, "MU", "friction of free grains on the walls (default: the pack's)", NULL},
 	{"max-steps", 0, CLI_LONG, &o.sp.max_steps, "N", "give up after N steps", NULL},
+	{"relax-tol", 0, CLI_DOUBLE, &o.sp.relax_tol, "TOL", "before the strain, relax at sigma_w until the unbalanced force is below TOL of the mean interaction force; 0: no relaxation", NULL},
+	{"start-strain", 0, CLI_DOUBLE, &o.sp.start_strain, "GAMMA", "damp the top wall's normal motion up to this strain; 0: never", NULL},
 	{"checkpoint", 0, CLI_STRING, &o.checkpoint, "FILE", "save the run's state to FILE as it goes; go on from FILE if it exists", NULL},
 	{"checkpoint-every", 0, CLI_DOUBLE, &o.checkpoint_every, "S", "with --checkpoint: save at the first row S seconds after the last save (0: at every row)", "s"},
 	{"time-limit", 0, CLI_DOUBLE, &o.time_limit, "S", "with --checkpoint: stop (exit 75) at the last row before S seconds; 0: none", "s"},
@@ -158,6 +160,10 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--friction and --wall-friction: must be in [0, 10]");
 	if (o.sp.max_steps < 1)
 		cli_usage_error("--max-steps: must be positive");
+	if (!(o.sp.relax_tol >= 0 && o.sp.relax_tol < 1))
+		cli_usage_error("--relax-tol: must be in [0, 1)");
+	if (!(o.sp.start_strain >= 0 && o.sp.start_strain <= 100))
+		cli_usage_error("--start-strain: must be in [0, 100]");
 	if (!(o.time_limit >= 0 && isfinite(o.time_limit)))
 		cli_usage_error("--time-limit: must be a number of seconds, 0 or more");
 	if (!(o.checkpoint_every >= 0 && isfinite(o.checkpoint_every)))
@@ -468,6 +474,9 @@ main(int argc, char **argv)
 		pack_free(&p);
 		return EXIT_STOPPED;
 	}
+	if (res.relax_steps)
+		msg_info(1, "relaxed at sigma_w in %ld steps: packing fraction %.4f, coordination %.3f (walls counted once)",
+		    res.relax_steps, res.relax_phi, res.relax_z);
 	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, I %.4g, kappa %.4g; %ld rows",
 	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.inertial, res.kappa, c.rows);
 	if (o.profile)

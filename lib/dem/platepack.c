@@ -79,9 +79,8 @@ wall_ratio(const struct pdem *d, double target)
 	return nw ? s / nw / target : 0;
 }
 
-/* Steps under the servo until static (stage 1: six walls; 2: periodic axes fixed). */
-static int
-settle(struct pdem *d, const struct platepack_params *pp, double target, int stage, platepack_progress_fn fn,
+int
+platepack_settle(struct pdem *d, const struct platepack_params *pp, double target, int stage, platepack_progress_fn fn,
     void *ctx, struct platepack_status *st)
 {
 	double vol = grains_volume(d);
@@ -132,10 +131,10 @@ platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, 
 	target = pp->sigma0 * d.u_len / d.u_force * d.u_len;	/* stress unit: k_n / r0 */
 	st->kappa = 1 / target;	/* r0 = 1, k_n = 1 */
 	st->inertial = pp->rate / d.dt * sqrt(1 / target);
-	if (settle(&d, pp, target, 1, fn, ctx, st))
+	if (platepack_settle(&d, pp, target, 1, fn, ctx, st))
 		goto out;
 	if (pp->periodic[0] || pp->periodic[1] || pp->periodic[2]) {
-		if (pdem_make_periodic(&d, pp->periodic) || settle(&d, pp, target, 2, fn, ctx, st))
+		if (pdem_make_periodic(&d, pp->periodic) || platepack_settle(&d, pp, target, 2, fn, ctx, st))
 			goto out;
 	}
 	pdem_wrap(&d);

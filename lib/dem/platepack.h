@@ -68,4 +68,13 @@ void platepack_params_default(struct platepack_params *pp);
 int platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, platepack_progress_fn fn,
     void *ctx, struct platepack_status *final);
 
+/* Steps of engine d under the wall servo (dem_servo at pp->rate, the periodic axes fixed)
+ * until static: the mean unbalanced force below pp->rest_tol of the mean interaction force
+ * and the wall stress within 5 % of target (scaled units, k_n / r0), checked every 100
+ * steps, at most pp->max_steps; st (stage as given) is filled, fn called every 1000 steps.
+ * The damping is d's own.  0 or -1 (msg_seterr).  Stage 1 and 2 of platepack_make, and the
+ * shear's relaxation before its strain (plateshear.h). */
+int platepack_settle(struct pdem *d, const struct platepack_params *pp, double target, int stage, platepack_progress_fn fn,
+    void *ctx, struct platepack_status *st);
+
 #endif

@@ -1,5 +1,6 @@
 /* plateshear: simple shear between glued walls (see plateshear.h). */
 #include "dem/plateshear.h"
+#include "dem/platepack.h"
 #include "base/lines.h"
 #include "base/msg.h"
 #include "pack/shape.h"
@@ -23,6 +24,10 @@ shear_params_default(struct shear_params *sp)
 	sp->profile_from = 1.5;
 	sp->profile_bins = 20;
 	sp->max_steps = 100000000;
+	sp->relax_tol = 1e-3;
+	sp->relax_damping = 0.3;
+	sp->relax_steps_max = 2000000;
+	sp->start_strain = 0.05;
 }
 
 int
@@ -110,6 +115,32 @@ profile_add(const struct pdem *d, double vw, int nb, double *sum, double *cnt)
 		sum[b] += d->v[3 * i] / vw;
 		cnt[b] += 1;
 	}
+}
+
+/* The relaxation before the strain (see shear_params): at sigma_s (scaled), the periodic
+ * axes fixed, with local damping, until static. */
+static int
+relax(struct pdem *d, const struct shear_params *sp, double sigma_s, struct shear_result *res)
+{
+	struct platepack_params pp;
+	struct platepack_status st;
+	double damping = d->damping;
+	int r;
+
+	platepack_params_default(&pp);
+	pp.rest_tol = sp->relax_tol;
+	pp.max_steps = sp->relax_steps_max;
+	d->damping = sp->relax_damping;
+	r = platepack_settle(d, &pp, sigma_s, 2, NULL, NULL, &st);
+	d->damping = damping;
+	if (r) {
+		msg_seterr("the relaxation before the shear: %s", msg_geterr());
+		return -1;
+	}
+	res->relax_steps = st.step;
+	res->relax_phi = st.phi;
+	res->relax_z = st.z;
+	return 0;
 }
 
 static void glue_count(const struct pdem *d, struct shear_result *res, double *mtop);
@@ -246,6 +277,8 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		 * periodic boundary start from zero) */
 		if (pdem_read_history(&d, p))
 			goto out;
+		if (sp->relax_tol > 0 && relax(&d, sp, sigma_s, res))
+			goto out;
 		if (glue_walls(&d, res, &mtop))
 			goto out;
 		ss.H0 = d.hi[1] - d.lo[1];
@@ -281,7 +314,13 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 					F[a] += d.f[3 * i + a];
 		row_add(&rs, &d, -F[0] / A, F[1] / A, (d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]), vol,
 		    res->glued_bottom + res->glued_top);
-		d.wallv[WALL_TOP][1] += (F[1] - sigma_s * A) / mtop * d.dt;
+		{	/* the top body's normal motion, damped at the start (shear_params) */
+			double fy = F[1] - sigma_s * A, vy = d.wallv[WALL_TOP][1];
+
+			if (ss.xw < sp->start_strain * (d.hi[1] - d.lo[1]))
+				fy -= sp->relax_damping * fabs(fy) * (vy > 0 ? 1 : vy < 0 ? -1 : 0);
+			d.wallv[WALL_TOP][1] += fy / mtop * d.dt;
+		}
 		pdem_integrate(&d);
 		d.hi[1] += d.wallv[WALL_TOP][1] * d.dt;
 		ss.xw += ss.vw * d.dt;

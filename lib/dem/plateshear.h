@@ -45,6 +45,15 @@ struct shear_params {
 	double profile_from;	/* average the velocity profile from this strain on (> strain: none) */
 	int profile_bins;
 	long max_steps;
+	/* The start (P says nothing of it): before the strain, the pack made periodic on x and z
+	 * relaxes at sigma_w under the y walls' servo, with Cundall's local damping relax_damping,
+	 * until static (platepack_settle: the unbalanced force below relax_tol of the mean
+	 * interaction force, the wall stress within 5 %; relax_tol 0: no relaxation); then the top
+	 * body's normal motion gets the same local damping up to gamma start_strain, so that the
+	 * shear's onset does not set it oscillating on the pack (the undamped start swung Z
+	 * between 2.3 and 5.2 up to gamma 0.8 at 8000 plates). */
+	double relax_tol, relax_damping, start_strain;
+	long relax_steps_max;
 };
 
 /* One row of the time series (SI where there is a unit). */
@@ -71,12 +80,15 @@ struct shear_result {
 	double gamma_dot;	/* 1/s */
 	double kappa;		/* k_n / (sigma_w r) */
 	size_t glued_bottom, glued_top;
+	long relax_steps;	/* steps of the relaxation (0: none, or going on from a checkpoint) */
+	double relax_phi, relax_z;	/* the packing fraction and Z (interactions per grain) at its end */
 	double *profile;	/* profile_bins means of v_x / v_w (NaN where a bin saw no grain), or NULL */
 	double *profile_n;	/* samples per bin */
 };
 
 /* Defaults: P's law (platedem.h) without Cundall damping, I = 1e-3, gamma 2.5, a row every
- * 0.01, the profile from gamma 1.5 in 20 bins, at most 1e8 steps. */
+ * 0.01, the profile from gamma 1.5 in 20 bins, at most 1e8 steps; the relaxation to 1e-3
+ * with damping 0.3 (packgen's), at most 2e6 steps, the top body damped up to gamma 0.05. */
 void shear_params_default(struct shear_params *sp);
 /* Shear pack p (walls on y; see above) to sp->strain; p receives the final state.  0, or -1
  * with msg_seterr.  res->profile and res->profile_n are allocated (free them with

@@ -24,7 +24,10 @@ qs_init(struct qs_system *s, struct pack *p, double skin)
 	s->p = p;
 	s->n = p->n;
 	qs_set_rotations(s, 0);
-	s->law = &contact_law_hertz_mindlin;
+	/* the pack's law (its contact-law key; Hertz-Mindlin without one): the functional's fast
+	 * path is Hertz's, any other law goes through the law's interface */
+	if (!(s->law = contact_law_of_pack(p)))
+		return -1;
 	s->term[0].name = "normal";
 	s->term[0].energy = normal_energy;
 	s->term[0].stiffness = normal_stiffness;
