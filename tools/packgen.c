@@ -26,7 +26,7 @@ static struct opts {
 	const char *shape_name, *plate_radius_name, *periodic_spec;
 	double wall_E, wall_nu, mu, wall_mu;
 	double dem_mu, dem_wall_mu, jitter, overlap, damping, phi0, rest_tol;
-	double eta, spheroradius, kn, kt, restitution, sigma0, density, hydrate_volume;
+	double eta, spheroradius, kn, kt, restitution, sigma0, kappa, density, hydrate_volume;
 	struct psd psd;
 	struct material mat, hydrate;
 	double aspect[3];
@@ -38,7 +38,7 @@ static struct opts {
 	.shape_name = "sphere", .plate_radius_name = "edge", .periodic_spec = "none",
 	.wall_E = 0, .wall_nu = 0.495, .mu = NAN, .wall_mu = -1,
 	.dem_mu = NAN, .dem_wall_mu = NAN, .jitter = NAN, .overlap = 1e-4, .damping = NAN, .phi0 = 0.3, .rest_tol = NAN,
-	.eta = 0.5, .spheroradius = 3e-8, .kn = 1.5e3, .kt = 1.5e3, .restitution = 0.6, .sigma0 = NAN,
+	.eta = 0.5, .spheroradius = 3e-8, .kn = 1.5e3, .kt = 1.5e3, .restitution = 0.6, .sigma0 = NAN, .kappa = NAN,
 	.density = NAN, .hydrate_volume = 0,
 };
 
@@ -68,6 +68,7 @@ static struct cli_opt opt_table[] = {
 	{"kt", 0, CLI_DOUBLE, &o.kt, "K", "spheroplates: tangential contact stiffness", "N/m"},
 	{"restitution", 0, CLI_DOUBLE, &o.restitution, "E", "spheroplates: restitution coefficient of a binary collision, [0.21, 1]", NULL},
 	{"stress", 0, CLI_DOUBLE, &o.sigma0, "PA", "spheroplates: isotropic compaction stress sigma0 (default: kappa = kn/(sigma0 r) = 1e4)", "Pa"},
+	{"kappa", 0, CLI_DOUBLE, &o.kappa, "K", "spheroplates: ... or the stiffness number kappa = kn/(sigma0 r), r the spheroradius", NULL},
 	{"density", 0, CLI_DOUBLE, &o.density, "RHO", "grain density (default: the material's for spheres, 2700 for spheroplates)", "kg/m^3"},
 	{"periodic", 0, CLI_STRING, &o.periodic_spec, "AXES", "spheroplates: after compaction, replace the walls of these axes (e.g. xz) by periodic boundaries, or none", NULL},
 	{"max-steps", 0, CLI_LONG, &o.max_steps, "N", "DEM step limit", NULL},
@@ -115,7 +116,8 @@ shape_defaults(void)
 	if (isnan(o.density))
 		o.density = o.plates ? 2700 : o.mat.rho;
 	if (isnan(o.sigma0))
-		o.sigma0 = o.kn / (1e4 * o.spheroradius);
+		o.sigma0 = o.kn / ((isnan(o.kappa) ? 1e4 : o.kappa) * o.spheroradius);
+	o.kappa = NAN;	/* recorded as the --stress it gave (and meta kappa): the resolved options, given back, repeat the run */
 }
 
 /* --periodic: 'none' or a set of axis letters, not all three (the walls of one axis load the
@@ -187,6 +189,10 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--restitution: must be in [0.21, 1] (a linear dashpot returns no less than exp(-pi/2))");
 	if (!isnan(o.sigma0) && !(o.sigma0 > 0 && isfinite(o.sigma0)))
 		cli_usage_error("--stress: must be positive");
+	if (!isnan(o.kappa) && !(o.kappa >= 10 && o.kappa <= 1e9))
+		cli_usage_error("--kappa: must be in [10, 1e9] (the paper's rigid limit is kappa >= 1e3)");
+	if (!isnan(o.kappa) && !isnan(o.sigma0))
+		cli_usage_error("--stress and --kappa: give one");
 	if (!isnan(o.density) && !(o.density > 0 && isfinite(o.density)))
 		cli_usage_error("--density: must be positive");
 	parse_periodic();

@@ -359,7 +359,9 @@ resolved_except(const struct cli_tool *t, const char *const *skip)
 		msg_die(EXIT_DATA, "out of memory");
 	s[0] = 0;
 	for (i = 0; i < n; i++) {
-		if (skipped(t->opts[i].name, skip))
+		/* skipped, or a nan double: not given, and its absence gives it back */
+		if (skipped(t->opts[i].name, skip) ||
+		    (t->opts[i].type == CLI_DOUBLE && isnan(*(double *)t->opts[i].dest)))
 			continue;
 		format_value(&t->opts[i], val, sizeof val);
 		used += (size_t)sprintf(s + used, "%s--%s=%s", used ? " " : "", t->opts[i].name, val);

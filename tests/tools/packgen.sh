@@ -123,6 +123,10 @@ for k in plate-radius contact-law kn kt restitution sigma0 kappa; do
 done
 # the frictional history: one contact line per touching interaction
 expect_num "spheroplates: contact lines written" "$(awk '$1 == "contacts" { print $2 }' p.pack)" ">" 10
+# --kappa sets the compaction stress: sigma0 = kn / (kappa r) = 1.5e3 / (1e3 3e-8) = 5e7 Pa
+expect_ok "spheroplates: packgen --kappa 1e3" packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 --kappa 1e3 -o pk.pack
+expect_num "spheroplates: --kappa 1e3 gives sigma0 5e7 Pa" "$(rel "$(awk '$1 == "meta" && $2 == "sigma0" { print $3 }' pk.pack)" 5e7)" "<" 1e-12
+expect_error "spheroplates: --stress and --kappa" 2 '^packgen: --stress and --kappa: give one' packgen --shape spheroplate -n 27 --stress 1e6 --kappa 1e3
 # packinfo's interactions (measure_plates) against packgen's own: one contact line per interaction
 expect_num "spheroplates: packinfo finds an interaction per contact line" \
 	"$(awk '$1 == "contacts_gg" { g = $2 } $1 == "contacts_gw" { w = $2 } END { print g + w }' pinfo.txt)" == "$(info_value pinfo.txt history_contacts)"
