@@ -60,7 +60,7 @@ BEGIN {
 	print "<h" h ">" inline(t) "</h" h ">"
 	if (h == 1) {
 		if (view != "")
-			print "<p class=\"view\"><a href=\"" view "\">The study's pack in 3D</a> (packview: grains, force chains, slabs; opens offline)</p>"
+			print "<p class=\"view\"><a href=\"" view "\">The pack of this study in 3D</a> (packview: grains, force chains, slabs; opens offline)</p>"
 		if (fig != "")
 			print "<p><img alt=\"the study&#39;s figure\" src=\"" fig "\"></p>"
 	}
