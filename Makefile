@@ -24,7 +24,11 @@ PKGS      = gsl ccd zlib
 SOMAJOR   = 0
 SONAME    = libqusgm.so.$(SOMAJOR)
 SOLIB     = libqusgm.so.$(VERSION)
-DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config
+DEB_PKGS  = libgsl-dev libccd-dev zlib1g-dev pkg-config libjs-three
+# packview inlines three.js from Debian's libjs-three when it runs (tools/packview.c)
+THREE_JS  = /usr/share/javascript/three/three.min.js
+# packview's browser test opens its pages in headless Chromium (tests/tools/packview.sh)
+DEB_BROWSER = chromium
 DEB_PLOT  = gnuplot-nox
 DEB_PY    = python3-numpy
 DEB_PEERS = liggghts
@@ -62,8 +66,10 @@ ALL_CFLAGS = $(STD) $(WARN) $(OPT) $(OMPFLAGS) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAG
 ALL_LIBS   = $(PKG_LIBS) -lm
 
 LIB_SRC   = $(wildcard lib/*/*.c)
-LIB_OBJ   = $(LIB_SRC:lib/%.c=$(B)/lib/%.o)
-PIC_OBJ   = $(LIB_SRC:lib/%.c=$(B)/pic/%.o)
+# packview's page template (lib/analysis/view_page.html), compiled in as a C string
+GEN_SRC   = analysis/view_page
+LIB_OBJ   = $(LIB_SRC:lib/%.c=$(B)/lib/%.o) $(GEN_SRC:%=$(B)/lib/%.o)
+PIC_OBJ   = $(LIB_SRC:lib/%.c=$(B)/pic/%.o) $(GEN_SRC:%=$(B)/pic/%.o)
 LIB_HDR   = $(wildcard lib/*/*.h)
 TOOL_SRC  = $(wildcard tools/*.c)
 TOOLS     = $(TOOL_SRC:tools/%.c=%)
@@ -78,7 +84,7 @@ FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 
-.PHONY: version FORCE libs all deps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: version FORCE libs all deps browserdeps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -97,6 +103,7 @@ deps:
 	for m in $(PKGS); do \
 	  pkg-config --exists $$m 2>/dev/null || missing="$$missing $$m"; \
 	done; \
+	[ -f $(THREE_JS) ] || missing="$$missing libjs-three"; \
 	if [ -n "$$missing" ]; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
 	    echo "qusgm: installing missing build dependencies ($$missing)"; \
@@ -110,6 +117,18 @@ deps:
 $(B)/lib/%.o: lib/%.c $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+# A text file as a C string: each line quoted, with \ " and ? escaped (no trigraphs)
+$(B)/gen/%.c: lib/%.html
+	@mkdir -p $(@D)
+	{ echo '#include "analysis/view.h"'; echo 'const char $(notdir $*)_html[] ='; \
+	  sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/?/\\?/g' -e 's/^/"/' -e 's/$$/\\n"/' $<; echo ';'; } >$@.tmp && mv $@.tmp $@
+$(B)/lib/analysis/view_page.o: $(B)/gen/analysis/view_page.c $(LIB_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+$(B)/pic/analysis/view_page.o: $(B)/gen/analysis/view_page.c $(LIB_HDR)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -fPIC -c -o $@ $<
 
 # The source version reaches cli.c alone, as a define; its objects depend on a file that
 # changes only when the string does, so a new commit or a first edit recompiles one file and
@@ -154,6 +173,19 @@ $(B)/bench/%: tests/bench/%.c tests/bench/bench.h tests/unit/plate_place.h $(B)/
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
+# packview's browser test needs Chromium (Debian chromium): installed as root when missing,
+# else the test fails and says what to install.
+browserdeps:
+	@if ! command -v chromium >/dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "qusgm: installing $(DEB_BROWSER) for packview's browser test" >&2; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_BROWSER); } >/dev/null || \
+	      echo "qusgm: apt-get install $(DEB_BROWSER) failed: packview's browser test will fail" >&2; \
+	  else \
+	    echo "qusgm: chromium not found, packview's browser test will fail; run: sudo apt-get install $(DEB_BROWSER)" >&2; \
+	  fi; \
+	fi
+
 # Figures need gnuplot (Debian gnuplot-nox): installed as root, else the exact command.
 plotdeps:
 	@if ! command -v gnuplot >/dev/null 2>&1; then \
@@ -184,13 +216,13 @@ pydeps:
 # The builds compile on every core (CHECK_JOBS, default the cores online): on CI's two cores a
 # fresh clone spends about a minute and a half compiling otherwise.
 CHECK_JOBS ?= $(shell getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)
-check: deps pydeps
+check: deps pydeps browserdeps
 	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) B=build tools unit libs
 	@$(MAKE) --no-print-directory -j$(CHECK_JOBS) B=build-san OPT="-O1 -g" EXTRA_CFLAGS="$(SANFLAGS)" tools unit
 	@sh tests/run.sh build build-san
 
 # Quicker loop while developing: normal build only.
-check-fast: all
+check-fast: all browserdeps
 	@sh tests/run.sh build
 
 # Signals at random moments against every tool that writes files (tests/killtest.sh): a minute

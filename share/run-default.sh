@@ -4,7 +4,8 @@
 # (uniaxial strain to 20 MPa) -> moduli (K, G, lambda, E, nu per 10 increments), printed at
 # the end; every stage's output stays in out/ for inspection, with its wall time in
 # out/times.tsv, and out/moduli.png plots K and G against sigma_c and out/forces.png draws the
-# force network of a slab of the final pack when gnuplot is installed.
+# force network of a slab of the final pack when gnuplot is installed; out/pack.html shows the
+# final pack in 3D (packview).
 set -e
 bin=${1:-build/bin}
 # OpenMP threads that wait at a barrier spin for a while before they sleep: GNU OpenMP's
@@ -32,6 +33,8 @@ stage moduli "$bin/moduli" --window 10 -o out/moduli.tsv out/curve.tsv
 # increments of 1e-4), its K from the volume-averaged stress, Walton's K from the bulk
 # porosity and coordination (moduli(1))
 stage probe sh -c "'$bin/loadtest' --path isotropic --steps 3 out/final.pack.gz | '$bin/moduli' --window 3 --emt glass -o out/probe.tsv"
+# the final pack in 3D, one page to open in a browser (packview(1))
+stage packview "$bin/packview" -o out/pack.html out/final.pack.gz
 echo "== packinfo out/frictional.pack.gz" >&2
 "$bin/packinfo" out/frictional.pack.gz | grep -E '^(grains|porosity|coordination|under4|sigma_c|residual|sliding_ratio) '
 if command -v gnuplot >/dev/null 2>&1; then

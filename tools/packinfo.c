@@ -2,7 +2,6 @@
 #include "base/cli.h"
 #include "base/fileio.h"
 #include "analysis/measure.h"
-#include "contact/law.h"
 #include "pack/shape.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
@@ -207,14 +206,13 @@ measure_row(const struct pack *p, const char *name, struct geo_contacts *gc, str
 	struct pack_measures m;
 	struct plate_measures pm;
 	enum shape_radius conv;
+	int plates = measure_is_plate_pack(p);
 
-	const struct contact_law *law = contact_law_of_pack(p);
-
-	if (!law)
+	if (plates < 0)
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	/* the sphere report computes Hertz forces: a pack of the plate engine's linear law
 	 * (spheres at --platyness 0 too) gets the plate report, whose forces are that law's */
-	if (pack_first_plate(p) == (size_t)-1 && law == &contact_law_hertz_mindlin) {
+	if (!plates) {
 		if (measure_pack(p, gc, &m) || measure_bulk(p, gc, bulk_margin, &m))
 			msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 		fill_row(p, &m, r);

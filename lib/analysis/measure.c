@@ -5,6 +5,7 @@
 #include "base/vec3.h"
 #include "analysis/fabric.h"
 #include "contact/hertz.h"
+#include "contact/law.h"
 #include "contact/linear.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
@@ -474,6 +475,13 @@ measure_fabric(struct pack_measures *m)
 	m->fabric_anisotropy = 7.5 * sqrt(1.5 * dd);
 }
 
+/* Grain k's unbalance: the larger of its net force and its net moment over its radius (N). */
+static double
+grain_unbalance(const struct pack *p, const struct balance *b, size_t k)
+{
+	return fmax(vec3_norm(b->F + 3 * k), vec3_norm(b->M + 3 * k) / p->r[k]);
+}
+
 /* Stresses, mean force and the residual, once every contact is summed. */
 static void
 measure_forces(const struct pack *p, size_t nct, const struct balance *b, struct pack_measures *m)
@@ -489,14 +497,14 @@ measure_forces(const struct pack *p, size_t nct, const struct balance *b, struct
 		m->sig_lw[a] /= m->volume;
 	m->P_mean = b->Psum / nct;
 	for (k = 0; k < p->n; k++) {
-		double fr, mr, floor_ = MEASURE_RESIDUAL_FLOOR * m->P_mean;
+		double fr, un;
 		if (!(b->fbig[k] > 0))
 			continue;
 		fr = vec3_norm(b->F + 3 * k);
-		mr = vec3_norm(b->M + 3 * k) / p->r[k];
-		m->residual_strict = fmax(m->residual_strict, fmax(fr, mr) / b->fbig[k]);
-		m->residual_max = fmax(m->residual_max, fmax(fr, mr) / fmax(b->fbig[k], floor_));
-		b->res[nres] = fmax(fr, mr) / fmax(b->fbig[k], floor_);
+		un = grain_unbalance(p, b, k);
+		m->residual_strict = fmax(m->residual_strict, un / b->fbig[k]);
+		b->res[nres] = un / fmax(b->fbig[k], MEASURE_RESIDUAL_FLOOR * m->P_mean);
+		m->residual_max = fmax(m->residual_max, b->res[nres]);
 		Fsum += fr;
 		nres++;
 	}
@@ -653,6 +661,24 @@ out:
 }
 
 
+/* Append the contact (i, j) to g's links, its force 0 until the caller sets it. */
+static int
+grain_forces_link(struct grain_forces *g, size_t i, long j)
+{
+	if (g->nlink == g->caplink) {
+		size_t cap = g->caplink ? 2 * g->caplink : 1024;
+		void *q = realloc(g->link, cap * sizeof *g->link);
+
+		if (!q) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		g->link = q, g->caplink = cap;
+	}
+	g->link[g->nlink++] = (struct measure_link){i, j, 0};
+	return 0;
+}
+
 /* What measure_plate_contacts sums over the interactions, in SI. */
 struct plate_pass {
 	const struct pack *p;
@@ -666,6 +692,7 @@ struct plate_pass {
 	size_t nfab, capfab;
 	double sig_pairs[6];	/* P eq. 7: the pairs' branch (x) force, summed */
 	struct plate_measures *m;
+	struct grain_forces *gf;	/* measure_grain_forces's per-grain record, or NULL */
 };
 
 static void add_dyad(double s[6], const double arm[3], const double f[3]);
@@ -726,6 +753,8 @@ on_plate_record(const struct contact *c, void *v)
 
 	if (plate_record_interaction(&pp->g, c, 0, &it, xj) == 0)
 		return 0;
+	if (pp->gf && grain_forces_link(pp->gf, i, j))
+		return -1;
 	pp->z[i]++;
 	if (wall)
 		m->contacts_gw++;
@@ -785,6 +814,12 @@ on_plate_record(const struct contact *c, void *v)
 	}
 	pp->fsum += vec3_norm(F);
 	pp->Psum += P;
+	if (pp->gf) {
+		pp->gf->link[pp->gf->nlink - 1].P = P;
+		pp->gf->fmax[i] = fmax(pp->gf->fmax[i], vec3_norm(F));
+		if (!wall)
+			pp->gf->fmax[j] = fmax(pp->gf->fmax[j], vec3_norm(F));
+	}
 	m->force_max = fmax(m->force_max, P);
 	return 0;
 }
@@ -823,7 +858,7 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
  * spheres, each record's element contacts by plate_record_interaction, as dem/platedem finds
  * them. */
 static int
-measure_plate_contacts(const struct pack *p, struct plate_measures *m)
+measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct grain_forces *gf)
 {
 	struct contact_enum ce;
 	struct plate_pass pass;
@@ -833,7 +868,7 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m)
 	int a, status = -1, have_ce = 0;
 
 	memset(&pass, 0, sizeof pass);
-	pass.p = p, pass.m = m, pass.kn = NAN;
+	pass.p = p, pass.m = m, pass.kn = NAN, pass.gf = gf;
 	if (pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0)
 		pass.kn = kn;
 	pass.z = calloc(p->n, sizeof *pass.z);
@@ -885,6 +920,14 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m)
 			if (pass.z[i] > 0)
 				s += vec3_norm(pass.F + 3 * i), nres++;
 		m->residual_mean = (s / (double)nres) / (pass.fsum / (double)ni);
+	}
+	if (gf) {
+		gf->has_forces = m->has_forces;
+		for (i = 0; i < p->n; i++) {
+			gf->z[i] = pass.z[i];
+			gf->residual[i] = m->has_forces && gf->fmax[i] > 0 ? vec3_norm(pass.F + 3 * i) /
+			    fmax(gf->fmax[i], MEASURE_RESIDUAL_FLOOR * m->force_mean) : NAN;
+		}
 	}
 	if (plate_fabric(p, &pass, V, m))
 		goto out;
@@ -943,5 +986,103 @@ measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measur
 	if (m->plates)
 		status = measure_nematic(v, m->plates, &m->nematic, m->director);
 	free(v);
-	return status ? status : measure_plate_contacts(p, m);
+	return status ? status : measure_plate_contacts(p, m, NULL);
+}
+
+int
+measure_is_plate_pack(const struct pack *p)
+{
+	const struct contact_law *law = contact_law_of_pack(p);
+
+	if (!law)
+		return -1;
+	return pack_first_plate(p) != (size_t)-1 || law != &contact_law_hertz_mindlin;
+}
+
+void
+grain_forces_free(struct grain_forces *g)
+{
+	free(g->z);
+	free(g->fmax);
+	free(g->residual);
+	free(g->link);
+	memset(g, 0, sizeof *g);
+}
+
+/* The spheres' per-grain record: measure_pack's walk over the contacts (measure_contact),
+ * its balance kept per grain. */
+static int
+sphere_grain_forces(const struct pack *p, struct grain_forces *g)
+{
+	struct geo_contacts gc;
+	struct pack_measures m;
+	struct balance b;
+	unsigned char *rat = calloc(p->n ? p->n : 1, 1);
+	size_t k;
+	int status = -1;
+
+	contacts_init(&gc);
+	memset(&m, 0, sizeof m);
+	memset(&b, 0, sizeof b);
+	b.F = calloc(3 * (p->n ? p->n : 1), sizeof *b.F);
+	b.M = calloc(3 * (p->n ? p->n : 1), sizeof *b.M);
+	b.fbig = g->fmax;
+	b.rat = rat;	/* no rattlers: only measure_pack's counts read them */
+	if (!rat || !b.F || !b.M) {
+		msg_seterr("out of memory");
+		goto out;
+	}
+	if (contacts_find(p, &gc))
+		goto out;
+	measure_coordination(p, &gc, g->z);
+	for (k = 0; k < gc.n; k++) {
+		measure_contact(p, &gc.c[k], &m, &b);
+		if (grain_forces_link(g, gc.c[k].i, gc.c[k].j))
+			goto out;
+		g->link[g->nlink - 1].P = gc.c[k].P;
+	}
+	g->has_forces = gc.n > 0 && m.P_max > 0;
+	for (k = 0; k < p->n; k++)
+		g->residual[k] = g->has_forces && b.fbig[k] > 0 ? grain_unbalance(p, &b, k) /
+		    fmax(b.fbig[k], MEASURE_RESIDUAL_FLOOR * b.Psum / (double)gc.n) : NAN;
+	status = 0;
+out:
+	contacts_free(&gc);
+	free(rat);
+	free(b.F);
+	free(b.M);
+	return status;
+}
+
+int
+measure_grain_forces(const struct pack *p, struct grain_forces *g)
+{
+	size_t n = p->n ? p->n : 1;
+	int r;
+
+	memset(g, 0, sizeof *g);
+	g->n = p->n;
+	g->z = calloc(n, sizeof *g->z);
+	g->fmax = calloc(n, sizeof *g->fmax);
+	g->residual = calloc(n, sizeof *g->residual);
+	if (!g->z || !g->fmax || !g->residual) {
+		grain_forces_free(g);
+		msg_seterr("out of memory");
+		return -1;
+	}
+	if ((r = measure_is_plate_pack(p)) < 0) {
+		grain_forces_free(g);
+		return -1;
+	}
+	if (r) {
+		struct plate_measures m;
+
+		memset(&m, 0, sizeof m);
+		r = measure_plate_contacts(p, &m, g);
+	} else {
+		r = sphere_grain_forces(p, g);
+	}
+	if (r)
+		grain_forces_free(g);
+	return r;
 }

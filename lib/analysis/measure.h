@@ -162,6 +162,43 @@ struct plate_measures {
 };
 
 int measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measures *m);
+/* Whether pack p is measured as plates (measure_plates) rather than as Hertz spheres
+ * (measure_pack): 1 when it has a spheroplate or its law (contact_law_of_pack) is not
+ * Hertz-Mindlin (the plate engine's 'linear', spheres at platyness 0 too), whose forces are
+ * that law's; 0 otherwise; -1 (the error slot set) for a contact-law key no law has. */
+int measure_is_plate_pack(const struct pack *p);
+
+/* The measures grain by grain, for a viewer (analysis/view.h): what the reports sum over
+ * the grains, kept per grain, and the contacts with their normal forces.  Spheres: the
+ * contacts and forces of measure_pack (Hertz normal forces and the contact lines'
+ * tangential forces and couples within Coulomb's limits); plates (measure_is_plate_pack):
+ * the interactions and forces of measure_plates.  z counts contacts as coordination does
+ * (a grain-grain contact at both ends, walls too; of plates the interactions); fmax is the
+ * largest contact force |f| on the grain (normal plus tangential, N), 0 without contact;
+ * residual the grain's unbalance over fmax floored at MEASURE_RESIDUAL_FLOOR times the mean
+ * normal force, as residual_max takes it (spheres: max(|F_i|, |M_i|/R_i); plates: |F_i|),
+ * NaN for a grain without contact or a pack without forces.  link: every contact, grain
+ * pairs first (i < j) then walls (j = PACK_WALL(w)), as found, with its normal force P (N;
+ * 0 without forces).  has_forces: the forces mean something (spheres: some contact
+ * carries one; plates: the pack records its stiffness kn). */
+struct measure_link {
+	size_t i;
+	long j;		/* grain index or PACK_WALL(w) */
+	double P;	/* normal force (N) */
+};
+
+struct grain_forces {
+	size_t n;
+	unsigned *z;
+	double *fmax, *residual;
+	struct measure_link *link;
+	size_t nlink, caplink;
+	int has_forces;
+};
+
+/* Fills g (its arrays allocated here; grain_forces_free them).  0, or -1 (msg_seterr). */
+int measure_grain_forces(const struct pack *p, struct grain_forces *g);
+void grain_forces_free(struct grain_forces *g);
 /* The nematic order of n unit vectors u (3 each): the largest eigenvalue S of
  * Q = <(3 u u - I)/2> (1 when all are parallel, 1/4 when they spread evenly over a plane,
  * of order 1/sqrt(n) for isotropic ones: see test_measure.c) and its unit eigenvector, the

@@ -14,7 +14,7 @@ else
 	fail "make -C pipelines SMALL=1 fig4" "$(tail -n 5 make.err)"
 fi
 r=$o/runs/g2740-s4-mu0.3
-for f in $o/packs/g2740.s4.pack.gz $r/fric.pack.gz $r/fric.tsv $r/curve.tsv $r/moduli.tsv $o/fig4/report.md $o/fig4/commands.txt; do
+for f in $o/packs/g2740.s4.pack.gz $r/fric.pack.gz $r/fric.tsv $r/curve.tsv $r/moduli.tsv $o/fig4/report.md $o/fig4/commands.txt $o/fig4/report.html $o/fig4/pack.html; do
 	if [ -s "$f" ]; then pass "wrote ${f#$o/}"; else fail "wrote ${f#$o/}" "missing or empty"; fi
 done
 if command -v gnuplot >/dev/null 2>&1; then
@@ -22,6 +22,9 @@ if command -v gnuplot >/dev/null 2>&1; then
 	if head -c 8 "$o/fig4/pack.png" 2>/dev/null | od -c | grep -q 'P   N   G'; then pass "the picture of the pack, pack.png, is a PNG"; else fail "the picture of the pack, pack.png, is a PNG" "not written"; fi
 	grep -q '^!\[pack\](pack.png)$' "$o/fig4/report.md" && pass "report.md shows the pack" || fail "report.md shows the pack" "no pack.png line"
 fi
+grep -q '<a href="pack.html">' "$o/fig4/report.html" && grep -q '<td>g2740-s4-mu0.3</td>' "$o/fig4/report.html" &&
+    pass "report.html links the pack's 3D view and has the run's rows" ||
+    fail "report.html links the pack's 3D view and has the run's rows" "$(head -c 300 "$o/fig4/report.html")"
 grep -q 'frictionalize --mu 0.3' "$o/fig4/commands.txt" && pass "commands.txt holds the frictionalize command" ||
     fail "commands.txt holds the frictionalize command" "$(head -c 300 "$o/fig4/commands.txt")"
 

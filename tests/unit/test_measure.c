@@ -715,6 +715,90 @@ test_plate_contacts(void)
 	pack_free(&p);
 }
 
+/* measure_grain_forces, grain by grain.  The lattice: every grain 6 contacts, each carrying
+ * the Hertz force of the lattice, balanced.  One interior grain moved by d along +x: its
+ * contacts along x press with overlaps delta + d (ahead, pushing it back along -x) and
+ * delta - d (behind), the four lateral ones with h_lat = 2R - sqrt(s^2 + d^2) at a slope
+ * d / sqrt(s^2 + d^2) that pushes it along +x, so its net force over its largest, P ~ h^(3/2)
+ * for every pair alike, is
+ *   [(delta + d)^1.5 - (delta - d)^1.5 - 4 h_lat^1.5 d / sqrt(s^2 + d^2)] / (delta + d)^1.5,
+ * the largest of the pack, and the same number measure_pack's residual_max reports.  Two
+ * plates face to face: one link of 4 k_n h each way, the line's tangential force in |f|. */
+static void
+test_grain_forces(void)
+{
+	struct pack p;
+	struct geo_contacts gc;
+	struct pack_measures m;
+	struct grain_forces g;
+	size_t k, n3 = (size_t)NL * NL * NL, ngg = 3 * (size_t)NL * NL * (NL - 1), ngw = 6 * (size_t)NL * NL, kmax = 0;
+	size_t moved = lat(1, 1, 1);
+	double s = 2 * R_ - DELTA, d = DELTA / 4, dist, hl, want, rmax = 0;
+	int ok6 = 1, okf = 1, okr = 1;
+
+	lattice(&p);
+	contacts_init(&gc);
+	CHECK(measure_pack(&p, &gc, &m) == 0 && measure_grain_forces(&p, &g) == 0, "grain forces: lattice measured");
+	CHECK(g.n == n3 && g.nlink == ngg + ngw && g.has_forces, "grain forces: %zu links (want %zu), forces",
+	    g.nlink, ngg + ngw);
+	for (k = 0; k < n3; k++) {
+		ok6 &= g.z[k] == 6;
+		okf &= fabs(g.fmax[k] - m.P_max) <= 1e-14 * m.P_max;
+		okr &= g.residual[k] < 1e-12;
+	}
+	for (k = 0; k < g.nlink; k++)
+		okf &= fabs(g.link[k].P - m.P_max) <= 1e-14 * m.P_max;
+	CHECK(ok6, "grain forces: lattice, every grain 6 contacts");
+	CHECK(okf, "grain forces: lattice, every link and every grain's largest force the Hertz force");
+	CHECK(okr, "grain forces: lattice, every grain balanced (residual < 1e-12)");
+	grain_forces_free(&g);
+
+	p.x[3 * moved] += d;
+	CHECK(measure_pack(&p, &gc, &m) == 0 && measure_grain_forces(&p, &g) == 0, "grain forces: moved grain measured");
+	for (k = 0; k < n3; k++)
+		if (g.residual[k] > rmax)
+			rmax = g.residual[k], kmax = k;
+	dist = sqrt(s * s + d * d);
+	hl = 2 * R_ - dist;
+	want = (pow(DELTA + d, 1.5) - pow(DELTA - d, 1.5) - 4 * pow(hl, 1.5) * d / dist) / pow(DELTA + d, 1.5);
+	CHECK(kmax == moved, "grain forces: the moved grain is the least balanced (%zu)", kmax);
+	CHECK_CLOSE(g.residual[moved], want, 1e-10, "grain forces: its net force over its largest, closed form");
+	CHECK_CLOSE(rmax, m.residual_max, 1e-15, "grain forces: the largest is measure_pack's residual_max");
+	grain_forces_free(&g);
+	contacts_free(&gc);
+	pack_free(&p);
+
+	{
+		const double r = 3e-8, L = 6e-8, h = 1e-9, kn = 1.5e3, A = 4e-7, up[4] = {1, 0, 0, 0};
+		struct pack_contact c = {0, 1, 0, {2e-7, 0, 0}, 0};
+		double ell = 2 * r - h, f = hypot(4 * kn * h, c.Q0[0]);
+
+		pack_init(&p);
+		p.box[3] = p.box[4] = p.box[5] = A;
+		pack_set_shapes(&p);
+		pack_add_grain(&p, 1, (const double[3]){A / 2, A / 2, A / 2 + ell / 2}, r, E_, NU, 2700);
+		pack_add_grain(&p, 2, (const double[3]){A / 2, A / 2, A / 2 - ell / 2}, r, E_, NU, 2700);
+		pack_set_grain_shape(&p, 0, L, up);
+		pack_set_grain_shape(&p, 1, L, up);
+		pack_set_meta(&p, "kn", "1.5e3");
+		pack_add_contact(&p, &c);
+		CHECK(measure_is_plate_pack(&p) && measure_grain_forces(&p, &g) == 0 && g.has_forces,
+		    "grain forces: plates measured");
+		CHECK(g.nlink == 1 && g.link[0].i == 0 && g.link[0].j == 1 && g.z[0] == 1 && g.z[1] == 1,
+		    "grain forces: plates, one link, one interaction each");
+		CHECK_CLOSE(g.link[0].P, 4 * kn * h, 1e-12, "grain forces: plates, the link's normal force 4 k_n h");
+		CHECK_CLOSE(g.fmax[0], f, 1e-12, "grain forces: plates, largest |f| with the line's Q");
+		CHECK_CLOSE(g.fmax[1], f, 1e-12, "grain forces: plates, the same on the other");
+		CHECK_CLOSE(g.residual[0], 1, 1e-12, "grain forces: plates, a lone pair's net force is its force");
+		grain_forces_free(&g);
+		pack_set_meta(&p, "kn", "none");
+		CHECK(measure_grain_forces(&p, &g) == 0 && !g.has_forces && g.nlink == 1 && isnan(g.residual[0]),
+		    "grain forces: plates without kn, the link but no forces");
+		grain_forces_free(&g);
+		pack_free(&p);
+	}
+}
+
 int
 main(void)
 {
@@ -722,6 +806,7 @@ main(void)
 	test_plate_contacts();
 	test_nematic_random();
 	test_lattice();
+	test_grain_forces();
 	test_sliding();
 	test_small();
 	test_rattler_rule();
