@@ -457,6 +457,16 @@ progress_start(void)
 	clock_gettime(CLOCK_MONOTONIC, &pg.t0);
 }
 
+/* A line left on the terminal (a tool that never called cli_progress_end, or an exit in the
+ * middle) ends before the shell's prompt. */
+static void
+progress_at_exit(void)
+{
+	if (pg.shown)
+		fputc('\n', stderr);
+	pg.shown = 0;
+}
+
 static void
 progress_init(void)
 {
@@ -464,6 +474,10 @@ progress_init(void)
 		return;
 	pg.init = 1;
 	pg.tty = isatty(2);
+	if (pg.tty) {
+		atexit(progress_at_exit);
+		msg_before = progress_at_exit;	/* a message ends the line; the next update draws it anew */
+	}
 	if (pg.t0.tv_sec == 0 && pg.t0.tv_nsec == 0)
 		clock_gettime(CLOCK_MONOTONIC, &pg.t0);
 }
