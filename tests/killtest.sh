@@ -5,6 +5,8 @@
 # after each kill:
 #   - each target is absent or complete: packinfo reads a pack, a table ends with a complete
 #     row, and the bytes are those of an undisturbed run (every tool here is deterministic);
+#     a log (densify's, frictionalize's --log) is kept with the rows written so far: the
+#     first rows of an undisturbed run's, the elapsed seconds aside;
 #   - no temporary file is left (TERM, INT, HUP); for KILL, only the documented
 #     .NAME.XXXXXX and .NAME.XXXXXX.z may be left (share/man/man1, CAVEATS), listed as KILL-LEFT.
 # Prints PASS/FAIL lines and "N passed, N failed"; exits nonzero on failure.
@@ -43,8 +45,19 @@ moduli|m.tsv.gz|moduli -q -o m.tsv.gz $I/lt.tsv
 packexport|x.xyzr.gz|packexport -q --xyzr -o x.xyzr.gz $I/big.pack
 packimport|i.pack.gz|packimport -q -o i.pack.gz $I/big.xyzr"
 
-# complete FILE REF: FILE is a complete, valid output (same bytes as REF, and readable).
+# complete FILE REF: FILE is a complete, valid output (same bytes as REF, and readable); a log
+# (its last column elapsed[s]: written as the run goes and kept when it is killed) holds the
+# first rows of REF's, each complete, the elapsed seconds aside.
 complete() {
+	if head -n 1 "$1" | grep -q "$(printf '\telapsed\\[s\\]$')"; then
+		[ -z "$(tail -c 1 "$1")" ] || { echo "log: last row has no newline"; return 1; }
+		n=$(wc -l <"$1")
+		awk -F '\t' -v OFS='\t' '{ NF--; print }' "$1" >plain.tmp
+		head -n "$n" "$2" | awk -F '\t' -v OFS='\t' '{ NF--; print }' | cmp -s - plain.tmp ||
+			{ echo "log: not the first $n lines of an undisturbed run's"; return 1; }
+		rm -f plain.tmp
+		return 0
+	fi
 	cmp -s "$1" "$2" || { echo "differs from an undisturbed run"; return 1; }
 	case $1 in
 	*.pack | *.pack.gz)

@@ -90,13 +90,19 @@ on_stage(const struct densify_stage *st, void *vctx)
 {
 	struct log_ctx *c = vctx;
 
+	double elapsed = floor((c->before + cli_elapsed()) * 1e3 + 0.5) / 1e3;
+
 	if (c->log) {
-		densify_log_row(c->log->fp, st);
-		file_out_flush(c->log);	/* the temporary log can be followed while it runs */
+		densify_log_row(c->log->fp, st, elapsed);
+		file_out_flush(c->log);	/* the log is followed (tail -f) and kept as it runs */
 	}
 	if (c->rows)
-		densify_log_row(c->rows, st);
-	cli_progress("%s %ld  sigma_c %.4g Pa  porosity %.4f  coordination %.3f  under4 %zu  growth %.2e  iter %ld  residual %.2e",
+		densify_log_row(c->rows, st, elapsed);
+	/* the target: sigma_c from the onset up to --stress, on a log scale (compaction steps are
+	 * steps in strain, and the stress grows as its 3/2 power) */
+	if (st->sigma_c > o.dp.onset && strcmp(st->stage, "compact") == 0)
+		cli_progress_frac(log(st->sigma_c / o.dp.onset) / log(o.dp.stress / o.dp.onset));
+	cli_progress("%s %ld: sigma_c %.4g Pa  porosity %.4f  Z %.3f  under4 %zu  growth %.2e  iter %ld  residual %.2e",
 	    st->stage, st->round, st->sigma_c, st->porosity, st->coordination, st->under4, st->growth,
 	    st->iterations, st->res_max);
 }
@@ -167,8 +173,10 @@ resume_from(const char *path, struct pack *p, struct densify_resume *at, struct 
 		pack_unset_meta(&q, CK_CLOCK);
 	}
 	c->calls++;
-	if (c->log)
-		fputs(rows, c->log->fp);
+	if (c->log && (fputs(rows, c->log->fp) < 0 || file_out_flush(c->log))) {	/* the rows so far, kept from now on */
+		errno = c->log->err;
+		msg_die(EXIT_DATA, "%s: write error:", o.log);
+	}
 	fputs(rows, c->rows);
 	msg_info(1, "going on from %s, after %s %ld", path, at->st.stage, at->round);
 	free(run), free(rows);
@@ -291,7 +299,8 @@ check_stress(const struct pack *p)
 		msg_die(EXIT_USAGE, "--stress %g Pa must exceed --onset %g Pa", o.dp.stress, o.dp.onset);
 }
 
-/* A minimisation at its limit fails the run unless --allow-limit; a failed run leaves no log. */
+/* A minimisation at its limit fails the run unless --allow-limit; a failed run keeps its log
+ * (closed, with every row so far) and writes no pack. */
 static void
 check_stop(int r, struct file_out *logout, const struct densify_stage *last, const char *name)
 {
@@ -339,7 +348,7 @@ main(int argc, char **argv)
 	if (o.log) {
 		/* the header flushed at once: a log that cannot be written (--log /dev/full) fails
 		 * the run before it starts */
-		if (file_out_open(&logout, o.log))
+		if (file_log_open(&logout, o.log))
 			msg_die_err(EXIT_DATA);
 		lc.log = &logout;
 		densify_log_header(logout.fp);
@@ -381,7 +390,7 @@ main(int argc, char **argv)
 		msg_info(1, "%.0f s of wall time in %ld call%s", lc.before + since(&lc.t0), lc.calls, lc.calls == 1 ? "" : "s");
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
-	if (pack_write_tool_with(&p, &tool, &st, o.log ? &logout : NULL))	/* the pack and the log, all or none */
+	if (pack_write_tool_with(&p, &tool, &st, o.log ? &logout : NULL))	/* the log closed with it: a log that failed writes no pack */
 		msg_die_err(EXIT_DATA);
 	/* the run is done: a rerun starts afresh (never the pack or the log just written, even
 	 * if a name the checks above could not see through leads there) */

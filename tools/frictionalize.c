@@ -65,11 +65,13 @@ on_row(const struct load_row *row, const struct hooke *hk, void *vctx)
 	struct log_ctx *c = vctx;
 
 	if (c->log) {
-		load_table_row(c->log->fp, row, c->axis, 1, hk->K, hk->G);
-		file_out_flush(c->log);
+		load_log_row(c->log->fp, row, c->axis, hk->K, hk->G, cli_elapsed());
+		file_out_flush(c->log);	/* the log is followed (tail -f) and kept as it runs */
 	}
-	cli_progress("%zu grains  increment %ld (at most %ld)  sigma_c %.4g Pa  sliding %.4f  K %.3g  G %.3g  iter %ld  residual %.2e",
-	    c->grains, row->inc, o.fp.max_inc, row->sigma_c, row->sliding_ratio, hk->K, hk->G, row->iterations, row->res_max);
+	/* no target: the run ends when the sliding ratio saturates, which no count foretells */
+	cli_progress("increment %ld (at most %ld), %zu grains: sigma_c %.4g Pa  sliding %.4f  K %.3g  G %.3g  iter %ld  residual %.2e",
+	    row->inc, o.fp.max_inc, c->grains, row->sigma_c, row->sliding_ratio, hk->K, hk->G, row->iterations, row->res_max);
+	cli_progress_stage("increment %ld", row->inc + 1);
 }
 
 static void
@@ -133,7 +135,7 @@ check_window(const struct pack *p, const char *in)
 }
 
 /* Not saturated, or a minimisation at its limit, fails the run unless --allow-limit; a failed
- * run leaves no log. */
+ * run keeps its log (closed, with every row so far) and writes no pack. */
 static void
 check_stop(int r, struct file_out *logout, const struct load_row *last)
 {
@@ -177,10 +179,10 @@ main(int argc, char **argv)
 	if (o.log) {
 		/* the header flushed at once: a log that cannot be written (--log /dev/full) fails
 		 * the run before it starts */
-		if (file_out_open(&logout, o.log))
+		if (file_log_open(&logout, o.log))
 			msg_die_err(EXIT_DATA);
 		lc.log = &logout;
-		load_table_header(logout.fp, 1);
+		load_log_header(logout.fp);
 		if (file_out_flush(&logout)) {
 			errno = logout.err;
 			file_out_abort(&logout);
@@ -190,7 +192,7 @@ main(int argc, char **argv)
 	r = frictionalize_run(&p, &o.fp, on_row, &lc, &last);
 	cli_progress_end();
 	check_stop(r, &logout, &last);
-	if (pack_write_tool_with(&p, &tool, &st, o.log ? &logout : NULL))	/* the pack and the log, all or none */
+	if (pack_write_tool_with(&p, &tool, &st, o.log ? &logout : NULL))	/* the log closed with it: a log that failed writes no pack */
 		msg_die_err(EXIT_DATA);
 	pack_free(&p);
 	return 0;

@@ -62,6 +62,8 @@ struct out_ctx {
 	size_t grains;
 	int seg;		/* segment of the last row, and its increments so far */
 	long seg_inc;
+	double sig0, eps0[3];	/* sigma_c and the strains where the segment began (its target's start) */
+	double last_sig, last_eps[3];
 };
 
 static void print_header(const struct pack *p, const struct load_path *path);
@@ -80,20 +82,32 @@ on_row(int seg, const struct load_row *row, void *vctx)
 	if (seg != c->seg) {
 		c->seg = seg;
 		c->seg_inc = 0;
+		c->sig0 = c->rows > 1 ? c->last_sig : row->sigma_c;
+		memcpy(c->eps0, c->rows > 1 ? c->last_eps : row->eps, sizeof c->eps0);
+		cli_progress_frac(NAN);	/* the ETA of each segment from its own start */
 	}
+	c->last_sig = row->sigma_c;
+	memcpy(c->last_eps, row->eps, sizeof c->last_eps);
 	if (seg >= 0) {
 		const struct path_seg *sg = &c->path->seg[seg];
 		char goal[64] = "";
 		c->seg_inc++;
-		if (sg->steps > 0)
+		/* the share of the segment's stop: its increments, or the way from the segment's
+		 * start to its stress or strain (the first stop that is set, as loadpath takes them) */
+		if (sg->steps > 0) {
 			snprintf(goal, sizeof goal, " of %ld", sg->steps);
-		else if (!isnan(sg->to_stress))
+			cli_progress_frac((double)c->seg_inc / (double)sg->steps);
+		} else if (!isnan(sg->to_stress)) {
 			snprintf(goal, sizeof goal, " (to sigma_c %.4g Pa)", sg->to_stress);
-		else if (!isnan(sg->to_strain))
+			cli_progress_frac((row->sigma_c - c->sig0) / (sg->to_stress - c->sig0));
+		} else if (!isnan(sg->to_strain)) {
 			snprintf(goal, sizeof goal, " (to strain %.4g)", sg->to_strain);
-		cli_progress("%zu grains  segment %d of %zu (%s)  increment %ld%s  sigma_c %.4g Pa  sliding %.4f  iter %ld  residual %.2e",
-		    c->grains, seg + 1, c->path->n, path_kind_name(sg->kind), c->seg_inc, goal, row->sigma_c,
+			cli_progress_frac((row->eps[sg->axis] - c->eps0[sg->axis]) / (sg->to_strain - c->eps0[sg->axis]));
+		}
+		cli_progress("segment %d of %zu (%s), increment %ld%s, %zu grains: sigma_c %.4g Pa  sliding %.4f  iter %ld  residual %.2e",
+		    seg + 1, c->path->n, path_kind_name(sg->kind), c->seg_inc, goal, c->grains, row->sigma_c,
 		    row->sliding_ratio, row->iterations, row->res_max);
+		cli_progress_stage("segment %d increment %ld", seg + 1, c->seg_inc + 1);
 	}
 	return ferror(stdout) ? 1 : 0;
 }
@@ -229,7 +243,7 @@ main(int argc, char **argv)
 {
 	struct cli_state st;
 	struct load_path path;
-	struct out_ctx oc = {NULL, &path, 0, 0, -1, 0};
+	struct out_ctx oc = {NULL, &path, 0, 0, -1, 0, 0, {0, 0, 0}, 0, {0, 0, 0}};
 	struct pack p;
 	const char *in;
 	size_t stale;

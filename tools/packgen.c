@@ -81,10 +81,29 @@ static const struct cli_tool tool = {
 	opt_table, 0,
 };
 
+/* The share of the rest criterion reached in a stage: the unbalanced force's way, on a log
+ * scale, from the stage's first report down to --rest-tol. */
+static void
+rest_frac(int stage, double unbalanced)
+{
+	static int st;
+	static double first;
+
+	if (stage != st || !(first > 0 && isfinite(first))) {	/* no contacts yet: inf */
+		st = stage;
+		first = unbalanced;
+		cli_progress_frac(NAN);
+	}
+	if (unbalanced > 0 && first > o.rest_tol)
+		cli_progress_frac(log(first / unbalanced) / log(first / o.rest_tol));
+}
+
 static void
 progress(const struct dem_status *s, void *ctx)
 {
 	(void)ctx;
+	cli_progress_stage("stage %d", s->stage);
+	rest_frac(s->stage, s->unbalanced);
 	cli_progress("stage %d step %ld  packing %.4f  stress/target %.3g  coordination %.2f  unbalanced %.2e",
 	    s->stage, s->step, s->phi, s->p_ratio, s->coordination, s->unbalanced);
 }
@@ -93,6 +112,8 @@ static void
 plate_progress(const struct platepack_status *s, void *ctx)
 {
 	(void)ctx;
+	cli_progress_stage("stage %d", s->stage);
+	rest_frac(s->stage, s->unbalanced);
 	cli_progress("stage %d step %ld  packing %.4f  stress/target %.3g  interactions/grain %.2f  elements/interaction %.2f  unbalanced %.2e",
 	    s->stage, s->step, s->phi, s->p_ratio, s->z, s->elements, s->unbalanced);
 }

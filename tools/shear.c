@@ -295,7 +295,6 @@ on_row(const struct shear_row *row, struct pdem *d, void *vc)
 	double v[NCOLS] = {(double)row->step, row->time, row->gamma, row->tau_ratio, row->sigma_ratio, row->qp, row->p,
 	    row->q, row->sig[0], row->sig[1], row->sig[2], row->sig[3], row->sig[4], row->sig[5], row->phi, row->z,
 	    row->elements, row->height};
-	double el = difftime(time(NULL), c->start);
 
 	if (c->replay) {	/* only now that the state read back: a bad checkpoint writes nothing */
 		fflush(c->table);
@@ -322,8 +321,10 @@ on_row(const struct shear_row *row, struct pdem *d, void *vc)
 			return -1;
 		c->next_snap++;
 	}
-	cli_progress("gamma %.3f of %g  tau/sigma %.3f  q/p %.3f  phi %.4f  Z %.2f  ETA %.0f s", row->gamma, o.sp.strain,
-	    row->tau_ratio, row->qp, row->phi, row->z, row->gamma > 0 ? el * (o.sp.strain / row->gamma - 1) : 0);
+	cli_progress_stage("shear");
+	cli_progress_frac(row->gamma / o.sp.strain);	/* the bar and the ETA (cli.h) */
+	cli_progress("step %ld gamma %.3f of %g: tau/sigma %.3f  q/p %.3f  phi %.4f  Z %.2f", (long)row->step, row->gamma,
+	    o.sp.strain, row->tau_ratio, row->qp, row->phi, row->z);
 	return 0;
 }
 

@@ -9,6 +9,8 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
+#include <time.h>
 #include <unistd.h>
 
 /* The Makefile defines it for this file alone (its objects depend on build/source-version) */
@@ -39,7 +41,7 @@ static long threads_opt;
 static struct cli_opt common_opts[] = {
 	{"output", 'o', CLI_STRING, &output_path, "FILE", "write to FILE (atomically) instead of stdout; .gz compresses", NULL},
 	{"verbose", 'v', CLI_FLAG, &verbose_count, NULL, "report progress on stderr (twice: solver detail)", NULL},
-	{"threads", 0, CLI_LONG, &threads_opt, "N", "threads (0: OMP_NUM_THREADS, else the cores online); same results for any N", NULL},
+	{"threads", 0, CLI_LONG, &threads_opt, "N", "threads (0: OMP_NUM_THREADS, else the cores not busy at the start); same results for any N", NULL},
 	{"quiet", 'q', CLI_FLAG, &quiet_flag, NULL, "no warnings or progress", NULL},
 	{"help", 'h', CLI_FLAG, &help_flag, NULL, "print this help and exit", NULL},
 	{"version", 'V', CLI_FLAG, &version_flag, NULL, "print the version and exit", NULL},
@@ -300,27 +302,37 @@ getopt_table_run(const struct getopt_table *g, int argc, char **argv)
 	}
 }
 
+static void progress_start(void);
+
 void
 cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 {
 	struct getopt_table g;
+	char **argv0 = malloc(((size_t)argc + 1) * sizeof *argv0);	/* before getopt permutes it */
 
+	if (!argv0)
+		msg_die(EXIT_DATA, "out of memory");
+	memcpy(argv0, argv, ((size_t)argc + 1) * sizeof *argv0);
+	progress_start();	/* the progress line's and the logs' elapsed time */
 	getopt_table_build(&g, t);
 	memset(st, 0, sizeof *st);
 	getopt_table_run(&g, argc, argv);
 	free(g.lo);	/* before the exits below: LeakSanitizer counts them otherwise */
 	free(g.map);
-	if (help_flag) {
-		print_help(t);
-		exit(0);
-	}
-	if (version_flag) {
-		printf("%s (qusgm) %s\n", t->name, cli_source_version());
+	if (help_flag || version_flag) {
+		free(argv0);
+		if (help_flag)
+			print_help(t);
+		else
+			printf("%s (qusgm) %s\n", t->name, cli_source_version());
 		exit(0);
 	}
 	msg_verbosity = quiet_flag ? -1 : verbose_count;
 	if (threads_opt < 0 || threads_opt > 4096)
 		cli_usage_error("--threads: expected 0 (the default) to 4096, got %ld", threads_opt);
+	else if (!usage_errors)
+		par_wait_passive(argv0, threads_opt > 0 ? (int)threads_opt : par_default_threads());
+	free(argv0);
 	par_set_threads((int)threads_opt);
 	msg_info(1, "%d thread%s (--threads)", par_threads(), par_threads() == 1 ? "" : "s");
 	st->operands = argv + optind;
@@ -412,43 +424,262 @@ cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 	return s;
 }
 
-static int progress_shown;
+/* Progress (cli.h).  The line on a terminal: "TOOL: STAGE  it N  res R  ELAPSED  [bar] P% ETA T
+ * | SUMMARY", cut to the terminal's width so that "\r" redraws it in place. */
+#define PROGRESS_EVERY 0.25	/* s between redraws on a terminal */
+#define PROGRESS_PLAIN 10.0	/* s between plain lines inside a stage (-v, not a terminal) */
+
+static struct {
+	int init, tty, shown;
+	struct timespec t0;		/* the start (cli_parse) */
+	double drawn, printed;		/* when the line was last drawn, or a plain line printed */
+	double stage_t0;
+	char stage[96];
+	int stage_new;			/* a stage began since the last plain line */
+	long iters;			/* cli_progress_iter calls in the stage */
+	double residual;
+	double frac, frac0, frac_t0;	/* the share of the target, the first seen and when */
+	char summary[512];
+} pg = {.frac = NAN, .frac0 = NAN, .residual = NAN};
+
+static double
+now_s(void)
+{
+	struct timespec t;
+
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void
+progress_start(void)
+{
+	clock_gettime(CLOCK_MONOTONIC, &pg.t0);
+}
+
+/* A line left on the terminal (a tool that never called cli_progress_end, or an exit in the
+ * middle) ends before the shell's prompt. */
+static void
+progress_at_exit(void)
+{
+	if (pg.shown)
+		fputc('\n', stderr);
+	pg.shown = 0;
+}
+
+static void
+progress_init(void)
+{
+	if (pg.init)
+		return;
+	pg.init = 1;
+	pg.tty = isatty(2);
+	if (pg.tty) {
+		atexit(progress_at_exit);
+		msg_before = progress_at_exit;	/* a message ends the line; the next update draws it anew */
+	}
+	if (pg.t0.tv_sec == 0 && pg.t0.tv_nsec == 0)
+		clock_gettime(CLOCK_MONOTONIC, &pg.t0);
+}
+
+double
+cli_elapsed(void)
+{
+	struct timespec t;
+	double s;
+
+	progress_init();
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	s = (double)(t.tv_sec - pg.t0.tv_sec) + 1e-9 * (double)(t.tv_nsec - pg.t0.tv_nsec);
+	return floor(s * 1e3 + 0.5) / 1e3;	/* milliseconds: the clock says no more */
+}
 
 int
 cli_progress_enabled(void)
 {
 	if (msg_verbosity < 0)
 		return 0;
-	return msg_verbosity > 0 || isatty(2);
+	progress_init();
+	return msg_verbosity > 0 || pg.tty;
+}
+
+/* "12s", "3:05", "1:02:05" */
+static void
+fmt_dur(char *b, size_t n, double s)
+{
+	long t = isfinite(s) && s > 0 ? (long)(s + 0.5) : 0;
+
+	if (t < 60)
+		snprintf(b, n, "%lds", t);
+	else if (t < 3600)
+		snprintf(b, n, "%ld:%02ld", t / 60, t % 60);
+	else
+		snprintf(b, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+}
+
+static int
+term_width(void)
+{
+	struct winsize ws;
+
+	return ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col >= 20 ? ws.ws_col : 80;
+}
+
+/* The bar and the ETA, or nothing without a target. */
+static void
+fmt_target(char *b, size_t n, double now)
+{
+	char eta[32] = "?", bar[24];
+	int k, fill;
+
+	b[0] = 0;
+	if (!isfinite(pg.frac))
+		return;
+	fill = (int)(pg.frac * 20 + 1e-9);
+	for (k = 0; k < 20; k++)
+		bar[k] = k < fill ? '#' : '.';
+	bar[20] = 0;
+	if (pg.frac > pg.frac0 && now > pg.frac_t0)
+		fmt_dur(eta, sizeof eta, (now - pg.frac_t0) * (1 - pg.frac) / (pg.frac - pg.frac0));
+	snprintf(b, n, "  [%s] %3.0f%% ETA %s", bar, 100 * pg.frac, eta);
+}
+
+/* The status: stage, iterations, residual, elapsed, target. */
+static void
+fmt_status(char *b, size_t n, double now, int with_target)
+{
+	char el[32], tg[64] = "", res[32] = "", it[32] = "";
+
+	fmt_dur(el, sizeof el, now - ((double)pg.t0.tv_sec + 1e-9 * (double)pg.t0.tv_nsec));
+	if (isfinite(pg.residual))
+		snprintf(res, sizeof res, "  res %.2e", pg.residual);
+	if (with_target)
+		fmt_target(tg, sizeof tg, now);
+	if (pg.iters > 0)	/* a tool whose loops do not count (packgen's DEM) says its steps itself */
+		snprintf(it, sizeof it, "it %ld  ", pg.iters);
+	snprintf(b, n, "%s%s%s%s%s", pg.stage, pg.stage[0] ? "  " : "", it, res[0] ? res + 2 : "", res[0] ? "  " : "");
+	snprintf(b + strlen(b), n - strlen(b), "%s%s", el, tg);
+}
+
+/* The terminal's line, redrawn in place. */
+static void
+draw(double now)
+{
+	char st[256], line[1024];
+	int w = term_width() - 1;
+
+	fmt_status(st, sizeof st, now, 1);
+	snprintf(line, sizeof line, "%s: %s%s%s", msg_progname, st, pg.summary[0] ? "  | " : "", pg.summary);
+	if ((int)strlen(line) > w)
+		line[w] = 0;
+	fprintf(stderr, "\r%s\033[K", line);
+	fflush(stderr);
+	pg.shown = 1;
+	pg.drawn = now;
 }
 
 void
 cli_progress(const char *fmt, ...)
 {
 	va_list ap;
+	double now;
 
 	if (!cli_progress_enabled())
 		return;
-	if (isatty(2))
-		fputc('\r', stderr);
-	fprintf(stderr, "%s: ", msg_progname);
 	va_start(ap, fmt);
-	vfprintf(stderr, fmt, ap);
+	vsnprintf(pg.summary, sizeof pg.summary, fmt, ap);
 	va_end(ap);
-	if (isatty(2)) {
-		fputs("\033[K", stderr);
-		progress_shown = 1;
-	} else {
-		fputc('\n', stderr);
+	now = now_s();
+	if (pg.tty) {
+		if (now - pg.drawn >= PROGRESS_EVERY || !pg.shown)
+			draw(now);
+		return;
 	}
-	fflush(stderr);
+	/* one plain line per stage (or per PROGRESS_PLAIN s where the tool reports more often) */
+	if (pg.stage_new || !pg.stage[0] || now - pg.printed >= PROGRESS_PLAIN) {
+		fprintf(stderr, "%s: %s\n", msg_progname, pg.summary);
+		fflush(stderr);
+		pg.printed = now;
+		pg.stage_new = 0;
+	}
+}
+
+void
+cli_progress_stage(const char *fmt, ...)
+{
+	char name[sizeof pg.stage];
+	va_list ap;
+
+	if (!cli_progress_enabled())
+		return;
+	va_start(ap, fmt);
+	vsnprintf(name, sizeof name, fmt, ap);
+	va_end(ap);
+	if (strcmp(name, pg.stage) == 0)
+		return;
+	strcpy(pg.stage, name);
+	pg.stage_new = 1;
+	pg.iters = 0;
+	pg.residual = NAN;
+	pg.stage_t0 = now_s();
+	if (pg.tty && (pg.stage_t0 - pg.drawn >= PROGRESS_EVERY || !pg.shown))
+		draw(pg.stage_t0);
+}
+
+void
+cli_progress_frac(double f)
+{
+	if (!cli_progress_enabled())
+		return;
+	if (!isfinite(f)) {
+		pg.frac = pg.frac0 = NAN;
+		return;
+	}
+	f = f < 0 ? 0 : f > 1 ? 1 : f;
+	if (!isfinite(pg.frac0)) {
+		pg.frac0 = f;
+		pg.frac_t0 = now_s();
+	}
+	pg.frac = f;
+}
+
+void
+cli_progress_iter(double residual)
+{
+	static int on = -1;
+	static unsigned calls;
+	double now;
+
+	if (on < 0)
+		on = cli_progress_enabled();
+	if (!on)
+		return;
+	pg.iters++;
+	pg.residual = residual;
+	if (++calls % 16)	/* the clock read every 16th call: an iteration may take microseconds */
+		return;
+	now = now_s();
+	if (pg.tty) {
+		if (now - pg.drawn >= PROGRESS_EVERY)
+			draw(now);
+	} else if (now - pg.printed >= PROGRESS_PLAIN && now - pg.stage_t0 >= PROGRESS_PLAIN) {
+		char st[256];
+
+		fmt_status(st, sizeof st, now, 1);
+		fprintf(stderr, "%s: %s\n", msg_progname, st);
+		fflush(stderr);
+		pg.printed = now;
+	}
 }
 
 void
 cli_progress_end(void)
 {
-	if (progress_shown) {
+	if (pg.shown) {
+		double now = now_s();
+
+		draw(now);	/* the last state, then the line is left as it stands */
 		fputc('\n', stderr);
-		progress_shown = 0;
+		pg.shown = 0;
 	}
 }

@@ -68,9 +68,31 @@ char *cli_run_identity(const struct cli_tool *t, const char *const *skip, const 
  * Caller frees. */
 char *cli_history_line(const struct cli_tool *t, const struct cli_state *st);
 
-/* Progress on stderr: shown when stderr is a terminal or with -v, never with -q. */
+/* Progress on standard error, never with -q.  On a terminal one status line, redrawn in place
+ * at most 4 times a second:
+ *     densify: compact 12  it 3400  res 2.31e-03  1:05  [#########...........]  45% ETA 1:20  | SUMMARY
+ * the stage now running, the iterations (or steps) in it and the last residual (or
+ * unbalanced force), the elapsed time, a bar and an ETA where the run has a target, then what
+ * the last stage reported; cut to the terminal's width.  Not a terminal: nothing unless -v,
+ * then one plain line per stage (the summary), and inside a stage that runs longer one status
+ * line every 10 s.
+ *  - cli_progress: the summary, after a stage, an increment or a row (the tools' callbacks);
+ *  - cli_progress_stage: the stage that begins (the same name again changes nothing): its
+ *    iteration count and residual start afresh;
+ *  - cli_progress_frac: the share of the target reached, in [0, 1] (NaN: none, which also
+ *    forgets the last); the ETA is extrapolated from the time since the first share given;
+ *  - cli_progress_iter: one iteration of a minimiser or one step of a DEM loop, with its
+ *    residual or unbalanced force (NaN: none); cheap (a clock read every 16th call) and free
+ *    when progress is off, so the library's loops call it;
+ *  - cli_progress_end: the last state, and the line ends (before other messages). */
 int cli_progress_enabled(void);
 void cli_progress(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void cli_progress_stage(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void cli_progress_frac(double f);
+void cli_progress_iter(double residual);
 void cli_progress_end(void);
+
+/* Wall-clock seconds since cli_parse, to the millisecond: the logs' elapsed[s] column. */
+double cli_elapsed(void);
 
 #endif

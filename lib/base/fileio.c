@@ -348,6 +348,32 @@ file_out_open(struct file_out *o, const char *path)
 	return 0;
 }
 
+int
+file_log_open(struct file_out *o, const char *path)
+{
+	memset(o, 0, sizeof *o);
+	if (!path || strcmp(path, "-") == 0) {
+		o->fp = stdout;
+		return 0;
+	}
+	if (file_is_gz(path)) {
+		msg_seterr("%s: a log is written as plain text while the run goes: name it without .gz (and gzip it afterwards)",
+		    path);
+		return -1;
+	}
+	if (!(o->path = strdup(path))) {
+		msg_seterr("out of memory");
+		return -1;
+	}
+	/* no temporary (o->tmp NULL): the commit only closes it, an abort keeps it */
+	if (!(o->fp = fopen(path, "w"))) {
+		msg_seterr("%s: %s", path, strerror(errno));
+		drop_names(o);
+		return -1;
+	}
+	return 0;
+}
+
 /* Compress the finished temporary file of an output named *.gz: the outputs are written as
  * text and gzipped whole at the commit, so that the rename stays the one atomic step.  The
  * compressed temporary TMP.z is remembered before it is created, so that a signal or an

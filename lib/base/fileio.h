@@ -74,4 +74,15 @@ int file_out_commit_all(struct file_out *const *o, int n);
 /* Close and remove the temporary file; nothing reaches the target. */
 void file_out_abort(struct file_out *o);
 
+/* A log (--log, shear's --profile): unlike an output it is written under its own name from
+ * the start, so that `tail -f` follows it while the run goes, and it keeps the rows written so
+ * far when the run fails, stops at a limit or is killed (SIGTERM, SIGINT, SIGHUP).  The writer
+ * calls file_out_flush after each row (and after the header): the row reaches the file whole,
+ * and a failed write is reported with its own errno (a line-buffered stream writes inside
+ * fputs, where the errno is lost by the time anyone looks).  NULL or "-" gives stdout.  A name
+ * ending in ".gz" is refused: a log grows as plain text (gzip it afterwards).  The tool's
+ * file_out_commit or file_out_commit_all closes it, checking the last writes, and
+ * file_out_abort closes it and keeps it.  0, or -1 with the slot set. */
+int file_log_open(struct file_out *o, const char *path);
+
 #endif

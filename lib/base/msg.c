@@ -9,6 +9,7 @@
 
 const char *msg_progname = "qusgm";
 int msg_verbosity = 0;
+void (*msg_before)(void);
 static char errbuf[1024];
 
 void
@@ -26,6 +27,8 @@ vmsg(const char *fmt, va_list ap)
 	int saved = errno;
 	size_t n = strlen(fmt);
 
+	if (msg_before)
+		msg_before();
 	fprintf(stderr, "%s: ", msg_progname);
 	vfprintf(stderr, fmt, ap);
 	if (n > 0 && fmt[n - 1] == ':')

@@ -24,6 +24,9 @@ enum { EXIT_DATA = 1, EXIT_USAGE = 2, EXIT_STOPPED = 75 };
 
 extern const char *msg_progname;
 extern int msg_verbosity;	/* -1 quiet, 0 default, 1 -v, 2 -vv */
+/* Called before every message (NULL: none): cli.c ends its progress line there, so that a
+ * message starts a line of its own and the status is drawn again below it. */
+extern void (*msg_before)(void);
 
 void msg_init(const char *argv0);
 

@@ -2,24 +2,102 @@
 #include "base/par.h"
 #include "base/lanes.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
-void
-par_set_threads(int n)
+int
+par_cpus_busy(void)
+{
+	int k, least = -1;
+
+	/* /proc/stat's procs_running: the tasks runnable at this moment, this one included; the
+	 * least of three looks 1 ms apart counts those that stay busy (a compile, a `yes`), not
+	 * the ones that happened to be awake */
+	for (k = 0; k < 3; k++) {
+		FILE *fp = fopen("/proc/stat", "r");
+		char line[256];
+		int n = -1;
+
+		if (!fp)
+			return -1;
+		while (fgets(line, sizeof line, fp))
+			if (sscanf(line, "procs_running %d", &n) == 1)
+				break;
+		fclose(fp);
+		if (n < 1)
+			return -1;
+		if (least < 0 || n - 1 < least)
+			least = n - 1;
+		if (k < 2) {
+			struct timespec ms = {0, 1000000};
+			nanosleep(&ms, NULL);
+		}
+	}
+	return least;
+}
+
+#ifdef _OPENMP
+/* The default: OMP_NUM_THREADS when the user set it; else the cores this process may run on
+ * (OpenMP's count, which follows the affinity mask a batch system sets) less those other tasks
+ * keep busy across the whole machine, at least 1. */
+static int
+default_threads(void)
+{
+	int most = omp_get_max_threads(), busy, free;
+	long online = sysconf(_SC_NPROCESSORS_ONLN);
+
+	if (getenv("OMP_NUM_THREADS") || most <= 1 || (busy = par_cpus_busy()) < 0 || online < 1)
+		return most;
+	free = (int)(online - busy);
+	return free < 1 ? 1 : free < most ? free : most;
+}
+#endif
+
+int
+par_default_threads(void)
 {
 #ifdef _OPENMP
 	static int dflt;
 
 	if (!dflt)
-		dflt = omp_get_max_threads();
-	omp_set_num_threads(n > 0 ? n : dflt);
+		dflt = default_threads();
+	return dflt;
+#else
+	return 1;
+#endif
+}
+
+void
+par_set_threads(int n)
+{
+#ifdef _OPENMP
+	omp_set_num_threads(n > 0 ? n : par_default_threads());
 #else
 	(void)n;
+#endif
+}
+
+void
+par_wait_passive(char **argv, int threads)
+{
+#ifdef _OPENMP
+	/* libgomp reads its environment once, when it is loaded, before main: the policy can only
+	 * be given to this program's image by starting it again */
+	if (threads <= 1 || getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT") || access("/proc/self/exe", X_OK) != 0)
+		return;
+	if (setenv("OMP_WAIT_POLICY", "passive", 0) != 0)
+		return;
+	execv("/proc/self/exe", argv);
+	unsetenv("OMP_WAIT_POLICY");	/* not started again: go on as before, spinning */
+#else
+	(void)argv, (void)threads;
 #endif
 }
 

@@ -9,8 +9,12 @@
  * (a contact's force into both of its grains) are turned into gathers in a fixed order by
  * the callers (functional.c, friction.c), so no two threads write the same element.
  *
- * Thread count: par_set_threads(n) (the tools' --threads); 0 restores the default, which is
- * OpenMP's: OMP_NUM_THREADS when set, else the cores online.  Loops shorter than PAR_MIN
+ * Thread count: par_set_threads(n) (the tools' --threads); 0 sets the default: OMP_NUM_THREADS
+ * when set, else the cores this process may use less those other tasks keep busy when it
+ * starts (par_cpus_busy), at least one.  Threads that share a core with another busy process
+ * lose far more than they gain: each parallel region waits at its barrier for the thread the
+ * scheduler left out (densify at 2740 grains beside other jobs: 17 times the wall time of one
+ * thread, bench/threads.md), so the default never takes a core that is busy at the start.  Loops shorter than PAR_MIN
  * iterations run on the calling thread, where starting the others costs more than they save.
  * Blocks are short (256 grains) so that two threads share a 5000-grain pack's 20 blocks
  * evenly; with 1024 they got 2 and 3 of 5 and an increment ran only 1.47 times faster. */
@@ -29,6 +33,21 @@
 #define PAR_MAXBLOCKS 1024
 
 void par_set_threads(int n);
+/* The count par_set_threads(0) sets (decided once, at the first call). */
+int par_default_threads(void);
+/* The waits at the end of a parallel region: with libgomp's default an idle thread spins for
+ * up to 300000 turns before it sleeps, and beside other busy processes the spinning threads
+ * take the cores the working ones need (densify at 2740 grains on two threads beside other
+ * jobs: 800 s of wall time, 47 s on one thread; passive waits: 19 s, bench/threads.md).  When
+ * threads > 1 and neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT is set, the program is started
+ * again (execv of /proc/self/exe with argv, before any input is read) with
+ * OMP_WAIT_POLICY=passive: libgomp reads its environment only when it is loaded.  A user's
+ * own setting of either is kept (OMP_WAIT_POLICY=active restores the spinning).  Returns
+ * only when nothing was started again. */
+void par_wait_passive(char **argv, int threads);
+/* The tasks other than this one that keep a core busy now (the least of three looks at
+ * /proc/stat's procs_running 1 ms apart), or -1 where that cannot be read. */
+int par_cpus_busy(void);
 /* The threads a loop of the library uses (1 without OpenMP). */
 int par_threads(void);
 

@@ -3,6 +3,7 @@
 #include "contact/contacts.h"
 #include "qs/functional.h"
 #include "qs/loading.h"
+#include "base/cli.h"
 #include "base/msg.h"
 #include "base/table.h"
 
@@ -388,6 +389,8 @@ phase_a_round(struct densify_state *d, long round)
 	const struct densify_params *dp = d->dp;
 	struct pack *p = d->p;
 	double d3[3];
+
+	cli_progress_stage("grow %ld", round);
 	struct qs_min_params mp;
 
 	/* Phase (a) ends where the pack has jammed, and its box becomes the reference box (a
@@ -436,6 +439,7 @@ compaction_step(struct densify_state *d, long round, double *e_prev, double *y_p
 	double y = pow(d->st.sigma_c, 2.0 / 3.0), yt = pow(dp->stress, 2.0 / 3.0), de, d3[3], eps[3], eps_now;
 	struct qs_min_params mp;
 
+	cli_progress_stage("compact %ld", round);
 	if (round > dp->max_rounds) {
 		msg_seterr("compaction did not reach %g Pa in %ld steps (sigma_c %g Pa)", dp->stress, dp->max_rounds,
 		    d->st.sigma_c);
@@ -579,6 +583,7 @@ densify_run_resumable(struct pack *p, const struct densify_params *dp, densify_l
 			goto out;
 		}
 	} else {
+		cli_progress_stage("relax");
 		if (qs_minimize(&d.s, d.x, &dpl.min, &d.rep) < 0)
 			goto out;
 		record(&d, "relax", 0);
@@ -850,16 +855,16 @@ densify_resume_get(struct pack *p, struct densify_resume *at, char **run, char *
 void
 densify_log_header(FILE *fp)
 {
-	fputs("# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean\n",
-	    fp);
+	fputs("# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean"
+	    "\telapsed[s]\n", fp);
 }
 
 void
-densify_log_row(FILE *fp, const struct densify_stage *st)
+densify_log_row(FILE *fp, const struct densify_stage *st, double elapsed)
 {
-	double v[8] = {st->sigma_c, st->porosity, st->coordination, (double)st->under4, st->growth,
-	    (double)st->iterations, st->res_max, st->res_mean};
+	double v[9] = {st->sigma_c, st->porosity, st->coordination, (double)st->under4, st->growth,
+	    (double)st->iterations, st->res_max, st->res_mean, elapsed};
 
 	fprintf(fp, "%s\t%ld\t", st->stage, st->round);
-	table_row(fp, v, 8);
+	table_row(fp, v, 9);
 }

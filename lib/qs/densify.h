@@ -149,8 +149,9 @@ int densify_resume_check_input(const struct pack *input, const struct densify_pa
 
 #include <stdio.h>
 
-/* The log: one TSV header, one row per stage. */
+/* The log: one TSV header, one row per stage; its last column, elapsed[s], is the wall time
+ * since the run started (over every call of a run resumed from checkpoints). */
 void densify_log_header(FILE *fp);
-void densify_log_row(FILE *fp, const struct densify_stage *st);
+void densify_log_row(FILE *fp, const struct densify_stage *st, double elapsed);
 
 #endif

@@ -377,6 +377,9 @@ static const struct table_col load_cols[] = {
 };
 #define LOAD_NCOLS ((int)(sizeof load_cols / sizeof load_cols[0]))
 
+/* frictionalize's log: the curve's columns, K and G, then the wall time */
+static const struct table_col log_cols[] = {{"elapsed", "s"}};
+
 void
 load_table_header(FILE *fp, int with_moduli)
 {
@@ -384,9 +387,19 @@ load_table_header(FILE *fp, int with_moduli)
 }
 
 void
-load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, double K, double G)
+load_log_header(FILE *fp)
 {
-	double v[LOAD_NCOLS];
+	struct table_col c[LOAD_NCOLS + 1];
+
+	memcpy(c, load_cols, sizeof load_cols);
+	c[LOAD_NCOLS] = log_cols[0];
+	table_header(fp, c, LOAD_NCOLS + 1);
+}
+
+/* The curve's values of row into v: the number written. */
+static int
+load_values(const struct load_row *row, int axis, double *v)
+{
 	int a, n = 0, u = (axis + 1) % 3, w = (axis + 2) % 3;
 
 	v[n++] = (double)row->inc;
@@ -408,10 +421,31 @@ load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, 
 	v[n++] = row->res_mean;
 	v[n++] = row->bulk_porosity;
 	v[n++] = row->bulk_coordination;
+	return n;
+}
+
+void
+load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, double K, double G)
+{
+	double v[LOAD_NCOLS];
+	int n = load_values(row, axis, v);
+
 	if (with_moduli) {
 		v[n++] = K;
 		v[n++] = G;
 	}
+	table_row(fp, v, n);
+}
+
+void
+load_log_row(FILE *fp, const struct load_row *row, int axis, double K, double G, double elapsed)
+{
+	double v[LOAD_NCOLS + 1];
+	int n = load_values(row, axis, v);
+
+	v[n++] = K;
+	v[n++] = G;
+	v[n++] = elapsed;
 	table_row(fp, v, n);
 }
 

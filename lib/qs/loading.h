@@ -127,5 +127,9 @@ const char *loader_limit_note(const struct loader *L, char *buf, size_t n);
 #include <stdio.h>
 void load_table_header(FILE *fp, int with_moduli);
 void load_table_row(FILE *fp, const struct load_row *row, int axis, int with_moduli, double K, double G);
+/* frictionalize's log: the rows with K and G, then elapsed[s], the wall time since the run
+ * started (the one column that differs between two runs of the same command). */
+void load_log_header(FILE *fp);
+void load_log_row(FILE *fp, const struct load_row *row, int axis, double K, double G, double elapsed);
 
 #endif

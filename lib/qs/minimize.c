@@ -3,6 +3,7 @@
 #include "base/lanes.h"
 #include "qs/hessian.h"
 #include "base/par.h"
+#include "base/cli.h"
 #include "base/msg.h"
 
 #include <gsl/gsl_eigen.h>
@@ -1062,8 +1063,11 @@ qs_minimizer_test(struct qs_minimizer *m, struct qs_min_report *rep)
 {
 	rep->energy = m->w.e;
 	rep->evals = m->w.s->evals - m->evals0;
-	if (should_stop(&m->w, &m->mp, m->it, m->eprev, rep, m->scale2))
+	if (should_stop(&m->w, &m->mp, m->it, m->eprev, rep, m->scale2)) {
+		cli_progress_iter(rep->res_max);
 		return rep->status == 1 ? QS_MIN_MAXITER : QS_MIN_SUCCESS;
+	}
+	cli_progress_iter(rep->res_max);	/* the progress line (a terminal, or -v) */
 	if (m->mp.method == QS_CG && m->gg == 0)
 		return QS_MIN_SUCCESS;	/* a zero gradient: nothing to move along */
 	return QS_MIN_CONTINUE;

@@ -51,13 +51,15 @@ packinfo d14.pack >d14.txt 2>/dev/null
 expect_num "1 MPa pack compressed to 4 MPa is denser" "$(info_value d14.txt porosity)" "<" "$(info_value d1.pack.txt porosity)"
 
 # The log: the documented header, then one row per stage: relax 0, grow (or retry) 1..k, compact 1..m,
-# ten columns each; the last row is the pack written.
-hdr=$(printf '# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean')
+# eleven columns each, the last the elapsed seconds, growing; the last row is the pack written.
+hdr=$(printf '# stage\tround\tsigma_c[Pa]\tporosity\tcoordination\tunder4\tgrowth\titerations\tresidual\tresidual_mean\telapsed[s]')
 for lg in d1.tsv d4.tsv; do
 	if [ "$(head -n 1 $lg)" = "$hdr" ]; then pass "$lg: header"; else fail "$lg: header" "$(head -n 1 $lg)"; fi
 	awk -F '\t' 'NR == 1 { next }
 	     $1 == "retry" { $1 = "grow" }	# an undone growth round counts as one
-	     { n++; if (NF != 10) bad = "row " NR " has " NF " columns" }
+	     { n++; if (NF != 11) bad = "row " NR " has " NF " columns" }
+	     n > 1 && !($11 >= el) { bad = "row " NR ": elapsed " $11 " after " el }
+	     { el = $11 }
 	     n == 1 && !($1 == "relax" && $2 == 0) { bad = "first row is not relax 0" }
 	     n > 1 && $1 == "grow" && !(prev == "relax" || prev == "grow") { bad = "grow after " prev }
 	     n > 1 && $1 == "compact" && !(prev == "grow" || prev == "compact" || prev == "relax") { bad = "compact after " prev }
@@ -139,8 +141,9 @@ expect_num "full.tsv: every compaction step at --tol" \
 
 # Checkpoints: a run stopped after every stage (--time-limit far below one stage) and rerun
 # until it finishes must give the uninterrupted run's pack and log, to the byte (the history
-# line records the command, so it is left out); each stop exits 75 with one line, no pack and
-# no log; the finished run removes the checkpoint.
+# line records the command, so it is left out, and the log's elapsed seconds); each stop exits
+# 75 with one line and no pack, and keeps the log with a row for every stage so far (the call
+# number: each runs one stage); the finished run removes the checkpoint.
 # resume_all NAME INPUT ARGS...: reruns densify until it stops stopping; sets runs, rc.
 resume_all() {
 	n=$1 in=$2
@@ -153,7 +156,7 @@ resume_all() {
 		rc=$?
 		runs=$((runs + 1))
 		[ "$rc" -eq 75 ] && [ "$runs" -lt 200 ] || break
-		if [ -e "$n.pack" ] || [ -e "$n.tsv" ] || [ -s "$n.out" ] || [ ! -s "$n.ck" ] || [ "$(wc -l <"$n.err")" -ne 1 ] ||
+		if [ -e "$n.pack" ] || [ "$(rows "$n.tsv" | wc -l)" -ne "$runs" ] || [ -s "$n.out" ] || [ ! -s "$n.ck" ] || [ "$(wc -l <"$n.err")" -ne 1 ] ||
 		    ! grep -q "^densify: stopped after [a-z]* [0-9]* at the time limit .*goes on from $n.ck\$" "$n.err"; then
 			stops_ok=0
 			echo "stop $runs: $(cat "$n.err")" >"$n.why"
@@ -163,10 +166,14 @@ resume_all() {
 resume_all ck4 loose.pack --stress 4e6
 expect_num "checkpoint: the run ends (exit 0) after its stops" "$rc" == 0
 expect_num "checkpoint: one run per stage of the log" "$runs" == "$(rows d4.tsv | wc -l)"
-if [ "$stops_ok" -eq 1 ]; then pass "checkpoint: every stop exits 75, one line, the checkpoint, no pack, no log"; else fail "checkpoint: every stop exits 75, one line, the checkpoint, no pack, no log" "$(cat ck4.why)"; fi
+if [ "$stops_ok" -eq 1 ]; then pass "checkpoint: every stop exits 75, one line, the checkpoint, no pack, the log so far"; else fail "checkpoint: every stop exits 75, one line, the checkpoint, no pack, the log so far" "$(cat ck4.why)"; fi
+# stage_cols LOG: the log without its elapsed seconds (the one column that differs between runs)
+stage_cols() { cut -f 1-10 "$1" >"$1.stages"; }
+stage_cols d4.tsv
+stage_cols ck4.tsv
 grep -v '^history densify ' ck4.pack >ck4.nohist 2>/dev/null
 expect_same "checkpoint: the resumed pack is the uninterrupted one" d4.nohist ck4.nohist
-expect_same "checkpoint: the resumed log is the uninterrupted one" d4.tsv ck4.tsv
+expect_same "checkpoint: the resumed log is the uninterrupted one (elapsed aside)" d4.tsv.stages ck4.tsv.stages
 if [ ! -e ck4.ck ]; then pass "checkpoint: removed when the run is done"; else fail "checkpoint: removed when the run is done" "ck4.ck left"; fi
 # a dense pack compacted further (it carries a reference box and contact lines)
 resume_all ckre d1.pack --stress 4e6
@@ -182,7 +189,9 @@ resume_all ckwide wide.pack --stress 4e6 --release-after 10
 grep -v '^history densify ' wide.pack.d >wide.nohist
 grep -v '^history densify ' ckwide.pack >ckwide.nohist 2>/dev/null
 expect_same "checkpoint: wide psd, releases every 10 iterations, resumed" wide.nohist ckwide.nohist
-expect_same "checkpoint: wide psd, the log" wide.tsv ckwide.tsv
+stage_cols wide.tsv
+stage_cols ckwide.tsv
+expect_same "checkpoint: wide psd, the log (elapsed aside)" wide.tsv.stages ckwide.tsv.stages
 # an uninterrupted run with --checkpoint is the run without it
 densify --stress 4e6 --checkpoint once.ck -o once.pack loose.pack 2>/dev/null
 grep -v '^history densify ' once.pack >once.nohist 2>/dev/null
@@ -321,7 +330,12 @@ expect_fail "missing input file" 1 '^densify: ' no-such.pack
 # a limit that every minimisation reaches yet lets phase (a) seat every grain: with 3 one grain
 # of this pack stayed under 4 contacts for the 1000 rounds (5 to 50 all end at the limit)
 expect_fail "iteration limit" 1 '^densify: .*iteration limit.*--allow-limit' --max-iter 10 --log lim.tsv loose.pack
-if [ ! -e lim.tsv ]; then pass "iteration limit: no log file"; else fail "iteration limit: no log file" "lim.tsv left"; fi
+# a failed run keeps its log, every stage it ran (the relaxation at least), as the run went
+if [ -f lim.tsv ] && [ "$(head -n 1 lim.tsv)" = "$hdr" ] && [ "$(rows lim.tsv | wc -l)" -ge 1 ] && [ "$(tail -c 1 lim.tsv | od -An -c | tr -d ' ')" = '\n' ]; then
+	pass "iteration limit: the log kept, header and complete rows"
+else
+	fail "iteration limit: the log kept, header and complete rows" "$(ls -l lim.tsv 2>&1)"
+fi
 
 # --allow-limit keeps the pack, exits 0 and warns in one line
 densify --max-iter 10 --allow-limit -o lim.pack loose.pack >lim.out 2>lim.err

@@ -68,3 +68,36 @@ for sig in HUP INT; do
 		expect_num "$sig ignored at start stays ignored: complete output, grains" "$(info_value info.txt grains)" == 125000
 	fi
 done
+
+# Logs are kept (fileio.h, file_log_open): densify killed by TERM, INT or HUP once its log has
+# two rows leaves the log with every row written so far, each complete, the first rows of an
+# undisturbed run's (the elapsed seconds aside).
+packgen -q -n 300 --seed 3 -o lg.pack
+densify -q --threads 1 --stress 4e6 --log ref.tsv -o ref.pack lg.pack
+cut -f 1-10 ref.tsv >ref.stages
+for sig in TERM INT HUP; do
+	rm -f k.tsv k.pack
+	env --default-signal="$sig" densify -q --threads 1 --stress 4e6 --log k.tsv -o k.pack lg.pack &
+	pid=$!
+	seen=0 i=0
+	while [ $i -lt 3000 ] && kill -0 $pid 2>/dev/null; do
+		seen=$(grep -vc '^#' k.tsv 2>/dev/null)
+		[ "${seen:-0}" -ge 2 ] && { kill -"$sig" $pid; break; }
+		sleep 0.01
+		i=$((i + 1))
+	done
+	wait $pid
+	rc=$?
+	n=$(grep -vc '^#' k.tsv 2>/dev/null)
+	cut -f 1-10 k.tsv >k.stages 2>/dev/null
+	if [ "${seen:-0}" -lt 2 ] || [ $rc -lt 128 ]; then
+		fail "$sig: densify killed with its log at 2 rows" "rows seen ${seen:-0}, exit $rc"
+	elif [ -e k.pack ] || ls -a | grep -q '^\.k\.'; then
+		fail "$sig: no pack, no temporary" "$(ls -a | tr '\n' ' ')"
+	elif [ "$n" -ge "$seen" ] && [ "$(tail -c 1 k.tsv | od -An -c | tr -d ' ')" = '\n' ] &&
+	    [ "$(head -n $((n + 1)) ref.stages)" = "$(cat k.stages)" ]; then
+		pass "$sig: the log kept, $n rows (at least the $seen seen before the kill), the undisturbed run's"
+	else
+		fail "$sig: the log kept with every row so far" "$n rows, $seen seen; $(tail -n 1 k.tsv | cut -c 1-80)"
+	fi
+done

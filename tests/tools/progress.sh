@@ -1,0 +1,51 @@
+# Progress (lib/base/cli.h): on a terminal a status line redrawn in place, with a bar and an
+# ETA where the run has a target; in a pipe nothing without -v, and with -v plain lines.
+# The terminal is a pseudo-terminal made by script(1) (util-linux), 200 columns wide.
+. "$TOP/tests/tools/lib.sh"
+
+packgen -n 300 --seed 3 -o loose.pack 2>/dev/null
+# on_tty FILE CMD: run CMD with its standard error on a pseudo-terminal, the terminal's bytes into FILE
+on_tty() {
+	f=$1
+	shift
+	script -qfec "stty cols 200 2>/dev/null; $*" /dev/null >"$f" 2>&1 </dev/null
+}
+if ! command -v script >/dev/null 2>&1; then
+	fail "script(1) is there (util-linux: bsdutils)" "not found"
+else
+	on_tty d.tty densify --stress 4e6 -o d.pack loose.pack
+	# the line of a compaction step: stage, iterations, residual, elapsed, bar, ETA
+	if tr '\r' '\n' <d.tty | grep -aEq '^densify: compact [0-9]+  it [0-9]+  res [0-9.e+-]+  [0-9:]+s?  \[[#.]{20}\] +[0-9]+% ETA '; then
+		pass "densify on a terminal: stage, iterations, residual, elapsed, bar and ETA"
+	else
+		fail "densify on a terminal: stage, iterations, residual, elapsed, bar and ETA" "$(tr '\r' '\n' <d.tty | tail -n 3 | cut -c 1-200)"
+	fi
+	if tr '\r' '\n' <d.tty | grep -aEq '^densify: grow [0-9]+  it [0-9]+  res '; then
+		pass "densify on a terminal: the growth rounds, without a target"
+	else
+		fail "densify on a terminal: the growth rounds, without a target" "$(tr '\r' '\n' <d.tty | head -n 3 | cut -c 1-200)"
+	fi
+	if grep -aq "$(printf '\033')\[K" d.tty && [ "$(tr -cd '\r' <d.tty | wc -c)" -ge 2 ]; then
+		pass "densify on a terminal: the line is redrawn in place (CR, erase to the end)"
+	else
+		fail "densify on a terminal: the line is redrawn in place (CR, erase to the end)" "$(od -c d.tty | head -n 3)"
+	fi
+	on_tty l.tty loadtest -n 4 -o l.pack d.pack ">l.tsv"
+	if tr '\r' '\n' <l.tty | grep -aEq '^loadtest: segment 1 increment [0-9]+ .*\[[#.]{20}\] +[0-9]+% ETA '; then
+		pass "loadtest on a terminal: bar and ETA of the increments"
+	else
+		fail "loadtest on a terminal: bar and ETA of the increments" "$(tr '\r' '\n' <l.tty | tail -n 2 | cut -c 1-200)"
+	fi
+	on_tty q.tty densify -q --stress 4e6 -o q.pack loose.pack
+	expect_num "densify -q on a terminal: nothing" "$(wc -c <q.tty)" == 0
+fi
+# in a pipe: nothing without -v; with -v plain lines (no CR, no escapes), one per stage
+densify --stress 4e6 -o p.pack loose.pack 2>p.err
+expect_num "densify in a pipe: nothing on stderr" "$(wc -c <p.err)" == 0
+densify -v --stress 4e6 --log v.tsv -o v.pack loose.pack 2>v.err
+if grep -q "$(printf '\r')" v.err || grep -q "$(printf '\033')" v.err; then
+	fail "densify -v in a pipe: plain lines" "$(od -c v.err | head -n 2)"
+else
+	pass "densify -v in a pipe: plain lines"
+fi
+expect_num "densify -v in a pipe: a line per stage of the log" "$(grep -cE '^densify: (relax|grow|retry|compact) [0-9]+: ' v.err)" == "$(rows v.tsv | wc -l)"
