@@ -55,7 +55,7 @@ cli_usage_error(const char *fmt, ...)
 	va_start(ap, fmt);
 	vfprintf(stderr, fmt, ap);
 	va_end(ap);
-	/* one line per error (style.md 13): the hint goes on the same line */
+	/* one line per error (architecture.md, "Conventions"): the hint goes on the same line */
 	fprintf(stderr, " (try '%s --help')\n", msg_progname);
 	usage_errors++;
 }
