@@ -81,6 +81,7 @@ for my $f (@files) {
 	while (my $line = <$h>) {
 		$ln++;
 		$line =~ s/\\\(sc/§/g;	# roff's section sign
+		$line =~ s/\\-/-/g;	# roff's hyphen
 		# documents of the tree, by path or by name
 		while ($line =~ m{(?<![\w./-])((?:(?:share/doc|bench|validate|pipelines)/)?[A-Za-z0-9_-]+\.md)\b}g) {
 			my $d = $1;

@@ -1,5 +1,5 @@
 #!/usr/bin/perl
-# md2man.pl VERSION < page.md > page.SECTION
+# md2man.pl VERSION < share/doc/tables.md > share/man/man5/qusgm-tables.5
 # The manual page of a document of share/doc/, in man(7) macros, so that the document stays
 # the one source (qusgm-tables(5) is share/doc/tables.md: make man-tables).  The document
 # names its page in comment lines at its top:
@@ -14,7 +14,7 @@ use strict;
 use warnings;
 
 my ($version) = @ARGV;
-die "usage: md2man.pl VERSION < page.md\n" unless defined $version;
+die "usage: md2man.pl VERSION < DOCUMENT > PAGE\n" unless defined $version;
 my @lines = <STDIN>;
 chomp @lines;
 my ($name, $sec, $desc, $seealso);
