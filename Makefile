@@ -83,8 +83,9 @@ FUZZ      = $(FUZZ_SRC:tests/fuzz/%.c=%)
 FUZZ_REPLAY = $(FUZZ:%=$(B)/tests/replay_%)
 MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
+MAN7      = $(wildcard share/man/man7/*.7)
 
-.PHONY: version FORCE libs all deps browserdeps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: version FORCE libs all deps browserdeps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall man-tables clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -343,10 +344,11 @@ interop: all
 	@sh tests/interop.sh build/bin
 
 install: all
-	mkdir -p $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANPREFIX)/man1 $(DESTDIR)$(MANPREFIX)/man5 $(DESTDIR)$(DATADIR)
+	mkdir -p $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANPREFIX)/man1 $(DESTDIR)$(MANPREFIX)/man5 $(DESTDIR)$(MANPREFIX)/man7 $(DESTDIR)$(DATADIR)
 	cp $(TOOL_BIN) $(DESTDIR)$(BINDIR)/
 	cp $(MAN1) $(DESTDIR)$(MANPREFIX)/man1/
 	cp $(MAN5) $(DESTDIR)$(MANPREFIX)/man5/
+	cp $(MAN7) $(DESTDIR)$(MANPREFIX)/man7/
 	cp -R share/doc $(DESTDIR)$(DATADIR)/
 	mkdir -p $(DESTDIR)$(DATADIR)/python
 	cp share/python/qusgm.py $(DESTDIR)$(DATADIR)/python/
@@ -365,10 +367,16 @@ uninstall:
 	for t in $(TOOLS); do rm -f $(DESTDIR)$(BINDIR)/$$t; done
 	for m in $(notdir $(MAN1)); do rm -f $(DESTDIR)$(MANPREFIX)/man1/$$m; done
 	for m in $(notdir $(MAN5)); do rm -f $(DESTDIR)$(MANPREFIX)/man5/$$m; done
+	for m in $(notdir $(MAN7)); do rm -f $(DESTDIR)$(MANPREFIX)/man7/$$m; done
 	rm -rf $(DESTDIR)$(DATADIR)
 	rm -f $(DESTDIR)$(LIBDIR)/libqusgm.a $(DESTDIR)$(LIBDIR)/$(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME) \
 	  $(DESTDIR)$(LIBDIR)/libqusgm.so $(DESTDIR)$(PKGCONFIGDIR)/qusgm.pc
 	rm -rf $(DESTDIR)$(INCLUDEDIR)/qusgm
+
+# qusgm-tables(5) is made from share/doc/tables.md, the one description of the tables; the page
+# is committed so that installing needs no perl (tests/tools/manpages.sh checks they agree)
+man-tables:
+	perl share/man/md2man.pl $(VERSION) <share/doc/tables.md >share/man/man5/qusgm-tables.5
 
 clean:
 	rm -rf build build-san build-fuzz tests/out

@@ -1,6 +1,6 @@
 #!/bin/sh
 # layers.sh [ROOT]: checks the #include lines of ROOT/lib and ROOT/tools against the layering
-# of lib/ (share/doc/architecture.md).  Layers, lowest first:
+# of lib/ (share/doc/architecture.md, "Layers").  Layers, lowest first:
 #     base < pack < contact < analysis < {qs, dem}
 # A lib file includes headers of its own layer and of lower ones only (so qs and dem never
 # include each other), every one of our includes names its layer ("pack/pack.h"), tools

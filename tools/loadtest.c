@@ -33,9 +33,9 @@ static struct opts {
 };
 
 static struct cli_opt opt_table[] = {
-	{"path", 'p', CLI_STRING, &o.path, "SPEC", "loading path: uniaxial, isotropic, triaxial, polyaxial, or segments 'A; B' (see loadtest(1))", NULL},
+	{"path", 'p', CLI_STRING, &o.path, "SPEC", "loading path: uniaxial, isotropic, triaxial, polyaxial, probe, or segments 'A; B' (see loadtest(1))", NULL},
 	{"strain-step", 'd', CLI_DOUBLE, &o.def.step, "D", "strain per increment (negative: unloading)", NULL},
-	{"steps", 'n', CLI_LONG, &o.def.steps, "N", "stop after N increments (100 when no stop is given at all)", NULL},
+	{"steps", 'n', CLI_LONG, &o.def.steps, "N", "stop after N increments; 0: none (default: 100 when no stop is given at all, else 0)", NULL},
 	{"to-stress", 's', CLI_DOUBLE, &o.def.to_stress, "PA", "stop when sigma_c reaches PA", "Pa"},
 	{"to-strain", 'e', CLI_DOUBLE, &o.def.to_strain, "E", "stop when the axial strain reaches E", NULL},
 	{"axis", 'a', CLI_STRING, &o.axis, "x|y|z", "axis of uniaxial and triaxial paths", NULL},
@@ -154,6 +154,7 @@ static void
 parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 {
 	load_params_default(&o.lp);
+	cli_output_help("write the final pack to FILE (atomically; .gz compresses); the table always goes to stdout");
 	cli_parse(&tool, argc, argv, st);
 	qs_min_opts_check(&o.lp.min);
 	if (path_parse_axis(o.axis, &o.def.axis))

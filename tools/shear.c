@@ -38,12 +38,12 @@ static struct opts {
 static struct cli_opt opt_table[] = {
 	{"strain", 'g', CLI_DOUBLE, &o.sp.strain, "GAMMA", "shear strain x_w / y_w to reach", NULL},
 	{"stress", 's', CLI_DOUBLE, &o.sp.sigma_w, "PA", "normal stress on the top wall (default: the pack's meta sigma0)", "Pa"},
-	{"kappa", 0, CLI_DOUBLE, &o.kappa, "K", "... or the stiffness number k_n / (sigma_w r), r the mean spheroradius", NULL},
+	{"kappa", 0, CLI_DOUBLE, &o.kappa, "K", "... or the stiffness number k_n / (sigma_w r), r the mean spheroradius (default: --stress)", NULL},
 	{"inertial", 'I', CLI_DOUBLE, &o.sp.inertial, "I", "inertial number gamma_dot r sqrt(rho / sigma_w): sets the wall's velocity (default 1e-3)", NULL},
-	{"velocity", 0, CLI_DOUBLE, &o.sp.velocity, "M/S", "... or the wall's velocity v_w outright", "m/s"},
+	{"velocity", 0, CLI_DOUBLE, &o.sp.velocity, "M/S", "... or the wall's velocity v_w outright (default: set by --inertial)", "m/s"},
 	{"every", 0, CLI_DOUBLE, &o.sp.every, "DGAMMA", "a row every DGAMMA of strain, each the mean over its steps", NULL},
 	{"profile", 0, CLI_STRING, &o.profile, "FILE", "write the velocity profile <v_x>(y)/v_w to FILE (TSV)", NULL},
-	{"profile-from", 0, CLI_DOUBLE, &o.sp.profile_from, "GAMMA", "average the profile from this strain on", NULL},
+	{"profile-from", 0, CLI_DOUBLE, &o.sp.profile_from, "GAMMA", "average the profile from this strain on (default: 0.6 x --strain)", NULL},
 	{"profile-bins", 0, CLI_LONG, &o.bins, "N", "bins of y / y_w in the profile", NULL},
 	{"snapshots", 0, CLI_STRING, &o.snapshots, "G1,G2,...", "write the pack at these strains, to PREFIX-G.pack", NULL},
 	{"snapshot-prefix", 0, CLI_STRING, &o.prefix, "PREFIX", "file name prefix of the snapshots", NULL},
@@ -129,6 +129,7 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	shear_params_default(&o.sp);
 	o.sp.profile_from = NAN;
 	o.sp.inertial = NAN;
+	cli_output_help("write the final pack to FILE (atomically; .gz compresses); the table always goes to stdout");
 	cli_parse(&tool, argc, argv, st);
 	if (!(o.sp.strain > 0 && o.sp.strain <= 100))
 		cli_usage_error("--strain: must be in (0, 100]");

@@ -38,9 +38,17 @@ static const char *output_path;
 static int verbose_count, quiet_flag;
 static long threads_opt;
 
+static const char *output_help;	/* cli_output_help */
+
+void
+cli_output_help(const char *help)
+{
+	output_help = help;
+}
+
 static struct cli_opt common_opts[] = {
 	{"output", 'o', CLI_STRING, &output_path, "FILE", "write to FILE (atomically) instead of stdout; .gz compresses", NULL},
-	{"verbose", 'v', CLI_FLAG, &verbose_count, NULL, "report progress on stderr (twice: solver detail)", NULL},
+	{"verbose", 'v', CLI_FLAG, &verbose_count, NULL, "report progress on stderr, also when it is not a terminal", NULL},
 	{"threads", 0, CLI_LONG, &threads_opt, "N", "threads (0: OMP_NUM_THREADS, else the cores not busy at the start); same results for any N", NULL},
 	{"quiet", 'q', CLI_FLAG, &quiet_flag, NULL, "no warnings or progress", NULL},
 	{"help", 'h', CLI_FLAG, &help_flag, NULL, "print this help and exit", NULL},
@@ -57,7 +65,7 @@ cli_usage_error(const char *fmt, ...)
 	va_start(ap, fmt);
 	vfprintf(stderr, fmt, ap);
 	va_end(ap);
-	/* one line per error (style.md 13): the hint goes on the same line */
+	/* one line per error (architecture.md, "Conventions"): the hint goes on the same line */
 	fprintf(stderr, " (try '%s --help')\n", msg_progname);
 	usage_errors++;
 }
@@ -113,11 +121,14 @@ print_opt(const struct cli_opt *o, int show_default)
 	printf("  %-28s %s", left, o->help);
 	if (o->unit)
 		printf(" (%s)", o->unit);
-	/* a nan double is "not given": the help text says what that means, or it is none */
-	if (show_default && o->type == CLI_DOUBLE && isnan(*(double *)o->dest)) {
-		if (!strstr(o->help, "default:"))
-			printf(" [default: none]");
-	} else if (show_default && o->type != CLI_FLAG) {
+	/* One statement of the default: a help text that says it ("(default: the pack's)",
+	 * "(default 1e-3)") gets no bracket, whatever the variable holds before the tool
+	 * resolves it; a nan double is "not given", which is none unless the text says more. */
+	if (!show_default || strstr(o->help, "(default")) {
+		/* said, or not to be said */
+	} else if (o->type == CLI_DOUBLE && isnan(*(double *)o->dest)) {
+		printf(" [default: none]");
+	} else if (o->type != CLI_FLAG) {
 		format_value(o, def, sizeof def);
 		if (def[0])
 			printf(" [default: %s]", def);
@@ -133,8 +144,13 @@ print_help(const struct cli_tool *t)
 	printf("Usage: %s %s\n%s\n\nOptions:\n", t->name, t->usage, t->purpose);
 	for (i = 0; i < n; i++)
 		print_opt(&t->opts[i], 1);
-	for (i = 0; common_opts[i].type != CLI_END; i++)
-		print_opt(&common_opts[i], 0);
+	for (i = 0; common_opts[i].type != CLI_END; i++) {
+		struct cli_opt o = common_opts[i];
+
+		if (o.shortname == 'o' && output_help)
+			o.help = output_help;
+		print_opt(&o, 0);
+	}
 	/* a tool without operands (packgen) reads no input */
 	printf("\n%s", t->max_operands > 0 ? "FILE '-' or no FILE reads standard input; .gz input is detected.\n" : "");
 	printf("Exit status: 0 success, 1 bad data or failure, 2 usage error.\n"

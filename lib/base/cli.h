@@ -47,6 +47,10 @@ struct cli_state {
 	char *argv_text;	/* the command line as typed, shell-quoted; owned by cli, freed at exit */
 };
 
+/* -o's help line when it is not "write to FILE instead of stdout": for a tool whose standard
+ * output is a table and whose -o writes the final pack.  Call before cli_parse. */
+void cli_output_help(const char *help);
+
 /* Parse argv against the tool's table; exits 0 for --help/--version, 2 for usage errors
  * (after reporting every bad option).  Fills st. */
 void cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st);

@@ -14,46 +14,25 @@
  * grow_max_iter iterations (not an error).  Near jamming a full-tolerance minimisation slows
  * critically (70k L-BFGS iterations in the jamming round of a 1e4-grain pack).
  *
- * Until 2026-12-05 the rounds went on above the onset until no grain was under min_coord,
- * and the last one was taken to the full tolerance.  Those rounds, each stopped at
- * grow_max_iter with grains under 4 left, were most of the work at large N: at 1e5 grains
- * rounds 8-30 took 69644 of 154339 iterations, and the compaction then unseated up to 1186
- * grains again; at 1e6 each round cut the grains under 4 by only a fifth.  Seating them in
- * the compaction instead: 2740 grains, seeds 1-3, 25706, 25614, 25742 iterations against
- * 49565, 37904, 41958; 1e4 grains 35829 against 49315; porosity and coordination within the
- * scatter between seeds (bench/densify-1e6.md has the 1e5 run).  Below the onset the
- * residual's force floor is what a contact carries at the onset (an unjammed pack has no
- * load to balance).  A compaction step that moves the box or grows grains is minimised like
- * a growth round, to grow_tol in at most grow_max_iter iterations (loose_steps, the default
- * since 2026-12-03): it only brings the pack nearer the target.  The step that stays at the
- * target (sigma_c within stress_tol) with no grain to grow is the full equilibrium, and only
- * a full step ends the compaction, judged again on its own stress.  With every step to the full tolerance the
- * second compaction step of a 1e5-grain pack (0.27 -> 2.03 MPa) took 146673 of its 411291
- * iterations, a large squeeze whose rearrangement left grains with one contact; in a 1e4
- * pack (seed 1) 17130 of 55266.  A loose state's stress is not its equilibrium's (a 1e4
- * pack's relaxed 12 % below it), which can cost the secant a step, but the last, full step
- * pays far less of the tail than the squeeze did: 49315 iterations and 102 s to 4 MPa at
- * 1e4, against 55266 and 114 s; 2740 grains, seeds 1-3: 49565, 37904, 41958 against 50324,
- * 35508, 44236 (the scatter between seeds), the same porosity and coordination within it;
- * 1e5 grains: 154339 iterations and 72 min in all, the compaction 70953 of them (seven
- * loose steps, 25810 in the full one), against 411291 and 2 h with full steps, 20000-iteration
- * rounds and the scalar H0 (bench/densify-1e5.md).
+ * Below the onset the residual's force floor is what a contact carries at the onset (an
+ * unjammed pack has no load to balance).  A compaction step that moves the box or grows grains
+ * is minimised like a growth round, to grow_tol in at most grow_max_iter iterations
+ * (loose_steps): it only brings the pack nearer the target.  The step that stays at the target
+ * (sigma_c within stress_tol) with no grain to grow is the full equilibrium, and only a full
+ * step ends the compaction, judged again on its own stress.  Why these choices, with the
+ * measurements: bench/densify.md.
  *
  * Every minimisation here runs in chunks of release_after iterations; between chunks the
  * grains with 1-3 contacts, which frictionless equilibrium holds only once those contacts
  * have opened, are moved to where they just touch (qs_release_unbraced).  The minimiser
  * opens such a contact only asymptotically (the Hertz stiffness vanishes as h^(1/2)): a
  * 1e5-grain pack's second compaction step stood at a largest residual near 1 after 99k
- * L-BFGS iterations, held by hundreds of grains with one contact left.  With a release every
- * 5000 iterations the 1e4-grain benchmark pack reached 4 MPa in 102 s against 206 s
- * (65947 iterations against 124451); every 2000, 168 s.
+ * L-BFGS iterations, held by hundreds of grains with one contact left (bench/densify.md).
  *
- * After a release the minimiser starts afresh (release_keep 0, the default).  Keeping its
- * memory instead (release_keep 1: the L-BFGS pairs survive, qs_minimizer_moved) was measured
- * slower on every pack tried, to 4 MPa: 2740 grains, seeds 1, 2, 3: 59034, 87201, 97623
- * iterations against 50491, 59080, 50047; 1e4 grains (seed 1): 90192 iterations, 191 s,
- * against 65947, 141 s.  The stored pairs describe the curvature before the release moved
- * the grains, and the steps they shape afterwards are poor ones. */
+ * After a release the minimiser starts afresh (release_keep 0, the default): keeping its
+ * memory (release_keep 1: the L-BFGS pairs survive, qs_minimizer_moved) was slower on every
+ * pack tried (bench/densify.md), since the stored pairs describe the curvature before the
+ * release moved the grains. */
 #ifndef QUSGM_DENSIFY_H
 #define QUSGM_DENSIFY_H
 

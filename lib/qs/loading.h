@@ -63,7 +63,7 @@ struct load_params {
  * the two-loop recursion's passes over the 6N-vectors halve (an eighth of a frictional
  * increment's time): over the 2740-grain pack's 9-20 MPa uniaxial curve 87.1 iterations per
  * increment against 86.7, 8.2 s against 8.8 s; 1e4 grains 264 against 261 iterations, 11.2 s
- * against 11.6 s for ten (2026-12-04, bench/kernels.md).  Not without friction: there 4 steps
+ * against 11.6 s for ten (bench/kernels.md).  Not without friction: there 4 steps
  * led the frictionless probes of s-fig4 (G5036 at 20 MPa) and fig5-6's frictionless G5036
  * curve to other equilibria, through rearrangements (K 0.93 against 1.15 GPa, G 0.022 against
  * 0.139 GPa at 20 MPa), which the studies read as outliers. */

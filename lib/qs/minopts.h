@@ -35,7 +35,7 @@ void qs_min_opts_check(struct qs_min_params *mp);
 	{"k-inc", 0, CLI_LONG, &(lp).k_inc, "N", "minimiser iterations between sub-increments", NULL},            \
 	{"skin", 0, CLI_DOUBLE, &(lp).skin, "RATIO", "largest Verlet skin / smallest radius", NULL},           \
 	{"inc-tol", 0, CLI_DOUBLE, &(lp).inc_tol, "RATIO", "friction: residual of an increment before its commit; the settle passes then reach --tol", NULL}, \
-	{"settle-fresh", 0, CLI_FLAG, &(lp).settle_fresh, NULL, "friction: start each settle pass's L-BFGS afresh (the paths of versions before 2026-12-05)", NULL}
+	{"settle-fresh", 0, CLI_FLAG, &(lp).settle_fresh, NULL, "friction: start each settle pass's L-BFGS afresh, not from the last pass's steps and blocks", NULL}
 
 /* The loading options of loadtest, frictionalize and dissociate: --mu and --wall-mu in [0, 10]
  * or NaN (not given), --rule resolved into lp->rule, --sub-increments (1 to 1000, into

@@ -484,7 +484,7 @@ end
 EOF4
 awk '/^    qusgm-pack 2$/ { on = 0 } /^## The phase column/ { sec = 1 } sec && /^    qusgm-pack 2$/ { on = 1 } on && /^    / { print substr($0, 5) } on && /^$/ && n++ { exit }' \
     "$TOP/share/doc/pack-format.md" >doc4.pack
-expect_same phase-the-example-of-pack-format.md good4.pack doc4.pack
+expect_same "the phase example of pack-format.md" good4.pack doc4.pack
 
 bad4() {
 	name=$1 line=$2 re=$3
