@@ -412,7 +412,7 @@ debdeps:
 	  fi; \
 	fi
 
-deb: debdeps
+deb: debdeps pydeps
 	rm -rf build-deb
 	mkdir -p build-deb/src
 	if [ -d .git ]; then git ls-files -z | xargs -0 cp -P --parents -t build-deb/src; \
@@ -426,7 +426,9 @@ deb: debdeps
 	  v=$$(LD_LIBRARY_PATH= build-deb/root/usr/bin/$$t --version 2>&1); \
 	  case "$$v" in *'$(QUSGM_SOURCE_VERSION)'*) ;; *) echo "qusgm: packaged $$t --version: '$$v', wanted $(QUSGM_SOURCE_VERSION)" >&2; exit 1 ;; esac; \
 	done; echo "packaged tools: $(TOOLS) --version name $(QUSGM_SOURCE_VERSION)"
-	PYTHONPATH=build-deb/root/usr/lib/python3/dist-packages python3 -c 'import qusgm; print("python3-qusgm:", qusgm.__file__)'
+	@if python3 -c 'import numpy' 2>/dev/null; then \
+	  PYTHONPATH=build-deb/root/usr/lib/python3/dist-packages python3 -c 'import qusgm; print("python3-qusgm: imports from", qusgm.__file__)'; \
+	else echo "qusgm: no numpy: python3-qusgm not imported" >&2; fi
 	@ls build-deb/*.deb
 
 clean:
