@@ -426,9 +426,11 @@ deb: debdeps pydeps
 	  v=$$(LD_LIBRARY_PATH= build-deb/root/usr/bin/$$t --version 2>&1); \
 	  case "$$v" in *'$(QUSGM_SOURCE_VERSION)'*) ;; *) echo "qusgm: packaged $$t --version: '$$v', wanted $(QUSGM_SOURCE_VERSION)" >&2; exit 1 ;; esac; \
 	done; echo "packaged tools: $(TOOLS) --version name $(QUSGM_SOURCE_VERSION)"
-	@if python3 -c 'import numpy' 2>/dev/null; then \
-	  PYTHONPATH=build-deb/root/usr/lib/python3/dist-packages python3 -c 'import qusgm; print("python3-qusgm: imports from", qusgm.__file__)'; \
-	else echo "qusgm: no numpy: python3-qusgm not imported" >&2; fi
+	build-deb/root/usr/bin/packgen -n 50 -q | build-deb/root/usr/bin/packinfo | grep '^grains 50$$'
+	@py=$$(command -v /usr/bin/python3 || command -v python3); \
+	if $$py -c 'import numpy' 2>/dev/null; then \
+	  PYTHONPATH=build-deb/root/usr/lib/python3/dist-packages $$py -c 'import qusgm; print("python3-qusgm: imports from", qusgm.__file__)'; \
+	else echo "qusgm: no numpy for $$py: python3-qusgm not imported" >&2; fi
 	@ls build-deb/*.deb
 
 clean:

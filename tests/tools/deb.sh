@@ -64,9 +64,11 @@ for want in "usr/bin/packgen	qusgm" "usr/lib/$triplet/libqusgm.so.0	libqusgm0" "
 done
 py=$(grep '	python3-qusgm$' owners | grep '^usr/lib/python3/dist-packages/qusgm' | head -n 1)
 if [ -n "$py" ]; then pass "python3-qusgm: ${py%	*}"; else fail "python3-qusgm: the module in usr/lib/python3/dist-packages" "$(grep python3-qusgm owners | head -n 3 | tr '\n' ' ')"; fi
-if ! python3 -c 'import numpy' >/dev/null 2>&1; then
-	echo "SKIP python3-qusgm import (no numpy)"
-elif PYTHONPATH=$stage/usr/lib/python3/dist-packages python3 -c 'import qusgm; print(qusgm.__file__)' >py.out 2>py.err &&
+# Debian's python3, the one python3-qusgm is for
+py=$(command -v /usr/bin/python3 || command -v python3)
+if ! $py -c 'import numpy' >/dev/null 2>&1; then
+	echo "SKIP python3-qusgm import (no numpy for $py)"
+elif PYTHONPATH=$stage/usr/lib/python3/dist-packages $py -c 'import qusgm; print(qusgm.__file__)' >py.out 2>py.err &&
 	grep -q "^$stage/usr/lib/python3/dist-packages/qusgm" py.out; then
 	pass "import qusgm from the staged dist-packages"
 else
