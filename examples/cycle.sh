@@ -9,7 +9,7 @@
 # above the last loading one), and it keeps a permanent strain: on the way down it passes
 # the stress it started from at a larger axial strain.
 #
-#   sh cycle.sh [N [DIR]]       N grains (default 1000; a minute or two on one core),
+#   sh cycle.sh [N [DIR]]       N grains (default 1000; under half a minute of one core),
 #                               every file in DIR (default cycle/)
 #   TOP=20e6 BOTTOM=4e6 MU=0.3 sh cycle.sh   the turning stresses sigma_c (Pa), friction
 #   BIN=DIR                     the tools from DIR instead of PATH

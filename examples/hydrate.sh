@@ -10,7 +10,7 @@
 # falling: the hydrate grains shrink out of their contacts and the pore pressure expands the
 # skeleton, which unloads it.
 #
-#   sh hydrate.sh [N [DIR]]     N grains (default 1000; about a minute on one core),
+#   sh hydrate.sh [N [DIR]]     N grains (default 1000; seconds),
 #                               every file in DIR (default hydrate/)
 #   DS=-0.02 PEX=1e6 sh hydrate.sh   the change of saturation and the excess pore pressure (Pa)
 #   BIN=DIR                     the tools from DIR instead of PATH

@@ -9,7 +9,7 @@
 # (compaction positive), and the friction angle the pack mobilises, sin(phi) = q / (sig_zz +
 # sig_lat); the last row of its table has the largest strain.
 #
-#   sh triaxial.sh [N [DIR]]    N grains (default 1000; a minute or two on one core),
+#   sh triaxial.sh [N [DIR]]    N grains (default 1000; under half a minute of one core),
 #                               every file in DIR (default triaxial/)
 #   STRESS=10e6 MU=0.5 STEPS=200 sh triaxial.sh   the compaction stress (Pa), the friction
 #                               coefficient, the test's increments of 1e-4 axial strain
