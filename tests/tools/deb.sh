@@ -58,10 +58,12 @@ bad=$(awk -F '\t' 'NR == FNR { n[$1]++; who[$1] = who[$1] " " $2; next } n[$1] !
 if [ -z "$bad" ]; then pass "every installed file in exactly one package ($(wc -l <files) files)"; else fail "every installed file in exactly one package" "$(echo "$bad" | tr '\n' ' ')"; fi
 for want in "usr/bin/packgen	qusgm" "usr/lib/$triplet/libqusgm.so.0	libqusgm0" "usr/lib/$triplet/libqusgm.so.$ver	libqusgm0" \
 	"usr/lib/$triplet/libqusgm.so	libqusgm-dev" "usr/lib/$triplet/libqusgm.a	libqusgm-dev" "usr/lib/$triplet/pkgconfig/qusgm.pc	libqusgm-dev" \
-	"usr/include/qusgm/pack/pack.h	libqusgm-dev" "usr/share/man/man1/densify.1	qusgm" "usr/share/qusgm/examples/triaxial.sh	qusgm" \
+"usr/share/man/man1/densify.1	qusgm" "usr/share/qusgm/examples/triaxial.sh	qusgm" \
 	"usr/share/qusgm/pipelines/Makefile	qusgm" "usr/share/qusgm/plot/fig4.gp	qusgm"; do
 	if grep -qxF "$want" owners; then pass "package of ${want%	*}: ${want#*	}"; else fail "package of ${want%	*}: ${want#*	}" "$(grep -F "${want%	*}" owners | head -n 2 | tr '\n' ' ')"; fi
 done
+hdr=$(grep '^usr/include/qusgm/.*\.h	libqusgm-dev$' owners | head -n 1)
+if [ -n "$hdr" ]; then pass "libqusgm-dev: the headers (${hdr%	*} ...)"; else fail "libqusgm-dev: the headers in usr/include/qusgm" "$(grep include owners | head -n 3 | tr '\n' ' ')"; fi
 py=$(grep '	python3-qusgm$' owners | grep '^usr/lib/python3/dist-packages/qusgm' | head -n 1)
 if [ -n "$py" ]; then pass "python3-qusgm: ${py%	*}"; else fail "python3-qusgm: the module in usr/lib/python3/dist-packages" "$(grep python3-qusgm owners | head -n 3 | tr '\n' ' ')"; fi
 # Debian's python3, the one python3-qusgm is for
