@@ -394,12 +394,12 @@ man-tables:
 # built by dpkg-buildpackage -b from a copy of the tree in build-deb/src (it writes them to
 # the parent directory: build-deb/), then checked: lintian, with no error allowed, and every
 # package unpacked into the scratch root build-deb/root, whose tools must name this tree's
-# source and whose Python module must import.  As root, installs the packaging tools when
-# missing.  The packaged tools name the source of this tree (QUSGM_SOURCE_VERSION).
+# source and whose Python module must import.  As root, installs the build dependencies
+# (deps) and the packaging tools when missing.  The packaged tools name the source of this tree (QUSGM_SOURCE_VERSION).
 DEB_TOOLS = dpkg-dev debhelper dh-python lintian
 debdeps:
 	@missing=""; \
-	for p in $(DEB_TOOLS) $(DEB_PKGS); do \
+	for p in $(DEB_TOOLS); do \
 	  dpkg-query -W -f '$${Status}' $$p 2>/dev/null | grep -q 'ok installed' || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
@@ -412,7 +412,7 @@ debdeps:
 	  fi; \
 	fi
 
-deb: debdeps pydeps
+deb: deps debdeps pydeps
 	rm -rf build-deb
 	mkdir -p build-deb/src
 	if [ -d .git ]; then git ls-files -z | xargs -0 cp -P --parents -t build-deb/src; \
