@@ -415,8 +415,8 @@ debdeps:
 deb: deps debdeps pydeps
 	rm -rf build-deb
 	mkdir -p build-deb/src
-	if [ -d .git ]; then git ls-files -z | xargs -0 cp -P --parents -t build-deb/src; \
-	else tar -cf - --exclude='./build*' --exclude=./tests/out . | tar -xf - -C build-deb/src; fi
+	if [ -e .git ]; then git ls-files -z | xargs -0 cp -P --parents -t build-deb/src; \
+	else tar -cf - --exclude=./.git --exclude='./build*' --exclude=./tests/out . | tar -xf - -C build-deb/src; fi
 	@echo "dpkg-buildpackage -us -uc -b (log: build-deb/build.log)"
 	@cd build-deb/src && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL dpkg-buildpackage -us -uc -b >../build.log 2>&1 || \
 	  { tail -n 30 ../build.log; echo "qusgm: dpkg-buildpackage failed (build-deb/build.log)" >&2; exit 1; }
