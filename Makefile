@@ -1,5 +1,5 @@
 # qusgm: quasi-static granular mechanics toolkit.
-# Targets: all check run bench bench-peers validate install uninstall clean deps help (see `make help`).
+# Targets: all check run bench bench-peers validate install uninstall deb clean deps help (see `make help`).
 
 VERSION   = 0.2.0
 PREFIX   ?= /usr/local
@@ -9,10 +9,16 @@ DATADIR  ?= $(PREFIX)/share/qusgm
 LIBDIR   ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
 PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
+PYTHONDIR ?= $(DATADIR)/python
 DESTDIR  ?=
 
 CC       ?= cc
 OPT      ?= -O2 -g
+# CFLAGS replaces OPT (the optimisation and debug flags; the warnings, -std, OpenMP and -Ilib
+# are always added), CPPFLAGS and LDFLAGS are added to every compile and link: the
+# conventions dpkg-buildflags and other packagers follow (make deb).  Unset, the commands
+# are those of OPT alone.
+CFLAGS   ?= $(OPT)
 WARN      = -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 # -ffp-contract=off: no fused multiply-adds the source does not write (GCC's ISO C mode already
 # implies it, clang's default does not), so the bytes do not depend on the compiler's choice
@@ -62,7 +68,7 @@ endif
 # OpenMP: the evaluations and the vector algebra run on threads (lib/base/par.h); OMPFLAGS=
 # builds without them (one thread, the same results).
 OMPFLAGS ?= -fopenmp
-ALL_CFLAGS = $(STD) $(WARN) $(OPT) $(OMPFLAGS) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAGS)
+ALL_CFLAGS = $(STD) $(CPPFLAGS) $(WARN) $(CFLAGS) $(OMPFLAGS) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAGS)
 ALL_LIBS   = $(PKG_LIBS) -lm
 
 LIB_SRC   = $(wildcard lib/*/*.c)
@@ -85,7 +91,7 @@ MAN1      = $(wildcard share/man/man1/*.1)
 MAN5      = $(wildcard share/man/man5/*.5)
 MAN7      = $(wildcard share/man/man7/*.7)
 
-.PHONY: version FORCE libs all deps browserdeps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall man-tables clean help tools unit fuzz fuzzdeps fuzz-build
+.PHONY: version FORCE libs all deps deb debdeps browserdeps plotdeps pydeps pipelines check check-fast killtest run bench bench-plates bench-memory bench-1e6 bench-peers validate cluster-check interop install uninstall man-tables clean help tools unit fuzz fuzzdeps fuzz-build
 .DELETE_ON_ERROR:
 
 all: deps
@@ -153,26 +159,26 @@ $(B)/pic/%.o: lib/%.c $(LIB_HDR)
 	$(CC) $(ALL_CFLAGS) -fPIC -c -o $@ $<
 
 $(B)/$(SOLIB): $(PIC_OBJ)
-	$(CC) $(ALL_CFLAGS) -shared -Wl,-soname,$(SONAME) -o $@ $^ $(ALL_LIBS)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -shared -Wl,-soname,$(SONAME) -o $@ $^ $(ALL_LIBS)
 
 $(B)/bin/%: tools/%.c $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
 $(B)/tests/%: tests/unit/%.c tests/unit/*.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -Itests/unit -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -Itests/unit -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
 # The fuzz harnesses (tests/fuzz/) replayed on their seed corpora and crash reproducers with
 # the normal compiler: a unit test of each build, one PASS line per directory.
 $(B)/tests/replay_%: tests/fuzz/%.c tests/fuzz/replay.c tests/fuzz/*.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -DFUZZ_NAME=\"$*\" -DFUZZ_CORPUS=\"$(CURDIR)/tests/fuzz/corpus\" \
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -DFUZZ_NAME=\"$*\" -DFUZZ_CORPUS=\"$(CURDIR)/tests/fuzz/corpus\" \
 	  -DFUZZ_CRASHES=\"$(CURDIR)/tests/fuzz/crashes\" -o $@ tests/fuzz/replay.c $< $(B)/libqusgm.a $(ALL_LIBS)
 
 $(B)/bench/%: tests/bench/%.c tests/bench/bench.h tests/unit/plate_place.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
 # packview's browser test needs Chromium (Debian chromium): installed as root when missing,
 # else the test fails and says what to install.
@@ -258,7 +264,7 @@ fuzz-build: deps fuzzdeps
 
 build-fuzz/fuzz/%: tests/fuzz/%.c tests/fuzz/*.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -fsanitize=fuzzer -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -fsanitize=fuzzer -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
 
 fuzz: fuzz-build
 	@for f in $(FUZZ_JOBS); do \
@@ -343,15 +349,20 @@ cluster-check: all
 interop: all
 	@sh tests/interop.sh build/bin
 
-install: all
+# make install copies what make built; it installs no dependency (make does that, as root)
+install: tools libs
 	mkdir -p $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANPREFIX)/man1 $(DESTDIR)$(MANPREFIX)/man5 $(DESTDIR)$(MANPREFIX)/man7 $(DESTDIR)$(DATADIR)
 	cp $(TOOL_BIN) $(DESTDIR)$(BINDIR)/
 	cp $(MAN1) $(DESTDIR)$(MANPREFIX)/man1/
 	cp $(MAN5) $(DESTDIR)$(MANPREFIX)/man5/
 	cp $(MAN7) $(DESTDIR)$(MANPREFIX)/man7/
 	cp -R share/doc $(DESTDIR)$(DATADIR)/
-	mkdir -p $(DESTDIR)$(DATADIR)/python
-	cp share/python/qusgm.py $(DESTDIR)$(DATADIR)/python/
+	mkdir -p $(DESTDIR)$(DATADIR)/pipelines $(DESTDIR)$(DATADIR)/plot $(DESTDIR)$(DATADIR)/examples
+	cp pipelines/Makefile pipelines/README.md pipelines/*.sh $(DESTDIR)$(DATADIR)/pipelines/
+	cp share/plot/* $(DESTDIR)$(DATADIR)/plot/
+	cp examples/README.md examples/*.sh $(DESTDIR)$(DATADIR)/examples/
+	mkdir -p $(DESTDIR)$(PYTHONDIR)
+	cp share/python/qusgm.py $(DESTDIR)$(PYTHONDIR)/
 	mkdir -p $(DESTDIR)$(LIBDIR) $(DESTDIR)$(PKGCONFIGDIR)
 	cp $(B)/libqusgm.a $(B)/$(SOLIB) $(DESTDIR)$(LIBDIR)/
 	ln -sf $(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME)
@@ -369,6 +380,7 @@ uninstall:
 	for m in $(notdir $(MAN5)); do rm -f $(DESTDIR)$(MANPREFIX)/man5/$$m; done
 	for m in $(notdir $(MAN7)); do rm -f $(DESTDIR)$(MANPREFIX)/man7/$$m; done
 	rm -rf $(DESTDIR)$(DATADIR)
+	rm -f $(DESTDIR)$(PYTHONDIR)/qusgm.py
 	rm -f $(DESTDIR)$(LIBDIR)/libqusgm.a $(DESTDIR)$(LIBDIR)/$(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME) \
 	  $(DESTDIR)$(LIBDIR)/libqusgm.so $(DESTDIR)$(PKGCONFIGDIR)/qusgm.pc
 	rm -rf $(DESTDIR)$(INCLUDEDIR)/qusgm
@@ -378,8 +390,51 @@ uninstall:
 man-tables:
 	perl share/man/md2man.pl $(VERSION) <share/doc/tables.md >share/man/man5/qusgm-tables.5
 
+# make deb: the Debian packages of debian/ (qusgm, libqusgm0, libqusgm-dev, python3-qusgm),
+# built by dpkg-buildpackage -b from a copy of the tree in build-deb/src (it writes them to
+# the parent directory: build-deb/), then checked: lintian, with no error allowed, and every
+# package unpacked into the scratch root build-deb/root, whose tools must name this tree's
+# source and whose Python module must import.  As root, installs the build dependencies
+# (deps) and the packaging tools when missing.  The packaged tools name the source of this tree (QUSGM_SOURCE_VERSION).
+DEB_TOOLS = dpkg-dev debhelper dh-python lintian
+debdeps:
+	@missing=""; \
+	for p in $(DEB_TOOLS); do \
+	  dpkg-query -W -f '$${Status}' $$p 2>/dev/null | grep -q 'ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "qusgm: installing$$missing for make deb"; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=600 $$missing; } >/dev/null || \
+	      { echo "qusgm: apt-get install failed; run: apt-get install$$missing" >&2; exit 1; }; \
+	  else \
+	    echo "qusgm: make deb needs$$missing; run: sudo apt-get install$$missing" >&2; exit 1; \
+	  fi; \
+	fi
+
+deb: deps debdeps pydeps
+	rm -rf build-deb
+	mkdir -p build-deb/src
+	if [ -e .git ]; then git ls-files -z | xargs -0 cp -P --parents -t build-deb/src; \
+	else tar -cf - --exclude=./.git --exclude='./build*' --exclude=./tests/out . | tar -xf - -C build-deb/src; fi
+	@echo "dpkg-buildpackage -us -uc -b (log: build-deb/build.log)"
+	@cd build-deb/src && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL dpkg-buildpackage -us -uc -b >../build.log 2>&1 || \
+	  { tail -n 30 ../build.log; echo "qusgm: dpkg-buildpackage failed (build-deb/build.log)" >&2; exit 1; }
+	lintian --fail-on error build-deb/*.changes
+	for d in build-deb/*.deb; do dpkg -x $$d build-deb/root || exit 1; done
+	@for t in $(TOOLS); do \
+	  v=$$(LD_LIBRARY_PATH= build-deb/root/usr/bin/$$t --version 2>&1); \
+	  case "$$v" in *'$(QUSGM_SOURCE_VERSION)'*) ;; *) echo "qusgm: packaged $$t --version: '$$v', wanted $(QUSGM_SOURCE_VERSION)" >&2; exit 1 ;; esac; \
+	done; echo "packaged tools: $(TOOLS) --version name $(QUSGM_SOURCE_VERSION)"
+	build-deb/root/usr/bin/packgen -n 50 -q | build-deb/root/usr/bin/packinfo | grep '^grains 50$$'
+	@py=$$(command -v /usr/bin/python3 || command -v python3); \
+	if $$py -c 'import numpy' 2>/dev/null; then \
+	  PYTHONPATH=build-deb/root/usr/lib/python3/dist-packages $$py -c 'import qusgm; print("python3-qusgm: imports from", qusgm.__file__)'; \
+	else echo "qusgm: no numpy for $$py: python3-qusgm not imported" >&2; fi
+	@ls build-deb/*.deb
+
 clean:
-	rm -rf build build-san build-fuzz tests/out
+	rm -rf build build-san build-fuzz build-deb tests/out
 
 # The source version this tree builds (QUSGM_SOURCE_VERSION above)
 version:
@@ -402,7 +457,8 @@ help:
 	@echo "make cluster-check  a one-node Slurm cluster here (root: installs slurm-wlm, munge): a SMALL study through srun vs make -j"
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
 	@echo "make fuzz       each libFuzzer harness (tests/fuzz/) for FUZZ_SECONDS=$(FUZZ_SECONDS) s, built with clang in build-fuzz/"
-	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs, the library (libqusgm.a, $(SOLIB),"
+	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs, studies, plot scripts, examples, the library (libqusgm.a, $(SOLIB),"
 	@echo "                headers in include/qusgm, qusgm.pc) and the Python reader (share/qusgm/python/qusgm.py)"
+	@echo "make deb        Debian packages in build-deb/ (debian/; dpkg-buildpackage, lintian; installs the packaging tools as root)"
 	@echo "make uninstall  removes what make install installed (same PREFIX and DESTDIR)"
-	@echo "knobs: CC OPT EXTRA_CFLAGS PREFIX DESTDIR BINDIR LIBDIR INCLUDEDIR PKGCONFIGDIR MANPREFIX DATADIR"
+	@echo "knobs: CC OPT (or CFLAGS) CPPFLAGS LDFLAGS EXTRA_CFLAGS PREFIX DESTDIR BINDIR LIBDIR INCLUDEDIR PKGCONFIGDIR MANPREFIX DATADIR PYTHONDIR"
