@@ -686,6 +686,7 @@ struct plate_pass {
 	const long *keys;	/* the pack's history keys, or NULL */
 	double kn;		/* N/m, or NaN: no forces */
 	unsigned *z;		/* interactions per grain */
+	size_t zends_free;	/* interactions' ends on free grains */
 	double *F;		/* net force per grain (3n) */
 	double fsum, Psum;	/* sums of |F| and of the normal force P over the interactions */
 	struct fabric_interaction *fab;	/* the grain pairs, for fabric_describe */
@@ -749,13 +750,15 @@ on_plate_record(const struct contact *c, void *v)
 	double F[3] = {0, 0, 0}, Q[3] = {0, 0, 0}, P = 0, hsum = 0, foot[3] = {0, 0, 0}, arm[3], xj[3], fk[3];
 	size_t i = c->i;
 	long j = c->j;
-	int wall = PACK_IS_WALL(j), k, a;
+	int wall = PACK_IS_WALL(j), k, a, gi = pack_grain_glued(pp->p, i), gj = !wall && pack_grain_glued(pp->p, (size_t)j);
+	int described = !wall && !gi && !gj;	/* a pair of free grains: in the descriptors */
 
 	if (plate_record_interaction(&pp->g, c, 0, &it, xj) == 0)
 		return 0;
 	if (pp->gf && grain_forces_link(pp->gf, i, j))
 		return -1;
 	pp->z[i]++;
+	pp->zends_free += (size_t)(!gi) + (size_t)(!wall && !gj);
 	if (wall)
 		m->contacts_gw++;
 	else
@@ -768,7 +771,7 @@ on_plate_record(const struct contact *c, void *v)
 
 		for (a = 0; a < 3 && !wall; a++)
 			arm[a] = xi[a] - xj[a];
-		return wall ? 0 : fabric_add(pp, n, arm, zero, 0);
+		return described ? fabric_add(pp, n, arm, zero, 0) : 0;
 	}
 	for (k = 0; k < it.m; k++) {
 		double h = fmax(it.e[k].h, 0);
@@ -804,7 +807,7 @@ on_plate_record(const struct contact *c, void *v)
 		for (a = 0; a < 3; a++)
 			arm[a] = xi[a] - xj[a];
 		add_dyad(m->sig_lw, arm, F);
-		if (fabric_add(pp, n, arm, F, P))
+		if (described && fabric_add(pp, n, arm, F, P))
 			return -1;
 	}
 	for (a = 0; a < 3; a++) {
@@ -838,7 +841,7 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 		return -1;
 	}
 	for (i = 0; i < p->n; i++)
-		if (p->has_shapes && p->side[i] > 0) {
+		if (p->has_shapes && p->side[i] > 0 && !pack_grain_glued(p, i)) {
 			quat_to_matrix(p->q + 4 * i, R);
 			nm[3 * np] = R[2], nm[3 * np + 1] = R[5], nm[3 * np + 2] = R[8];
 			np++;
@@ -846,9 +849,10 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 	for (a = 0; a < 6; a++)
 		sig[a] = pp->sig_pairs[a] / V;
 	fabric_describe(pp->fab, pp->nfab, nm, np, m->has_forces ? sig : NULL, &m->fabric);
-	if (!m->has_forces) {
+	if (!m->has_forces) {	/* and without forces no tangent t: no l_t either */
 		struct fabric_desc *f = &m->fabric;
 		f->a_fn = f->theta_fn = f->a_ft = f->theta_ft = f->K_s = NAN;
+		f->a_lt = f->theta_lt = f->a_lt_direct = f->theta_lt_direct = f->a_ft_direct = f->theta_ft_direct = NAN;
 	}
 	free(nm);
 	return 0;
@@ -894,11 +898,17 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	if (contact_enum_update(&ce, p->x, 1) || contact_foreach(&ce, p->x, CONTACT_TOUCHING, on_plate_record, &pass) < 0)
 		goto out;
 	ni = m->contacts_gg + m->contacts_gw;
-	for (i = 0; i < p->n; i++)
+	for (i = 0; i < p->n; i++) {
+		int glued = pack_grain_glued(p, i);
+
+		m->glued += (size_t)glued;
 		if (pass.z[i] <= 1)
-			m->floating++;
+			m->floating++, m->floating_free += (size_t)!glued;
+	}
 	m->coordination = (double)(2 * m->contacts_gg + m->contacts_gw) / (double)p->n;
 	m->floating_fraction = (double)m->floating / (double)p->n;
+	m->coordination_free = m->glued < p->n ? (double)pass.zends_free / (double)(p->n - m->glued) : NAN;
+	m->floating_fraction_free = m->glued < p->n ? (double)m->floating_free / (double)(p->n - m->glued) : NAN;
 	m->elements_per_interaction = ni ? (double)m->elements / (double)ni : NAN;
 	m->has_forces = !isnan(pass.kn) && ni > 0;
 	if (!m->has_forces) {

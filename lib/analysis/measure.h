@@ -138,7 +138,13 @@ double measure_sphere_box_volume(double r, const double lo[3], const double hi[3
  * pressure have no wall counterpart).  As in the sphere report, force_mean and force_max are
  * the normal force P (the elements' k_n h summed) of an interaction, and residual_mean is
  * mean|F_i| over the grains with an interaction over the mean |F| of an interaction (packgen's
- * rest criterion takes the mean over all grains). */
+ * rest criterion takes the mean over all grains).
+ *
+ * Glued grains (the glued column, pack_set_glue: the shear's wall layers) are parts of the
+ * walls: coordination and floating count every grain, coordination_free and floating_free the
+ * free ones (interactions of a free grain with a free grain, a glued grain or a wall, counted
+ * at the free grain's end: the shear's Z), and the descriptors (fabric) are over the pairs
+ * of two free grains and the free plates' normals.  Without the column every grain is free. */
 struct plate_measures {
 	size_t grains, plates;
 	double porosity, packing_fraction;
@@ -150,11 +156,13 @@ struct plate_measures {
 	size_t contacts_gg, contacts_gw, elements, floating;
 	size_t by_elements[3];				/* interactions of 1, 2, >= 3 elements */
 	double coordination, floating_fraction, elements_per_interaction;
+	size_t glued, floating_free;			/* glued grains; free ones with 0 or 1 interaction */
+	double coordination_free, floating_fraction_free;
 	int has_forces;					/* meta kn present: the rest is set, else NaN */
 	double sig_wall[3], sig_lw[6];			/* Pa, compression positive; xx yy zz xy xz yz */
 	double force_mean, force_max;			/* normal force P of an interaction, N */
 	double residual_mean;
-	/* the platy-particle paper's descriptors (analysis/fabric.h) over the grain pairs, under
+	/* the platy-particle paper's descriptors (analysis/fabric.h) over the free pairs, under
 	 * their own stress (P eq. 7, the pairs' branch (x) force over the box volume); a pair is
 	 * at the Coulomb limit when |F_t| >= 0.99 mu F_n (mu the pack's).  Without forces the
 	 * force descriptors, K_s, p, q and eq. 28 are NaN. */
