@@ -694,7 +694,51 @@ struct plate_pass {
 	double sig_pairs[6];	/* P eq. 7: the pairs' branch (x) force, summed */
 	struct plate_measures *m;
 	struct grain_forces *gf;	/* measure_grain_forces's per-grain record, or NULL */
+	struct plate_contact *list;	/* measure_plate_contact_list's, or NULL: not kept */
+	size_t nlist, caplist;
+	int keep_list;
 };
+
+/* Interaction it of grain i with j (xj: j's centre, its nearest image) into the list, with
+ * its force (NaN without a stiffness): the far end is j's centre, or for a wall the
+ * overlap-weighted foot of the elements on its plane. */
+static int
+list_add(struct plate_pass *pp, size_t i, long j, const struct plate_interaction *it, const double xj[3], double P,
+    const double Q[3])
+{
+	struct plate_contact *e;
+	double hsum = 0, foot[3] = {0, 0, 0};
+	int k, a;
+
+	if (pp->nlist == pp->caplist) {
+		size_t cap = pp->caplist ? 2 * pp->caplist : 1024;
+		void *q = realloc(pp->list, cap * sizeof *pp->list);
+
+		if (!q) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		pp->list = q, pp->caplist = cap;
+	}
+	e = &pp->list[pp->nlist++];
+	e->i = i, e->j = j, e->elements = it->m, e->overlap = 0;
+	for (k = 0; k < it->m; k++) {
+		double h = fmax(it->e[k].h, 0);
+
+		e->overlap = fmax(e->overlap, h);
+		hsum += h;
+		for (a = 0; a < 3; a++)
+			foot[a] += h * it->e[k].pj[a];
+	}
+	for (a = 0; a < 3; a++) {
+		e->a[a] = pp->p->x[3 * i + a];
+		e->b[a] = !PACK_IS_WALL(j) ? xj[a] : hsum > 0 ? foot[a] / hsum : it->e[0].pj[a];
+		e->n[a] = it->n[a];
+		e->Q[a] = Q ? Q[a] : NAN;
+	}
+	e->P = P;
+	return 0;
+}
 
 static void add_dyad(double s[6], const double arm[3], const double f[3]);
 
@@ -771,6 +815,8 @@ on_plate_record(const struct contact *c, void *v)
 
 		for (a = 0; a < 3 && !wall; a++)
 			arm[a] = xi[a] - xj[a];
+		if (pp->keep_list && list_add(pp, i, j, &it, xj, NAN, NULL))
+			return -1;
 		return described ? fabric_add(pp, n, arm, zero, 0) : 0;
 	}
 	for (k = 0; k < it.m; k++) {
@@ -796,6 +842,8 @@ on_plate_record(const struct contact *c, void *v)
 	}
 	for (a = 0; a < 3; a++)
 		F[a] = P * n[a] + Q[a];
+	if (pp->keep_list && list_add(pp, i, j, &it, xj, P, Q))
+		return -1;
 	if (wall) {
 		/* the tangential force at the overlap-weighted foot */
 		m->sig_wall[PACK_WALL_INDEX(j) / 2] += P;
@@ -860,9 +908,10 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 
 /* The interaction measures of measure_plates (measure.h): the enumerator over the bounding
  * spheres, each record's element contacts by plate_record_interaction, as dem/platedem finds
- * them. */
+ * them; with list, the interactions one by one too (measure_plate_contact_list). */
 static int
-measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct grain_forces *gf)
+measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct grain_forces *gf, struct plate_contact **list,
+    size_t *nlist)
 {
 	struct contact_enum ce;
 	struct plate_pass pass;
@@ -872,7 +921,7 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	int a, status = -1, have_ce = 0;
 
 	memset(&pass, 0, sizeof pass);
-	pass.p = p, pass.m = m, pass.kn = NAN, pass.gf = gf;
+	pass.p = p, pass.m = m, pass.kn = NAN, pass.gf = gf, pass.keep_list = list != NULL;
 	if (pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0)
 		pass.kn = kn;
 	pass.z = calloc(p->n, sizeof *pass.z);
@@ -941,6 +990,8 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	}
 	if (plate_fabric(p, &pass, V, m))
 		goto out;
+	if (list)	/* handed over */
+		*list = pass.list, *nlist = pass.nlist, pass.list = NULL;
 	status = 0;
 out:
 	if (have_ce)
@@ -948,6 +999,7 @@ out:
 	free((void *)pass.keys);
 	free(pass.z);
 	free(pass.F);
+	free(pass.list);
 	free(pass.fab);
 	free(R);
 	free(half);
@@ -996,7 +1048,7 @@ measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measur
 	if (m->plates)
 		status = measure_nematic(v, m->plates, &m->nematic, m->director);
 	free(v);
-	return status ? status : measure_plate_contacts(p, m, NULL);
+	return status ? status : measure_plate_contacts(p, m, NULL, NULL, NULL);
 }
 
 int
@@ -1088,11 +1140,21 @@ measure_grain_forces(const struct pack *p, struct grain_forces *g)
 		struct plate_measures m;
 
 		memset(&m, 0, sizeof m);
-		r = measure_plate_contacts(p, &m, g);
+		r = measure_plate_contacts(p, &m, g, NULL, NULL);
 	} else {
 		r = sphere_grain_forces(p, g);
 	}
 	if (r)
 		grain_forces_free(g);
 	return r;
+}
+
+int
+measure_plate_contact_list(const struct pack *p, struct plate_contact **list, size_t *n)
+{
+	struct plate_measures m;
+
+	memset(&m, 0, sizeof m);
+	*list = NULL, *n = 0;
+	return measure_plate_contacts(p, &m, NULL, list, n);
 }

@@ -207,6 +207,21 @@ struct grain_forces {
 /* Fills g (its arrays allocated here; grain_forces_free them).  0, or -1 (msg_seterr). */
 int measure_grain_forces(const struct pack *p, struct grain_forces *g);
 void grain_forces_free(struct grain_forces *g);
+/* One interaction of measure_plates, for a force network (packexport's contacts of plates). */
+struct plate_contact {
+	size_t i;
+	long j;			/* a grain index, or a wall PACK_WALL(w) */
+	double a[3], b[3];	/* i's centre; j's centre (its nearest periodic image) or, for a wall,
+				 * the overlap-weighted foot of the element contacts on its plane (m) */
+	double n[3];		/* unit normal, from j to i */
+	double P;		/* normal force on i along n: the elements' k_n h (N); NaN without meta kn */
+	double Q[3];		/* tangential force on i, of the pair's contact line (N); NaN without */
+	double overlap;		/* the largest element overlap h (m) */
+	int elements;		/* element contacts */
+};
+/* The interactions that measure_plates counts, one by one, in the enumerator's order; the
+ * caller frees *list.  0, or -1 (msg_seterr). */
+int measure_plate_contact_list(const struct pack *p, struct plate_contact **list, size_t *n);
 /* The nematic order of n unit vectors u (3 each): the largest eigenvalue S of
  * Q = <(3 u u - I)/2> (1 when all are parallel, 1/4 when they spread evenly over a plane,
  * of order 1/sqrt(n) for isotropic ones: see test_measure.c) and its unit eigenvector, the
