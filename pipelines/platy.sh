@@ -2,8 +2,9 @@
 # platy.sh RUNS FROM ETA...: the platy study's summary table (pipelines/Makefile), one row per
 # platyness: the means and standard deviations over the steady state (gamma >= FROM) of the
 # shear's rows (RUNS/platy-etaETA/shear.tsv: tau_sigma, qp, phi, Z) and of the descriptors
-# of its snapshots (descriptors.tsv, packinfo --tsv: floating_fraction as chi, the
-# anisotropies, K_s, eq. 28).  Standard deviations are of the values in the window, so they
+# of its snapshots (descriptors.tsv, packinfo --tsv, over the free grains: floating_fraction_free
+# as chi, the anisotropies, K_s, eq. 28, and beside them the 3D nematic measures and the direct
+# tangential anisotropies).  Standard deviations are of the values in the window, so they
 # show the fluctuation, not the error of the mean.
 set -e
 runs=$1 from=$2
@@ -11,7 +12,8 @@ shift 2
 here=$(cd "$(dirname "$0")" && pwd)
 cols="sh $here/cols.sh"
 SHEAR="tau_sigma qp phi Z"
-DESC="floating_fraction a_m theta_m a_n theta_n a_ln theta_ln a_lt a_fn theta_fn a_ft K_s qp_harmonic theta_sigma"
+DESC="floating_fraction_free a_m theta_m a_n theta_n a_ln theta_ln a_lt a_fn theta_fn a_ft K_s qp_harmonic theta_sigma
+ coordination_free a_m_3d M1_M3 nematic_S a_lt_direct theta_lt_direct a_ft_direct theta_ft_direct qp_harmonic_direct"
 # mean and sd of each column of a cols.sh stream, as "m1 s1 m2 s2 ..."
 msd() { awk -F '\t' '{ for (k = 1; k <= NF; k++) { s[k] += $k; q[k] += $k * $k }; n++; nf = NF }
 	END { for (k = 1; k <= nf; k++) { m = s[k] / n; v = q[k] / n - m * m; printf "%s%.6g\t%.6g", (k > 1 ? "\t" : ""), m, (v > 0 ? sqrt(v) : 0) }; if (!n) printf "nan"; printf "\n" }'; }

@@ -289,21 +289,24 @@ rises only from 0.2 to 0.3 while a_ft rises from 0 to 0.7 (Fig. 20), K_s from 0.
 21), and eq. 28 approximates q/p well below eta 0.3 and overestimates it above (Fig. 22).
 
 **This run** (mean +- standard deviation over the steady-state window: the shear's rows for
-tau/sigma, q/p, phi and Z; the snapshots' descriptors for the rest; angles in degrees)
+tau/sigma, q/p, phi and Z; the snapshots' descriptors, over the free grains, for the rest;
+angles in degrees; "direct": the tangential tensors' own anisotropies and eq. 28 with them)
 
 EOF
-	echo '| eta | tau_w/sigma_w | q/p | eq. 28 | phi | Z | chi | a_m | theta_m | a_n | theta_n | a_ln | a_lt | a_fn | a_ft | K_s |'
-	echo '| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |'
-	$cols "$sm" eta tau_sigma tau_sigma_sd qp qp_sd qp_harmonic qp_harmonic_sd phi phi_sd Z Z_sd floating_fraction \
-	    floating_fraction_sd a_m a_m_sd theta_m a_n a_n_sd theta_n a_ln a_lt a_fn a_ft K_s K_s_sd |
-	    awk -F '\t' '{ printf "| %s | %.3f +- %.3f | %.3f +- %.3f | %.3f +- %.3f | %.3f +- %.3f | %.2f +- %.2f | %.3f +- %.3f | %.2f +- %.2f | %.0f | %.2f +- %.2f | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f +- %.3f |\n",
-	      $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17, $18, $19, $20, $21, $22, $23, $24, $25 }'
+	echo '| eta | tau_w/sigma_w | q/p | eq. 28 | phi | Z | chi | a_m | theta_m | a_n | theta_n | a_ln | a_lt | a_fn | a_ft | K_s | eq. 28 direct | a_ft direct | theta_ft direct | M1 - M3 | S |'
+	echo '| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |'
+	$cols "$sm" eta tau_sigma tau_sigma_sd qp qp_sd qp_harmonic qp_harmonic_sd phi phi_sd Z Z_sd floating_fraction_free \
+	    floating_fraction_free_sd a_m a_m_sd theta_m a_n a_n_sd theta_n a_ln a_lt a_fn a_ft K_s K_s_sd \
+	    qp_harmonic_direct a_ft_direct theta_ft_direct M1_M3 nematic_S |
+	    awk -F '\t' '{ printf "| %s | %.3f +- %.3f | %.3f +- %.3f | %.3f +- %.3f | %.3f +- %.3f | %.2f +- %.2f | %.3f +- %.3f | %.2f +- %.2f | %.0f | %.2f +- %.2f | %.0f | %.3f | %.3f | %.3f | %.3f | %.3f +- %.3f | %.3f | %.3f | %.0f | %.2f | %.2f |\n",
+	      $1, $2, $3, $4, $5, $6, $7, $8, $9, $10, $11, $12, $13, $14, $15, $16, $17, $18, $19, $20, $21, $22, $23, $24, $25,
+	      $26, $27, $28, $29, $30 }'
 	echo
 	echo "The trends, first platyness against the last, beside the paper's (eta 0 -> 0.8):"
 	echo
 	echo '| quantity | paper | this run | same direction |'
 	echo '| --- | --- | --- | --- |'
-	for q in "qp 0.3 0.7" "Z 3.6 4.3" "floating_fraction 0.20 0.05" "a_m 0 0.6" "a_n 0.3 1.2" "a_ln 0 -0.2" "a_lt 0 -0.4" \
+	for q in "qp 0.3 0.7" "Z 3.6 4.3" "floating_fraction_free 0.20 0.05" "a_m 0 0.6" "a_n 0.3 1.2" "a_ln 0 -0.2" "a_lt 0 -0.4" \
 	    "a_fn 0.2 0.3" "a_ft 0 0.7" "K_s 0.1 0.4"; do
 		set -- $q
 		a=$($cols "$sm" "$1" | head -n 1)

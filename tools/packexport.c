@@ -14,7 +14,7 @@
 static int vtk, lammps, lammps_data, xyzr, periodic, tsv_grains, tsv_contacts;
 
 static struct cli_opt opts[] = {
-	{"vtk", 0, CLI_FLAG, &vtk, NULL, "VTK XML PolyData; -o NAME.vtm also writes NAME_grains.vtp and NAME_contacts.vtp, stdout gets the grains .vtp only; plates as closed boxes (.vtp only)", NULL},
+	{"vtk", 0, CLI_FLAG, &vtk, NULL, "VTK XML PolyData; -o NAME.vtm also writes NAME_grains.vtp and NAME_contacts.vtp, stdout gets the grains .vtp only; plates as closed boxes, their contacts as lines with normal and tangential forces", NULL},
 	{"lammps", 0, CLI_FLAG, &lammps, NULL, "LAMMPS dump, one frame per pack of the input; plates with quaternion and shape", NULL},
 	{"lammps-data", 0, CLI_FLAG, &lammps_data, NULL, "LAMMPS data file (atom_style sphere; spheres only)", NULL},
 	{"xyzr", 0, CLI_FLAG, &xyzr, NULL, "'x y z r' lines, as YADE's SpherePack.load reads them (spheres only)", NULL},
@@ -121,14 +121,15 @@ vtp_names(const char *vtm, char **gname, char **cname)
  * none (the .vtp of the grains was left behind when the second file failed); the .vtm
  * renamed last, so that it never points at files that are not there. */
 static void
-write_vtm(const struct pack *p, const char *vtm, const char *name)
+write_vtm(const struct pack *p, const char *vtm, const char *name, int plates)
 {
 	struct text g, c, m;
 	struct file_out go, co, mo, *outs[3] = {&go, &co, &mo};
 	char *gname, *cname;
 
 	vtp_names(vtm, &gname, &cname);
-	if (export_vtp_grains(p, text_open(&g)) || export_vtp_contacts(p, text_open(&c)) ||
+	if ((plates ? export_vtp_plates(p, text_open(&g)) : export_vtp_grains(p, text_open(&g))) ||
+	    (plates ? export_vtp_plate_contacts(p, text_open(&c)) : export_vtp_contacts(p, text_open(&c))) ||
 	    export_vtm(text_open(&m), base_name(gname), base_name(cname)))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	text_close(&g);
@@ -217,14 +218,13 @@ main(int argc, char **argv)
 		msg_die_err(EXIT_DATA);
 	name = st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>";
 	plates = pack_first_plate(&p) != (size_t)-1;
-	/* what cannot hold a plate: the .vtm's contacts file (sphere contacts; plate contacts
-	 * are not in lib/ yet), atom_style sphere, and YADE's x y z r */
-	who = vtk ? (out && has_suffix(out, ".vtm") ? "the contacts file of --vtk -o NAME.vtm" : NULL) :
-	    lammps_data ? "--lammps-data" : xyzr ? "--xyzr" : tsv_contacts ? "--tsv-contacts" : NULL;
+	/* what cannot hold a plate: atom_style sphere, YADE's x y z r, and the contacts table
+	 * (the .vtm's contacts file of plates is their interactions, export_vtp_plate_contacts) */
+	who = lammps_data ? "--lammps-data" : xyzr ? "--xyzr" : tsv_contacts ? "--tsv-contacts" : NULL;
 	if (who && pack_require_spheres(&p, who))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	if (vtk && out && has_suffix(out, ".vtm")) {
-		write_vtm(&p, out, name);
+		write_vtm(&p, out, name, plates);
 		pack_free(&p);
 		return 0;
 	}

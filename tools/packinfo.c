@@ -196,6 +196,20 @@ fill_plate_row(const struct pack *p, const struct plate_measures *m, struct row 
 	add(r, "theta_ft", "deg", m->fabric.theta_ft);
 	add(r, "K_s", NULL, m->fabric.K_s);
 	add(r, "qp_harmonic", NULL, m->fabric.qp_harmonic);
+	/* the glued wall layers left out (plate_measures), and the descriptors beside the paper's
+	 * formulas (analysis/fabric.h) */
+	add(r, "glued", NULL, (double)m->glued);
+	add(r, "coordination_free", NULL, m->coordination_free);
+	add(r, "floating_free", NULL, (double)m->floating_free);
+	add(r, "floating_fraction_free", NULL, m->floating_fraction_free);
+	add(r, "a_m_3d", NULL, m->fabric.a_m_3d);
+	add(r, "M1_M3", NULL, m->fabric.m1_m3);
+	add(r, "nematic_S", NULL, m->fabric.nematic_S);
+	add(r, "a_lt_direct", NULL, m->fabric.a_lt_direct);
+	add(r, "theta_lt_direct", "deg", m->fabric.theta_lt_direct);
+	add(r, "a_ft_direct", NULL, m->fabric.a_ft_direct);
+	add(r, "theta_ft_direct", "deg", m->fabric.theta_ft_direct);
+	add(r, "qp_harmonic_direct", NULL, m->fabric.qp_harmonic_direct);
 }
 
 /* One pack's row: spheres as ever (byte for byte), or plates (and packs of the linear law);

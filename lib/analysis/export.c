@@ -1,5 +1,6 @@
 /* export: VTK, LAMMPS and YADE writers and the "x y z r" reader (see export.h). */
 #include "analysis/export.h"
+#include "analysis/measure.h"
 #include "contact/contacts.h"
 #include "base/lines.h"
 #include "base/msg.h"
@@ -217,6 +218,13 @@ export_vtp_plates(const struct pack *p, FILE *fp)
 				fprintf(fp, "%d\n", p->phase[i]);
 		fputs("</DataArray>\n", fp);
 	}
+	if (p->has_glue) {	/* 0 free, 1 + w glued to wall w */
+		vtk_array_open(fp, "Int32", "glued", 1);
+		for (i = 0; i < p->n; i++)
+			for (f = 0; f < 6; f++)
+				fprintf(fp, "%d\n", p->glue[i]);
+		fputs("</DataArray>\n", fp);
+	}
 	fputs("</CellData>\n<Points>\n", fp);
 	vtk_array_open(fp, "Float64", "Points", 3);
 	for (i = 0; i < p->n; i++) {
@@ -303,6 +311,73 @@ export_vtp_contacts(const struct pack *p, FILE *fp)
 	vtk_cells(fp, "Lines", gc.n, 2);
 	vtk_close(fp);
 	contacts_free(&gc);
+	return finish(fp);
+}
+
+int
+export_vtp_plate_contacts(const struct pack *p, FILE *fp)
+{
+	struct plate_contact *c;
+	size_t n, k;
+	double v[3];
+	int a, forces;
+
+	if (measure_plate_contact_list(p, &c, &n))
+		return -1;
+	forces = n > 0 && !isnan(c[0].P);
+	vtk_open(fp, "PolyData");
+	vtk_piece_open(fp, 2 * n, 0, n, 0);
+	fprintf(fp, "<CellData Scalars=\"%s\">\n", forces ? "normal_force" : "overlap");
+	vtk_array_open(fp, "Int64", "id1", 1);
+	for (k = 0; k < n; k++)
+		fprintf(fp, "%ld\n", p->id[c[k].i]);
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Int64", "id2", 1);
+	for (k = 0; k < n; k++)
+		fprintf(fp, "%ld\n", PACK_IS_WALL(c[k].j) ? EXPORT_VTK_WALL_ID(PACK_WALL_INDEX(c[k].j)) : p->id[c[k].j]);
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Float64", "normal", 3);
+	for (k = 0; k < n; k++)
+		put_nums(fp, c[k].n, 3);
+	fputs("</DataArray>\n", fp);
+	if (forces) {
+		vtk_array_open(fp, "Float64", "normal_force", 1);
+		for (k = 0; k < n; k++)
+			put_num(fp, c[k].P, '\n');
+		fputs("</DataArray>\n", fp);
+		vtk_array_open(fp, "Float64", "tangential_force", 3);
+		for (k = 0; k < n; k++)
+			put_nums(fp, c[k].Q, 3);
+		fputs("</DataArray>\n", fp);
+		vtk_array_open(fp, "Float64", "tangential_force_magnitude", 1);
+		for (k = 0; k < n; k++)
+			put_num(fp, sqrt(c[k].Q[0] * c[k].Q[0] + c[k].Q[1] * c[k].Q[1] + c[k].Q[2] * c[k].Q[2]), '\n');
+		fputs("</DataArray>\n", fp);
+		vtk_array_open(fp, "Float64", "force", 3);
+		for (k = 0; k < n; k++) {
+			for (a = 0; a < 3; a++)
+				v[a] = c[k].P * c[k].n[a] + c[k].Q[a];
+			put_nums(fp, v, 3);
+		}
+		fputs("</DataArray>\n", fp);
+	}
+	vtk_array_open(fp, "Float64", "overlap", 1);
+	for (k = 0; k < n; k++)
+		put_num(fp, c[k].overlap, '\n');
+	fputs("</DataArray>\n", fp);
+	vtk_array_open(fp, "Int32", "elements", 1);
+	for (k = 0; k < n; k++)
+		fprintf(fp, "%d\n", c[k].elements);
+	fputs("</DataArray>\n</CellData>\n<Points>\n", fp);
+	vtk_array_open(fp, "Float64", "Points", 3);
+	for (k = 0; k < n; k++) {
+		put_nums(fp, c[k].a, 3);
+		put_nums(fp, c[k].b, 3);
+	}
+	fputs("</DataArray>\n</Points>\n", fp);
+	vtk_cells(fp, "Lines", n, 2);
+	vtk_close(fp);
+	free(c);
 	return finish(fp);
 }
 

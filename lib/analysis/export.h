@@ -30,13 +30,23 @@ int export_vtp_grains(const struct pack *p, FILE *fp);
  * (outward, counter-clockwise), the body-frame box |x|, |y| <= L/2 + r, |z| <= r turned by
  * R(q) about the centre: the plate's extent, L + 2 r wide and 2 r thick (a sphere, L = 0, is
  * its bounding cube).  CellData, one value per grain on each of its faces: id (Int64),
- * side, radius (r), E, nu and normal (R(q) e3, 3 components; Float64), and phase (Int32)
- * for a pack with the phase column. */
+ * side, radius (r), E, nu and normal (R(q) e3, 3 components; Float64), phase (Int32)
+ * for a pack with the phase column, and glued (Int32: 0 free, 1 + w glued to wall w) for a
+ * pack with the glued column. */
 int export_vtp_plates(const struct pack *p, FILE *fp);
 /* Contacts found from the positions (contacts_find): a line from centre i to centre j, or
  * from the centre to the contact point on the wall; CellData id1, id2, normal_force (the
  * Hertz force P, N) and overlap (m). */
 int export_vtp_contacts(const struct pack *p, FILE *fp);
+/* The interactions of a plate pack (measure_plate_contact_list, the plate engine's element
+ * contacts): a line from centre i to centre j (its nearest periodic image) or to the
+ * overlap-weighted foot on a wall; CellData id1, id2 (a wall as above), normal (from j to i,
+ * 3 components), and, when the pack records its stiffness (meta kn), normal_force (the
+ * elements' k_n h, N), tangential_force (the contact line's Q0 on i, 3 components, N) and
+ * its magnitude tangential_force_magnitude, force (the whole force on i, 3 components);
+ * then overlap (the largest element overlap, m) and elements (Int32).  The force network of
+ * a plate pack, for ParaView. */
+int export_vtp_plate_contacts(const struct pack *p, FILE *fp);
 /* Tables in the convention of share/doc/tables.md (a '# ' header of tab-separated names with
  * units in brackets, one row per line), for gnuplot, awk and numpy.  Grains: id x y z r E nu
  * rho, phase with the phase column, and contacts, the grain's contacts found from the

@@ -686,6 +686,7 @@ struct plate_pass {
 	const long *keys;	/* the pack's history keys, or NULL */
 	double kn;		/* N/m, or NaN: no forces */
 	unsigned *z;		/* interactions per grain */
+	size_t zends_free;	/* interactions' ends on free grains */
 	double *F;		/* net force per grain (3n) */
 	double fsum, Psum;	/* sums of |F| and of the normal force P over the interactions */
 	struct fabric_interaction *fab;	/* the grain pairs, for fabric_describe */
@@ -693,7 +694,51 @@ struct plate_pass {
 	double sig_pairs[6];	/* P eq. 7: the pairs' branch (x) force, summed */
 	struct plate_measures *m;
 	struct grain_forces *gf;	/* measure_grain_forces's per-grain record, or NULL */
+	struct plate_contact *list;	/* measure_plate_contact_list's, or NULL: not kept */
+	size_t nlist, caplist;
+	int keep_list;
 };
+
+/* Interaction it of grain i with j (xj: j's centre, its nearest image) into the list, with
+ * its force (NaN without a stiffness): the far end is j's centre, or for a wall the
+ * overlap-weighted foot of the elements on its plane. */
+static int
+list_add(struct plate_pass *pp, size_t i, long j, const struct plate_interaction *it, const double xj[3], double P,
+    const double Q[3])
+{
+	struct plate_contact *e;
+	double hsum = 0, foot[3] = {0, 0, 0};
+	int k, a;
+
+	if (pp->nlist == pp->caplist) {
+		size_t cap = pp->caplist ? 2 * pp->caplist : 1024;
+		void *q = realloc(pp->list, cap * sizeof *pp->list);
+
+		if (!q) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		pp->list = q, pp->caplist = cap;
+	}
+	e = &pp->list[pp->nlist++];
+	e->i = i, e->j = j, e->elements = it->m, e->overlap = 0;
+	for (k = 0; k < it->m; k++) {
+		double h = fmax(it->e[k].h, 0);
+
+		e->overlap = fmax(e->overlap, h);
+		hsum += h;
+		for (a = 0; a < 3; a++)
+			foot[a] += h * it->e[k].pj[a];
+	}
+	for (a = 0; a < 3; a++) {
+		e->a[a] = pp->p->x[3 * i + a];
+		e->b[a] = !PACK_IS_WALL(j) ? xj[a] : hsum > 0 ? foot[a] / hsum : it->e[0].pj[a];
+		e->n[a] = it->n[a];
+		e->Q[a] = Q ? Q[a] : NAN;
+	}
+	e->P = P;
+	return 0;
+}
 
 static void add_dyad(double s[6], const double arm[3], const double f[3]);
 
@@ -749,13 +794,15 @@ on_plate_record(const struct contact *c, void *v)
 	double F[3] = {0, 0, 0}, Q[3] = {0, 0, 0}, P = 0, hsum = 0, foot[3] = {0, 0, 0}, arm[3], xj[3], fk[3];
 	size_t i = c->i;
 	long j = c->j;
-	int wall = PACK_IS_WALL(j), k, a;
+	int wall = PACK_IS_WALL(j), k, a, gi = pack_grain_glued(pp->p, i), gj = !wall && pack_grain_glued(pp->p, (size_t)j);
+	int described = !wall && !gi && !gj;	/* a pair of free grains: in the descriptors */
 
 	if (plate_record_interaction(&pp->g, c, 0, &it, xj) == 0)
 		return 0;
 	if (pp->gf && grain_forces_link(pp->gf, i, j))
 		return -1;
 	pp->z[i]++;
+	pp->zends_free += (size_t)(!gi) + (size_t)(!wall && !gj);
 	if (wall)
 		m->contacts_gw++;
 	else
@@ -768,7 +815,9 @@ on_plate_record(const struct contact *c, void *v)
 
 		for (a = 0; a < 3 && !wall; a++)
 			arm[a] = xi[a] - xj[a];
-		return wall ? 0 : fabric_add(pp, n, arm, zero, 0);
+		if (pp->keep_list && list_add(pp, i, j, &it, xj, NAN, NULL))
+			return -1;
+		return described ? fabric_add(pp, n, arm, zero, 0) : 0;
 	}
 	for (k = 0; k < it.m; k++) {
 		double h = fmax(it.e[k].h, 0);
@@ -793,6 +842,8 @@ on_plate_record(const struct contact *c, void *v)
 	}
 	for (a = 0; a < 3; a++)
 		F[a] = P * n[a] + Q[a];
+	if (pp->keep_list && list_add(pp, i, j, &it, xj, P, Q))
+		return -1;
 	if (wall) {
 		/* the tangential force at the overlap-weighted foot */
 		m->sig_wall[PACK_WALL_INDEX(j) / 2] += P;
@@ -804,7 +855,7 @@ on_plate_record(const struct contact *c, void *v)
 		for (a = 0; a < 3; a++)
 			arm[a] = xi[a] - xj[a];
 		add_dyad(m->sig_lw, arm, F);
-		if (fabric_add(pp, n, arm, F, P))
+		if (described && fabric_add(pp, n, arm, F, P))
 			return -1;
 	}
 	for (a = 0; a < 3; a++) {
@@ -838,7 +889,7 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 		return -1;
 	}
 	for (i = 0; i < p->n; i++)
-		if (p->has_shapes && p->side[i] > 0) {
+		if (p->has_shapes && p->side[i] > 0 && !pack_grain_glued(p, i)) {
 			quat_to_matrix(p->q + 4 * i, R);
 			nm[3 * np] = R[2], nm[3 * np + 1] = R[5], nm[3 * np + 2] = R[8];
 			np++;
@@ -846,9 +897,10 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 	for (a = 0; a < 6; a++)
 		sig[a] = pp->sig_pairs[a] / V;
 	fabric_describe(pp->fab, pp->nfab, nm, np, m->has_forces ? sig : NULL, &m->fabric);
-	if (!m->has_forces) {
+	if (!m->has_forces) {	/* and without forces no tangent t: no l_t either */
 		struct fabric_desc *f = &m->fabric;
 		f->a_fn = f->theta_fn = f->a_ft = f->theta_ft = f->K_s = NAN;
+		f->a_lt = f->theta_lt = f->a_lt_direct = f->theta_lt_direct = f->a_ft_direct = f->theta_ft_direct = NAN;
 	}
 	free(nm);
 	return 0;
@@ -856,9 +908,10 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 
 /* The interaction measures of measure_plates (measure.h): the enumerator over the bounding
  * spheres, each record's element contacts by plate_record_interaction, as dem/platedem finds
- * them. */
+ * them; with list, the interactions one by one too (measure_plate_contact_list). */
 static int
-measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct grain_forces *gf)
+measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct grain_forces *gf, struct plate_contact **list,
+    size_t *nlist)
 {
 	struct contact_enum ce;
 	struct plate_pass pass;
@@ -868,7 +921,7 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	int a, status = -1, have_ce = 0;
 
 	memset(&pass, 0, sizeof pass);
-	pass.p = p, pass.m = m, pass.kn = NAN, pass.gf = gf;
+	pass.p = p, pass.m = m, pass.kn = NAN, pass.gf = gf, pass.keep_list = list != NULL;
 	if (pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0)
 		pass.kn = kn;
 	pass.z = calloc(p->n, sizeof *pass.z);
@@ -894,11 +947,17 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	if (contact_enum_update(&ce, p->x, 1) || contact_foreach(&ce, p->x, CONTACT_TOUCHING, on_plate_record, &pass) < 0)
 		goto out;
 	ni = m->contacts_gg + m->contacts_gw;
-	for (i = 0; i < p->n; i++)
+	for (i = 0; i < p->n; i++) {
+		int glued = pack_grain_glued(p, i);
+
+		m->glued += (size_t)glued;
 		if (pass.z[i] <= 1)
-			m->floating++;
+			m->floating++, m->floating_free += (size_t)!glued;
+	}
 	m->coordination = (double)(2 * m->contacts_gg + m->contacts_gw) / (double)p->n;
 	m->floating_fraction = (double)m->floating / (double)p->n;
+	m->coordination_free = m->glued < p->n ? (double)pass.zends_free / (double)(p->n - m->glued) : NAN;
+	m->floating_fraction_free = m->glued < p->n ? (double)m->floating_free / (double)(p->n - m->glued) : NAN;
 	m->elements_per_interaction = ni ? (double)m->elements / (double)ni : NAN;
 	m->has_forces = !isnan(pass.kn) && ni > 0;
 	if (!m->has_forces) {
@@ -931,6 +990,8 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	}
 	if (plate_fabric(p, &pass, V, m))
 		goto out;
+	if (list)	/* handed over */
+		*list = pass.list, *nlist = pass.nlist, pass.list = NULL;
 	status = 0;
 out:
 	if (have_ce)
@@ -938,6 +999,7 @@ out:
 	free((void *)pass.keys);
 	free(pass.z);
 	free(pass.F);
+	free(pass.list);
 	free(pass.fab);
 	free(R);
 	free(half);
@@ -986,7 +1048,7 @@ measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measur
 	if (m->plates)
 		status = measure_nematic(v, m->plates, &m->nematic, m->director);
 	free(v);
-	return status ? status : measure_plate_contacts(p, m, NULL);
+	return status ? status : measure_plate_contacts(p, m, NULL, NULL, NULL);
 }
 
 int
@@ -1078,11 +1140,21 @@ measure_grain_forces(const struct pack *p, struct grain_forces *g)
 		struct plate_measures m;
 
 		memset(&m, 0, sizeof m);
-		r = measure_plate_contacts(p, &m, g);
+		r = measure_plate_contacts(p, &m, g, NULL, NULL);
 	} else {
 		r = sphere_grain_forces(p, g);
 	}
 	if (r)
 		grain_forces_free(g);
 	return r;
+}
+
+int
+measure_plate_contact_list(const struct pack *p, struct plate_contact **list, size_t *n)
+{
+	struct plate_measures m;
+
+	memset(&m, 0, sizeof m);
+	*list = NULL, *n = 0;
+	return measure_plate_contacts(p, &m, NULL, list, n);
 }

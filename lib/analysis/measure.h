@@ -138,7 +138,13 @@ double measure_sphere_box_volume(double r, const double lo[3], const double hi[3
  * pressure have no wall counterpart).  As in the sphere report, force_mean and force_max are
  * the normal force P (the elements' k_n h summed) of an interaction, and residual_mean is
  * mean|F_i| over the grains with an interaction over the mean |F| of an interaction (packgen's
- * rest criterion takes the mean over all grains). */
+ * rest criterion takes the mean over all grains).
+ *
+ * Glued grains (the glued column, pack_set_glue: the shear's wall layers) are parts of the
+ * walls: coordination and floating count every grain, coordination_free and floating_free the
+ * free ones (interactions of a free grain with a free grain, a glued grain or a wall, counted
+ * at the free grain's end: the shear's Z), and the descriptors (fabric) are over the pairs
+ * of two free grains and the free plates' normals.  Without the column every grain is free. */
 struct plate_measures {
 	size_t grains, plates;
 	double porosity, packing_fraction;
@@ -150,11 +156,13 @@ struct plate_measures {
 	size_t contacts_gg, contacts_gw, elements, floating;
 	size_t by_elements[3];				/* interactions of 1, 2, >= 3 elements */
 	double coordination, floating_fraction, elements_per_interaction;
+	size_t glued, floating_free;			/* glued grains; free ones with 0 or 1 interaction */
+	double coordination_free, floating_fraction_free;
 	int has_forces;					/* meta kn present: the rest is set, else NaN */
 	double sig_wall[3], sig_lw[6];			/* Pa, compression positive; xx yy zz xy xz yz */
 	double force_mean, force_max;			/* normal force P of an interaction, N */
 	double residual_mean;
-	/* the platy-particle paper's descriptors (analysis/fabric.h) over the grain pairs, under
+	/* the platy-particle paper's descriptors (analysis/fabric.h) over the free pairs, under
 	 * their own stress (P eq. 7, the pairs' branch (x) force over the box volume); a pair is
 	 * at the Coulomb limit when |F_t| >= 0.99 mu F_n (mu the pack's).  Without forces the
 	 * force descriptors, K_s, p, q and eq. 28 are NaN. */
@@ -199,6 +207,21 @@ struct grain_forces {
 /* Fills g (its arrays allocated here; grain_forces_free them).  0, or -1 (msg_seterr). */
 int measure_grain_forces(const struct pack *p, struct grain_forces *g);
 void grain_forces_free(struct grain_forces *g);
+/* One interaction of measure_plates, for a force network (packexport's contacts of plates). */
+struct plate_contact {
+	size_t i;
+	long j;			/* a grain index, or a wall PACK_WALL(w) */
+	double a[3], b[3];	/* i's centre; j's centre (its nearest periodic image) or, for a wall,
+				 * the overlap-weighted foot of the element contacts on its plane (m) */
+	double n[3];		/* unit normal, from j to i */
+	double P;		/* normal force on i along n: the elements' k_n h (N); NaN without meta kn */
+	double Q[3];		/* tangential force on i, of the pair's contact line (N); NaN without */
+	double overlap;		/* the largest element overlap h (m) */
+	int elements;		/* element contacts */
+};
+/* The interactions that measure_plates counts, one by one, in the enumerator's order; the
+ * caller frees *list.  0, or -1 (msg_seterr). */
+int measure_plate_contact_list(const struct pack *p, struct plate_contact **list, size_t *n);
 /* The nematic order of n unit vectors u (3 each): the largest eigenvalue S of
  * Q = <(3 u u - I)/2> (1 when all are parallel, 1/4 when they spread evenly over a plane,
  * of order 1/sqrt(n) for isotropic ones: see test_measure.c) and its unit eigenvector, the

@@ -811,6 +811,12 @@ pdem_write_back(struct pdem *d, struct pack *p)
 		p->box[a] = d->lo[a] * d->u_len, p->box[3 + a] = d->hi[a] * d->u_len;
 		p->periodic[a] = d->periodic[a];
 	}
+	/* the glued grains marked, so that a snapshot's descriptors can leave them out */
+	if (d->glue) {
+		if (pack_set_glue(p))
+			return -1;
+		memcpy(p->glue, d->glue, d->n);
+	}
 	p->nc = 0;
 	if (pdem_foreach_interaction(d, 0, on_history, &hp) < 0 || hp.err) {
 		msg_seterr("out of memory for the contact lines");

@@ -174,7 +174,8 @@ void pdem_wrap(struct pdem *d);
 int pdem_make_periodic(struct pdem *d, const int periodic[3]);
 /* Positions, orientations, box and frictional history (one contact line per interaction:
  * P0 its elastic normal force, Q0 its tangential spring's force on i, M0 0) back into p
- * (SI), replacing p's contact lines.  0 or -1. */
+ * (SI), replacing p's contact lines, and with glued grains (glue) the glued column
+ * (pack_set_glue).  0 or -1. */
 int pdem_write_back(struct pdem *d, struct pack *p);
 /* Set the tangential springs from p's contact lines (pdem_write_back's), for the
  * interactions that touch now; the others start from zero.  0 or -1. */

@@ -34,6 +34,7 @@ pack_free(struct pack *p)
 	free(p->side);
 	free(p->q);
 	free(p->phase);
+	free(p->glue);
 	free(p->c);
 	for (k = 0; k < p->nhist; k++)
 		free(p->history[k]);
@@ -72,6 +73,8 @@ pack_reserve(struct pack *p, size_t n)
 		return -1;
 	if (p->has_phase && grow((void **)&p->phase, n, sizeof *p->phase))
 		return -1;
+	if (p->has_glue && grow((void **)&p->glue, n, sizeof *p->glue))
+		return -1;
 	p->cap = n;
 	return 0;
 }
@@ -104,6 +107,19 @@ pack_set_phases(struct pack *p)
 	p->has_phase = 1;
 	if (p->n)
 		memset(p->phase, PHASE_MINERAL, p->n * sizeof *p->phase);
+	return 0;
+}
+
+int
+pack_set_glue(struct pack *p)
+{
+	if (p->has_glue)
+		return 0;
+	if (grow((void **)&p->glue, p->cap, sizeof *p->glue))
+		return -1;
+	p->has_glue = 1;
+	if (p->n)
+		memset(p->glue, 0, p->n * sizeof *p->glue);
 	return 0;
 }
 
@@ -192,6 +208,8 @@ pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, d
 		pack_set_grain_shape(p, i, 0, quat_identity);
 	if (p->has_phase)
 		p->phase[i] = PHASE_MINERAL;
+	if (p->has_glue)
+		p->glue[i] = 0;
 	p->n++;
 	return i;
 }
@@ -225,6 +243,7 @@ pack_copy(struct pack *dst, const struct pack *src)
 	pack_init(dst);
 	dst->has_shapes = src->has_shapes;
 	dst->has_phase = src->has_phase;
+	dst->has_glue = src->has_glue;
 	if (pack_reserve(dst, n ? n : 1))
 		goto oom;
 	memcpy(dst->id, src->id, n * sizeof *dst->id);
@@ -239,6 +258,8 @@ pack_copy(struct pack *dst, const struct pack *src)
 	}
 	if (src->has_phase)
 		memcpy(dst->phase, src->phase, n * sizeof *dst->phase);
+	if (src->has_glue)
+		memcpy(dst->glue, src->glue, n * sizeof *dst->glue);
 	dst->n = n;
 	memcpy(dst->box, src->box, sizeof dst->box);
 	memcpy(dst->periodic, src->periodic, sizeof dst->periodic);

@@ -96,6 +96,12 @@ struct pack {
 	 * the column. */
 	int has_phase;
 	unsigned char *phase;
+	/* The glued column of format 2 (pack-format.md, "The glued column"): has_glue says
+	 * whether the pack has it; glue[i] is 0 for a free grain or 1 + w for a grain glued to
+	 * wall w (the shear's wall layers, which move with their wall as a part of it), so that
+	 * the descriptors of a snapshot can leave them out.  NULL without the column. */
+	int has_glue;
+	unsigned char *glue;
 
 	double box[6];		/* xlo ylo zlo xhi yhi zhi (m) */
 	/* The boundary along each axis: 0, the two box faces are rigid walls (every pack of
@@ -138,6 +144,16 @@ static inline int
 pack_grain_phase(const struct pack *p, size_t i)
 {
 	return p->has_phase ? p->phase[i] : PHASE_MINERAL;
+}
+/* Give p the glued column, every grain free (0): what the shear's snapshots call, and what
+ * the reader calls for a columns line that names it.  Nothing happens when p has it already.
+ * 0, or -1 (msg_seterr) when out of memory. */
+int pack_set_glue(struct pack *p);
+/* Whether grain i is glued to a wall: 0 when p has no glued column. */
+static inline int
+pack_grain_glued(const struct pack *p, size_t i)
+{
+	return p->has_glue && p->glue[i] != 0;
 }
 /* The number of hydrate grains and their volume (m^3, overlaps not subtracted). */
 size_t pack_hydrate_grains(const struct pack *p, double *volume);

@@ -14,7 +14,7 @@
 #include <zlib.h>
 
 /* Fields kept of a split line: more than any line of the format has. */
-#define MAXTOK 16
+#define MAXTOK 20
 
 struct pack_reader {
 	struct lines *in;
@@ -167,6 +167,10 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 		    isfinite(p->side[i]) ? "negative" : "not finite");
 	else if (p->has_phase && p->phase[i] >= PACK_NPHASES)
 		snprintf(why, len, "grain %ld: phase %d is neither 0 (mineral) nor 1 (hydrate)", p->id[i], p->phase[i]);
+	else if (p->has_glue && p->glue[i] > NWALLS)
+		snprintf(why, len, "grain %ld: glued to wall %d, not one of the six", p->id[i], p->glue[i] - 1);
+	else if (p->has_glue && p->glue[i] && p->periodic[(p->glue[i] - 1) / 2])
+		snprintf(why, len, "grain %ld: glued to %s, but that axis is periodic", p->id[i], pack_wall_names[p->glue[i] - 1]);
 	else if (p->has_shapes && !(fabs(quat_norm(p->q + 4 * i) - 1) <= PACK_QUAT_TOL))
 		/* not renormalised: what is read is what is written back (pack-format.md) */
 		snprintf(why, len, "grain %ld: (qw, qx, qy, qz) = (%.9g, %.9g, %.9g, %.9g) is not a unit quaternion (norm %.9g, off 1 by more than %g)",
@@ -311,10 +315,11 @@ static const struct column {
 	{"id", 0}, {"x", 0}, {"y", 0}, {"z", 0}, {"r", 0}, {"E", 0}, {"nu", 0}, {"rho", 0},
 	{"side", 1}, {"qw", 1}, {"qx", 1}, {"qy", 1}, {"qz", 1},
 	{"phase", 2},
+	{"glued", 3},
 };
 #define NCOLUMNS ((int)(sizeof columns / sizeof columns[0]))
-enum { COL_SIDE = 8, COL_PHASE = 13, GROUP_SHAPE = 1, GROUP_PHASE = 2, NGROUPS = 3 };
-static const char *const groups[NGROUPS] = {"required", "shape", "phase"};
+enum { COL_SIDE = 8, COL_PHASE = 13, COL_GLUED = 14, GROUP_SHAPE = 1, GROUP_PHASE = 2, GROUP_GLUED = 3, NGROUPS = 4 };
+static const char *const groups[NGROUPS] = {"required", "shape", "phase", "glued"};
 
 /* A columns line naming every known column once, and one more name, fits in tok[]: so the
  * unknown or repeated name of a longer line is among the fields kept. */
@@ -576,7 +581,8 @@ kw_columns(struct header *h, char **tok, int n)
 		h->col[k - 1] = column_index(tok[k]);
 	}
 	h->ncol = n - 1;
-	if ((have[GROUP_SHAPE] && pack_set_shapes(h->p)) || (have[GROUP_PHASE] && pack_set_phases(h->p)))
+	if ((have[GROUP_SHAPE] && pack_set_shapes(h->p)) || (have[GROUP_PHASE] && pack_set_phases(h->p)) ||
+	    (have[GROUP_GLUED] && pack_set_glue(h->p)))
 		return rd_error(h->rd, "out of memory");
 	return 0;
 }
@@ -749,6 +755,14 @@ read_grain_line(const struct header *h, char *s)
 			if (num_parse_long(tok[k], &ph) || ph < 0 || ph >= PACK_NPHASES)
 				return rd_error(rd, "grain %ld: phase '%s' is neither 0 (mineral) nor 1 (hydrate)", id, tok[k]);
 			v[COL_PHASE] = (double)ph;
+		} else if (h->col[k] == COL_GLUED) {	/* '-' free, or the name of the wall it is glued to */
+			int w;
+
+			for (w = 0; w < NWALLS && strcmp(tok[k], pack_wall_names[w]) != 0; w++)
+				;
+			if (strcmp(tok[k], "-") != 0 && w == NWALLS)
+				return rd_error(rd, "grain %ld: glued '%s' is neither '-' (free) nor a wall (xlo ... zhi)", id, tok[k]);
+			v[COL_GLUED] = strcmp(tok[k], "-") == 0 ? 0 : 1 + w;
 		} else if (num_parse(tok[k], &v[h->col[k]])) {
 			return rd_error(rd, "grain: '%s' is not a finite number", tok[k]);
 		}
@@ -759,6 +773,8 @@ read_grain_line(const struct header *h, char *s)
 		pack_set_grain_shape(h->p, h->p->n - 1, v[COL_SIDE], v + COL_SIDE + 1);
 	if (h->p->has_phase)
 		h->p->phase[h->p->n - 1] = (unsigned char)v[COL_PHASE];
+	if (h->p->has_glue)
+		h->p->glue[h->p->n - 1] = (unsigned char)v[COL_GLUED];
 	if (check_grain_values(h->p, h->p->n - 1, why, sizeof why))
 		return rd_error(rd, "%s", why);
 	return 0;
@@ -1109,7 +1125,7 @@ sb_printf(struct sbuf *b, const char *fmt, ...)
 int
 pack_format_version(const struct pack *p)
 {
-	return p->periodic[0] || p->periodic[1] || p->periodic[2] || p->has_shapes || p->has_phase ? 2 : 1;
+	return p->periodic[0] || p->periodic[1] || p->periodic[2] || p->has_shapes || p->has_phase || p->has_glue ? 2 : 1;
 }
 
 /* The version-2 lines: the boundary along x y z, and the grain columns. */
@@ -1132,7 +1148,7 @@ format_columns(const struct pack *p, struct sbuf *b)
 	sb_puts(b, "columns");
 	for (k = 0; k < NCOLUMNS; k++)
 		if (columns[k].group == 0 || (columns[k].group == GROUP_SHAPE && p->has_shapes) ||
-		    (columns[k].group == GROUP_PHASE && p->has_phase)) {
+		    (columns[k].group == GROUP_PHASE && p->has_phase) || (columns[k].group == GROUP_GLUED && p->has_glue)) {
 			sb_puts(b, " ");
 			sb_puts(b, columns[k].name);
 		}
@@ -1199,6 +1215,10 @@ format_pack(const struct pack *p, struct sbuf *b)
 		if (p->has_phase && !b->oom) {	/* the tag last: the line's newline becomes a blank */
 			b->s[b->len - 1] = ' ';
 			sb_printf(b, "%d\n", p->phase[k]);
+		}
+		if (p->has_glue && !b->oom) {	/* likewise, after the phase */
+			b->s[b->len - 1] = ' ';
+			sb_printf(b, "%s\n", p->glue[k] ? pack_wall_names[p->glue[k] - 1] : "-");
 		}
 	}
 	for (k = 0; k < p->nc && !b->oom; k++) {

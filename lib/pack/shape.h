@@ -13,7 +13,9 @@
  * bounding diameter of a thin plate (r -> 0: the corner sits at sqrt(2) R), so that grid is
  * the densest on which randomly turned plates cannot overlap, which is why one would choose
  * it; under SHAPE_R_CORNER the bounding diameter is 2 R and the grid would be loose by
- * sqrt(2) for no reason.  A pack stores r and L, so it does not depend on the reading; only
+ * sqrt(2) for no reason; and packgen's compacted packs reach their densest near eta 0.3
+ * under it, where P's Fig. 8 peaks, and near 0.4 under SHAPE_R_CORNER (share/doc/
+ * spheroplates.md has the numbers).  A pack stores r and L, so it does not depend on the reading; only
  * converting eta (packgen --platyness, packinfo's report) does.
  *
  * Body frame: the core lies in the plane z = 0 with edges along x and y, |x|, |y| <= L/2;

@@ -2,7 +2,9 @@
 # profiles (its Fig. 6), tau_w/sigma_w against gamma (Fig. 5), and against the platyness eta the
 # shear strength q/p with eq. 28's harmonic sum (Figs. 7, 22), the packing fraction (Fig. 8),
 # a_m (Fig. 11), Z and chi (Fig. 12), a_n (Fig. 14), a_ln and a_lt (Fig. 17), a_fn and a_ft
-# (Fig. 20) and K_s (Fig. 21), each the mean over the steady state with its standard deviation.
+# (Fig. 20) and K_s (Fig. 21), each the mean over the steady state with its standard deviation;
+# beside a_m the 3D nematic measures, beside a_ft and eq. 28 the direct tangential terms
+# (share/doc/tables.md), chi over the free grains.
 # gnuplot -e "out='platy.png'; cols='pipelines/cols.sh'; summary='S'; runs='DIR...'; from=G" share/plot/platy.gp
 set terminal pngcairo size 1600,900 noenhanced font ",9"
 set output out
@@ -29,19 +31,22 @@ set key top left
 set title "shear strength (Figs. 7, 22)"
 set ylabel "q / p"
 plot sum("eta qp qp_sd") using 1:2:3 with yerrorlines pt 7 title "measured", \
-     sum("eta qp_harmonic qp_harmonic_sd") using 1:2:3 with yerrorlines pt 9 title "eq. 28"
+     sum("eta qp_harmonic qp_harmonic_sd") using 1:2:3 with yerrorlines pt 9 title "eq. 28", \
+     sum("eta qp_harmonic_direct qp_harmonic_direct_sd") using 1:2:3 with yerrorlines pt 5 title "eq. 28, direct tangential terms"
 set title "packing fraction (Fig. 8)"
 set ylabel "phi"
 plot sum("eta phi phi_sd") using 1:2:3 with yerrorlines pt 7 notitle
 set title "particle orientations (Fig. 11)"
 set ylabel "a_m"
-plot sum("eta a_m a_m_sd") using 1:2:3 with yerrorlines pt 7 notitle
+plot sum("eta a_m a_m_sd") using 1:2:3 with yerrorlines pt 7 title "a_m (xy)", \
+     sum("eta M1_M3 M1_M3_sd") using 1:2:3 with yerrorlines pt 9 title "M1 - M3 (3D)", \
+     sum("eta nematic_S nematic_S_sd") using 1:2:3 with yerrorlines pt 5 title "S"
 set title "coordination (Fig. 12a)"
 set ylabel "Z"
 plot sum("eta Z Z_sd") using 1:2:3 with yerrorlines pt 7 notitle
 set title "floating particles (Fig. 12b)"
 set ylabel "chi"
-plot sum("eta floating_fraction floating_fraction_sd") using 1:2:3 with yerrorlines pt 7 notitle
+plot sum("eta floating_fraction_free floating_fraction_free_sd") using 1:2:3 with yerrorlines pt 7 notitle
 set title "interaction orientations (Fig. 14)"
 set ylabel "a_n"
 plot sum("eta a_n a_n_sd") using 1:2:3 with yerrorlines pt 7 notitle
@@ -51,7 +56,8 @@ plot sum("eta a_ln a_ln_sd") using 1:2:3 with yerrorlines pt 7 title "a_ln", \
      sum("eta a_lt a_lt_sd") using 1:2:3 with yerrorlines pt 9 title "a_lt"
 set title "interaction forces (Fig. 20)"
 plot sum("eta a_fn a_fn_sd") using 1:2:3 with yerrorlines pt 7 title "a_fn", \
-     sum("eta a_ft a_ft_sd") using 1:2:3 with yerrorlines pt 9 title "a_ft"
+     sum("eta a_ft a_ft_sd") using 1:2:3 with yerrorlines pt 9 title "a_ft (eq. 27)", \
+     sum("eta a_ft_direct a_ft_direct_sd") using 1:2:3 with yerrorlines pt 5 title "a_ft direct"
 set title "sliding interactions (Fig. 21)"
 set ylabel "K_s"
 plot sum("eta K_s K_s_sd") using 1:2:3 with yerrorlines pt 7 notitle

@@ -310,9 +310,51 @@ expect_error "plates: xyzr refuses plates" 1 '^packexport: plates\.pack: grain 3
     packexport --xyzr plates.pack
 expect_error "plates: lammps-data refuses plates" 1 '^packexport: plates\.pack: grain 3 is a spheroplate \(side > 0\); --lammps-data handles spheres only$' \
     packexport --lammps-data plates.pack
-expect_refused "nothing written" "nothing.vtm nothing_grains.vtp nothing_contacts.vtp" "plates: vtk -o NAME.vtm refuses plates" 1 \
-    '^packexport: <stdin>: grain 3 is a spheroplate \(side > 0\); the contacts file of --vtk -o NAME\.vtm handles spheres only$' \
-    sh -c 'packexport --vtk -o nothing.vtm <plates.pack'
+
+# The force network of plates (-o NAME.vtm): a plate (id 4, L 0.1, r 0.01, flat) under a
+# sphere (id 9, r 0.02) centred 0.029 above it, an overlap h = 0.01 + 0.02 - 0.029 = 1e-3 of
+# one element (the sphere on the face), and a flat plate (id 12, glued to zlo) whose face lies
+# 0.001 into the zlo wall: its 4 corners, each h = 1e-3.  With k_n = 1000 N/m the normal
+# forces are k_n h = 1 N and 4 k_n h = 4 N; the pair's contact line gives Q0 = (0.2, 0, 0)
+# on 4; the wall's line ends at the corners' mean foot on the wall, (0.25, 0.3, 0).
+cat >pc.pack <<'EOF2'
+qusgm-pack 2
+meta kn 1000
+units SI
+box 0 0 0 1 1 1
+boundary walls walls walls
+walls 7000000000000 0.495 0.3
+friction 0.3
+grains 3
+contacts 1
+columns id x y z r E nu rho side qw qx qy qz glued
+end
+4 0.5 0.5 0.5 0.01 70000000000 0.2 2420 0.1 1 0 0 0 -
+9 0.5 0.5 0.529 0.02 70000000000 0.2 2420 0 1 0 0 0 -
+12 0.25 0.3 0.009 0.01 70000000000 0.2 2420 0.1 1 0 0 0 zlo
+4 9 1 0.2 0 0 0
+EOF2
+# vtp_array FILE NAME: the values of one DataArray, one tuple a line
+vtp_array() { awk -v n="Name=\"$2\"" 'index($0, n) { f = 1; next } f && /<\/DataArray>/ { f = 0 } f' "$1" | tr '\n' ' ' | sed 's/ $//'; }
+expect_ok "plates: vtk -o NAME.vtm, the contacts of plates" packexport --vtk -o pc.vtm pc.pack
+v1=$(vtp_array pc_contacts.vtp id1) v2=$(vtp_array pc_contacts.vtp id2) el=$(vtp_array pc_contacts.vtp elements)
+[ "$v1" = "4 12" ] && [ "$v2" = "9 -5" ] && [ "$el" = "1 4" ] && pass "plates: two interactions, 4-9 of 1 element and 12-zlo of 4" ||
+	fail "plates: the interactions" "id1 '$v1' id2 '$v2' elements '$el'"
+set -- $(vtp_array pc_contacts.vtp normal_force)
+expect_num "plates: normal force of the pair k_n h = 1 N" "$(rel "$1" 1)" "<" 1e-12
+expect_num "plates: normal force on the wall 4 k_n h = 4 N" "$(rel "$2" 4)" "<" 1e-12
+set -- $(vtp_array pc_contacts.vtp force)
+expect_num "plates: the pair's force P n + Q0 = (0.2, 0, -1)" "$(awk -v x="$1" -v y="$2" -v z="$3" 'BEGIN { d = (x - 0.2) ^ 2 + y ^ 2 + (z + 1) ^ 2; print sqrt(d) }')" "<" 1e-12
+[ "$(vtp_array pc_contacts.vtp tangential_force)" = "0.2 0 0 0 0 0" ] && pass "plates: the tangential forces, of the contact line and none on the wall" ||
+	fail "plates: tangential forces" "$(vtp_array pc_contacts.vtp tangential_force)"
+[ "$(vtp_array pc_contacts.vtp Points)" = "0.5 0.5 0.5 0.5 0.5 0.529 0.25 0.3 0.009 0.25 0.3 0" ] &&
+	pass "plates: lines centre to centre, and to the foot on the wall" || fail "plates: the line ends" "$(vtp_array pc_contacts.vtp Points)"
+[ "$(vtp_array pc_grains.vtp glued | tr ' ' '\n' | sort -u | tr '\n' ' ')" = "0 5 " ] && grep -q 'Name="side"' pc_grains.vtp &&
+	pass "plates: the grains' .vtp of -o NAME.vtm are the boxes, with glued (1 + zlo = 5)" || fail "plates: the grains' .vtp" "$(vtp_array pc_grains.vtp glued)"
+grep -v '^meta kn' pc.pack >pc0.pack
+expect_ok "plates: vtk -o NAME.vtm without meta kn" packexport --vtk -o pc0.vtm pc0.pack
+grep -q 'Name="normal_force"' pc0_contacts.vtp && fail "plates: no forces without meta kn" "normal_force written" ||
+	pass "plates: no forces without meta kn, the geometry only"
 # shape columns with every side 0: spheres, the sphere files byte for byte
 awk 'NR == 1 { print "qusgm-pack 2"; next }
     $1 == "end" { print "boundary walls walls walls"; print "columns id x y z r E nu rho side qw qx qy qz"; print; f = 1; next }

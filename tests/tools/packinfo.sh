@@ -146,6 +146,40 @@ expect_num "phase column, no hydrate: hydrate_grains 0" "$(info_value min.info h
 expect_num "phase column, no hydrate: S 0" "$(info_value min.info hydrate_saturation)" == 0
 expect_num "phase column, no hydrate: porosity_hydrate_as_pore = porosity" "$(rel "$(info_value min.info porosity_hydrate_as_pore)" "$(info_value min.info porosity)")" "<" 1e-15
 
+# --- the glued column: the descriptors of the free grains (issue 44) -------------------------
+# Three spheres of the plate engine's law, A (id 1) touching B (id 2) along x and B touching C
+# (id 3) along y, A glued to ylo.  Over every grain: Z = 2 * 2 / 3, floating A and C (2/3),
+# normals along x and y: a_n 0.  Over the free grains B and C: the ends on them are 1 (A-B) + 2
+# (B-C) over 2 grains, Z 1.5; C floats (1/2); the one free pair along y: a_n 2 at 90 degrees.
+cat >gl.pack <<'EOF2'
+qusgm-pack 2
+meta contact-law linear
+units SI
+box 0 0 0 1 1 1
+boundary walls walls walls
+walls 7000000000000 0.495 0.3
+friction 0.3
+grains 3
+contacts 0
+columns id x y z r E nu rho side qw qx qy qz glued
+end
+1 0.3 0.5 0.5 0.1 70000000000 0.2 2420 0 1 0 0 0 ylo
+2 0.49 0.5 0.5 0.1 70000000000 0.2 2420 0 1 0 0 0 -
+3 0.49 0.69 0.5 0.1 70000000000 0.2 2420 0 1 0 0 0 -
+EOF2
+packinfo gl.pack >gl.info 2>gl.err
+expect_num "glued: 1 grain" "$(info_value gl.info glued)" == 1
+expect_num "glued: coordination over all 4/3" "$(rel "$(info_value gl.info coordination)" 1.3333333333333333)" "<" 1e-15
+expect_num "glued: coordination_free 3/2" "$(info_value gl.info coordination_free)" == 1.5
+expect_num "glued: floating_fraction over all 2/3" "$(rel "$(info_value gl.info floating_fraction)" 0.6666666666666666)" "<" 1e-15
+expect_num "glued: floating_fraction_free 1/2" "$(info_value gl.info floating_fraction_free)" == 0.5
+expect_num "glued: a_n of the free pair along y, 2" "$(info_value gl.info a_n)" == 2
+expect_num "glued: theta_n 90" "$(info_value gl.info theta_n)" == 90
+awk '/^columns/ { sub(/ glued$/, "") } /^end$/ { on = 1; print; next } on { NF = NF - 1 } { print }' gl.pack >gl0.pack
+packinfo gl0.pack >gl0.info 2>/dev/null
+expect_num "no glued column: every grain free, coordination_free = coordination" "$(info_value gl0.info coordination_free)" == "$(info_value gl0.info coordination)"
+expect_num "no glued column: a_n of both pairs, x and y, 0" "$(info_value gl0.info a_n)" == 0
+
 # --- usage -----------------------------------------------------------------------------------
 expect_error "--bulk-margin negative" 2 '^packinfo: --bulk-margin: must be >= 0' packinfo --bulk-margin -1e-4 dense.pack
 expect_error "--bulk-margin nan" 2 "^packinfo: --bulk-margin: 'nan' is not a finite number" packinfo --bulk-margin nan dense.pack

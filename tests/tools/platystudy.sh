@@ -24,7 +24,7 @@ for f in platy/report.md platy/summary.tsv platy/commands.txt runs/platy-eta0.5/
 done
 expect_num "summary: one row per platyness" "$(rows "$o/platy/summary.tsv" | wc -l)" == 3
 expect_num "descriptors: four snapshots" "$(rows "$o/runs/platy-eta0.5/descriptors.tsv" | wc -l)" == 4
-for q in qp Z floating_fraction a_m a_n a_ft K_s; do
+for q in qp Z floating_fraction_free a_m a_n a_ft K_s; do
 	grep -Eq "^\| $q \| .* \| yes \|$" "$o/platy/report.md" && pass "trend of $q as in the paper" ||
 	    fail "trend of $q as in the paper" "$(grep "^| $q " "$o/platy/report.md")"
 done

@@ -34,6 +34,9 @@ grep -q '^meta shear_gamma 0.1$' s-out.pack && pass "shear: meta shear_gamma" ||
 expect_ok "shear: the final pack reads back" packinfo s-out.pack
 [ -s snap-0.05.pack ] && grep -q '^meta shear_gamma 0\.0' snap-0.05.pack && pass "shear: the snapshot at 0.05" ||
 	fail "shear: the snapshot at 0.05" "$(ls snap* 2>&1)"
+# the snapshot marks the glued wall layers (the glued column), bottom and top
+awk '/^columns/ { c = ($NF == "glued") } /^end$/ { on = 1; next } on && c { g[$NF]++ } END { exit !(g["ylo"] > 0 && g["yhi"] > 0 && g["-"] > 0) }' snap-0.05.pack &&
+	pass "shear: the snapshot's glued column: grains on ylo and yhi, and free ones" || fail "shear: the snapshot's glued column" "$(grep ^columns snap-0.05.pack)"
 # the glued layers move with their walls: the first bin near rest, the last near v_w
 expect_num "shear: profile, bottom bin near rest" "$(col s.prof 1 2 | awk '{ print $1 < 0 ? -$1 : $1 }')" "<" 0.2
 expect_num "shear: profile, top bin near v_w" "$(col s.prof 5 2)" ">" 0.8

@@ -781,6 +781,58 @@ phases(const char *dir)
 	unlink(in);
 }
 
+/* The glued column ('-' free or a wall name): the reader, the writer's version 2 and the
+ * round trip to the byte (after the phase column), an old pack without it (every grain
+ * free), and the refusals. */
+static void
+glued_column(const char *dir)
+{
+	struct pack p, q;
+	char in[160], b[160], *t;
+	size_t k;
+	static const struct {
+		const char *cols, *g1, *g2, *want;
+	} bad[] = {
+		{" glued", " -", " 1", "p.pack:12: grain 2: glued '1' is neither '-' (free) nor a wall (xlo ... zhi)"},
+		{" glued", " top", " -", "p.pack:11: grain 1: glued 'top' is neither '-' (free) nor a wall (xlo ... zhi)"},
+		{" glued phase", " - 0", " - 1", "p.pack:9: columns: column 10 'phase': the phase columns come before the glued columns"},
+	};
+
+	snprintf(in, sizeof in, "%s/p.pack", dir);
+	snprintf(b, sizeof b, "%s/p2.pack", dir);
+	CHECK(read_phase_pack(in, "", "", "", &p) == 0 && !p.has_glue && !pack_grain_glued(&p, 0) && !pack_grain_glued(&p, 1),
+	    "a pack without the glued column: every grain free (%s)", msg_geterr());
+	pack_free(&p);
+	CHECK(read_phase_pack(in, " phase glued", " 0 ylo", " 1 -", &p) == 0, "phase then glued reads (%s)", msg_geterr());
+	CHECK(p.has_glue && p.glue[0] == 1 + WALL_YLO && p.glue[1] == 0 && pack_grain_glued(&p, 0) && !pack_grain_glued(&p, 1),
+	    "glued: grain 1 on ylo (1 + %d), grain 2 free", WALL_YLO);
+	CHECK(pack_write_path(&p, b) == 0, "glued: write");
+	t = text_of(b);
+	CHECK(t && strstr(t, "\ncolumns id x y z r E nu rho phase glued\nend\n") && strstr(t, " 2650 0 ylo\n") && strstr(t, " 900 1 -\n"),
+	    "glued: the column last, '-' or the wall's name");
+	free(t);
+	CHECK(pack_read_path(b, &q) == 0 && q.has_glue && memcmp(p.glue, q.glue, p.n) == 0, "glued: read back");
+	pack_free(&q);
+	CHECK(pack_copy(&q, &p) == 0 && q.has_glue && q.glue[0] == 1 + WALL_YLO, "glued: pack_copy keeps it");
+	pack_free(&q);
+	p.periodic[1] = 1;
+	CHECK(pack_validate(&p) != 0 && strcmp(msg_geterr(), "grain 1: glued to ylo, but that axis is periodic") == 0,
+	    "pack_validate: glued to a wall of a periodic axis (%s)", msg_geterr());
+	pack_free(&p);
+	for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+		int rc = read_phase_pack(in, bad[k].cols, bad[k].g1, bad[k].g2, &p);
+		const char *e = rc ? msg_geterr() : "";
+		size_t le = strlen(e), lw = strlen(bad[k].want);
+
+		CHECK(rc != 0 && le >= lw && strcmp(e + le - lw, bad[k].want) == 0, "refused: columns '%s', grains '%s' '%s': '%s' (want '%s')",
+		    bad[k].cols, bad[k].g1, bad[k].g2, e, bad[k].want);
+		if (!rc)
+			pack_free(&p);
+	}
+	unlink(in);
+	unlink(b);
+}
+
 int
 main(void)
 {
@@ -808,6 +860,7 @@ main(void)
 	format_2(dir);
 	shapes(dir);
 	phases(dir);
+	glued_column(dir);
 	carriage_returns(dir);
 	unlink(a);
 	unlink(b);
