@@ -44,21 +44,29 @@ numbers, ids and wall names of the contacts), not every rule of qusgm's own read
 (overlapping centres, radius ranges...): packinfo(1) is the full check.
 """
 
+from __future__ import annotations
+
 import gzip
 import io
 import math
+import os
 import sys
+import warnings
+from typing import IO, Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 __all__ = ["read_pack", "read_packs", "read_table", "Pack", "Table", "FormatError", "WALLS", "UNITS"]
 __version__ = "0.2.0"
 
+#: What the readers take: a path, "-" for standard input, or a binary (or text) file object.
+Source = Union[str, "os.PathLike[str]", IO[bytes], IO[str], None]
+
 WALLS = ("xlo", "xhi", "ylo", "yhi", "zlo", "zhi")
 VERSIONS = (1, 2)
 
 # The unit of every column a pack can hold ('' dimensionless or a count).
-UNITS = {
+UNITS: Dict[str, str] = {
     "id": "", "x": "m", "y": "m", "z": "m", "r": "m", "E": "Pa", "nu": "", "rho": "kg/m^3",
     "side": "m", "qw": "", "qx": "", "qy": "", "qz": "", "phase": "",
     "i": "", "j": "", "j_wall": "", "P0": "N", "Q0x": "N", "Q0y": "N", "Q0z": "N", "M0": "N m",
@@ -76,73 +84,139 @@ _CONTACT_DTYPE = np.dtype([("i", np.int64), ("j", np.int64), ("j_wall", "U3"), (
                            ("Q0x", np.float64), ("Q0y", np.float64), ("Q0z", np.float64),
                            ("M0", np.float64)])
 
+# numpy's loadtxt is a C parser from numpy 1.23 on, and reads a number as Python's float()
+# does (correctly rounded): the fast path's condition without pandas (_parse_block).
+_LOADTXT_C = tuple(int(v) for v in np.__version__.split(".")[:2]) >= (1, 23)
+_pandas: Any = None  # the module once imported, False when it is not installed
+
+
+def _get_pandas() -> Any:
+    """pandas, imported on first use (it takes a while), or False."""
+    global _pandas
+    if _pandas is None:
+        try:
+            import pandas
+            _pandas = pandas
+        except ImportError:
+            _pandas = False
+    return _pandas
+
 
 class FormatError(ValueError):
     """A malformed pack or table: the message is "FILE:LINE: what is wrong"."""
 
 
-def _open(source):
+def _open(source: Source) -> Tuple[IO[bytes], str, bool]:
     """(binary stream, display name, whether to close it) for a path, '-' or a file object.
     gzip is told by its magic bytes, as the tools tell it."""
     if source is None or source == "-":
         fp, name, own = sys.stdin.buffer, "<stdin>", False
     elif hasattr(source, "read"):
-        fp = source.buffer if isinstance(source, io.TextIOBase) else source
+        fp = source.buffer if isinstance(source, io.TextIOBase) else source  # type: ignore[union-attr]
         name, own = getattr(source, "name", "<stream>"), False
     else:
-        fp, name, own = open(source, "rb"), str(source), True
+        fp, name, own = open(source, "rb"), os.fsdecode(source), True  # type: ignore[arg-type]
     if not hasattr(fp, "peek"):
-        fp = io.BufferedReader(fp)
-    if fp.peek(2)[:2] == b"\x1f\x8b":
-        fp = gzip.GzipFile(fileobj=fp, mode="rb")
-    return fp, name, own
+        fp = io.BufferedReader(fp)  # type: ignore[arg-type]
+    if fp.peek(2)[:2] == b"\x1f\x8b":  # type: ignore[union-attr]
+        fp = gzip.GzipFile(fileobj=fp, mode="rb")  # type: ignore[assignment]
+    return fp, name, own  # type: ignore[return-value]
 
 
 class _Lines:
-    """Numbered text lines, each of which must end in '\\n' (one '\\r' before it dropped)."""
+    """Numbered text lines, each of which must end in '\\n' (one '\\r' before it dropped).
+    Read as bytes, so that a block of lines can go to a C parser whole (take) and come back
+    (unread) for the line-by-line reader to name the line that is wrong."""
 
-    def __init__(self, source):
+    def __init__(self, source: Source) -> None:
         self.raw, self.name, self.own = _open(source)
-        self.text = io.TextIOWrapper(self.raw, encoding="utf-8", errors="surrogateescape", newline="\n")
         self.lineno = 0
-        self.pushed = None
+        self.buf = b""  # bytes read ahead (take) or given back (unread), before the stream's
+        self.pos = 0
+        self.deferred: Optional[Exception] = None  # a read error met by take, raised after buf
 
-    def error(self, msg, lineno=None):
+    def error(self, msg: str, lineno: Optional[int] = None) -> FormatError:
         return FormatError("%s:%d: %s" % (self.name, self.lineno if lineno is None else lineno, msg))
 
-    def next(self):
-        """The next line without its end, or None at the end of input."""
-        if self.pushed is not None:
-            s, self.pushed = self.pushed, None
-            self.lineno += 1
-            return s
+    def _corrupt(self, e: Exception) -> FormatError:
+        return self.error("corrupt or truncated input (%s)" % e, self.lineno + 1)
+
+    def _readline(self) -> bytes:
+        head = b""
+        if self.pos < len(self.buf):
+            k = self.buf.find(b"\n", self.pos)
+            if k >= 0:
+                line, self.pos = self.buf[self.pos:k + 1], k + 1
+                return line
+            head = self.buf[self.pos:]
+        self.buf, self.pos = b"", 0
+        if self.deferred is not None:
+            if head:
+                return head
+            raise self._corrupt(self.deferred)
         try:
-            s = self.text.readline()
+            return head + self.raw.readline()
         except (OSError, EOFError, gzip.BadGzipFile) as e:
-            raise self.error("corrupt or truncated input (%s)" % e, self.lineno + 1) from None
-        if not s:
+            raise self._corrupt(e) from None
+
+    def next(self) -> Optional[str]:
+        """The next line without its end, or None at the end of input."""
+        b = self._readline()
+        if not b:
             return None
         self.lineno += 1
-        if not s.endswith("\n"):
+        if not b.endswith(b"\n"):
             raise self.error("truncated: the last line has no newline")
-        s = s[:-1]
+        s = b[:-1].decode("utf-8", "surrogateescape")
         if s.endswith("\r"):
             s = s[:-1]
         if "\0" in s:
             raise self.error("binary data (NUL byte) in a text file")
         return s
 
-    def push(self, s):
-        self.pushed = s
+    def push(self, s: str) -> None:
+        self.unread(s.encode("utf-8", "surrogateescape") + b"\n")
         self.lineno -= 1
 
-    def close(self):
-        self.text.detach()
+    def take(self, n: int) -> bytes:
+        """The next n lines, with their ends, as one bytes (fewer at the end of input or at a
+        read error), not counted: the caller counts them (lineno += n) or gives them back
+        (unread).  Read in large chunks, the n-th newline found by numpy."""
+        chunks, have = [], 0
+        if self.pos < len(self.buf):
+            chunks.append(self.buf[self.pos:])
+            have = chunks[0].count(b"\n")
+        self.buf, self.pos = b"", 0
+        while have < n and self.deferred is None:
+            try:
+                c = self.raw.read(1 << 22)
+            except (OSError, EOFError, gzip.BadGzipFile) as e:
+                self.deferred = e  # raised by the line-by-line reader after the lines before it
+                break
+            if not c:
+                break
+            chunks.append(c)
+            have += c.count(b"\n")
+        if have <= n:
+            return b"".join(chunks)
+        # the n-th newline is in the last chunk
+        last = chunks.pop()
+        before = have - last.count(b"\n")
+        end = int(np.flatnonzero(np.frombuffer(last, np.uint8) == 10)[n - before - 1]) + 1
+        self.unread(last[end:])
+        chunks.append(last[:end])
+        return b"".join(chunks)
+
+    def unread(self, data: bytes) -> None:
+        if data:
+            self.buf, self.pos = data + self.buf[self.pos:], 0
+
+    def close(self) -> None:
         if self.own:
             self.raw.close()
 
 
-def _float(tok, what, lines):
+def _float(tok: str, what: str, lines: _Lines) -> float:
     """A finite double, exactly as strtod reads it (decimal or hexadecimal)."""
     try:
         if "_" in tok:
@@ -155,8 +229,9 @@ def _float(tok, what, lines):
     return v
 
 
-def _int(tok, what, lines):
-    if not tok.lstrip("+-").isdigit():
+def _int(tok: str, what: str, lines: _Lines) -> int:
+    t = tok[1:] if tok[:1] in ("+", "-") else tok
+    if not (t.isascii() and t.isdigit()):
         raise lines.error("%s: '%s' is not an integer" % (what, tok))
     return int(tok)
 
@@ -164,46 +239,61 @@ def _int(tok, what, lines):
 class Pack:
     """One pack of a qusgm-pack stream (see the module's docstring for the attributes)."""
 
-    def __init__(self):
-        self.version = None
+    version: int
+    history: List[str]
+    meta: Dict[str, str]
+    units: Optional[str]
+    box: np.ndarray
+    refbox: Optional[np.ndarray]
+    boundary: Tuple[str, str, str]
+    walls: Dict[str, float]
+    friction: float
+    columns: Tuple[str, ...]
+    grains: np.ndarray
+    contacts: np.ndarray
+    name: str
+    line: int
+
+    def __init__(self) -> None:
+        self.version = 0
         self.history = []
         self.meta = {}
         self.units = None
-        self.box = None
+        self.box = np.zeros(6)
         self.refbox = None
         self.boundary = ("walls", "walls", "walls")
-        self.walls = None
-        self.friction = None
+        self.walls = {}
+        self.friction = 0.0
         self.columns = _REQUIRED
-        self.grains = None
-        self.contacts = None
-        self.name = None
-        self.line = None
+        self.grains = np.zeros(0, dtype=[(c, _DTYPES.get(c, np.float64)) for c in _REQUIRED])
+        self.contacts = np.zeros(0, dtype=_CONTACT_DTYPE)
+        self.name = ""
+        self.line = 0
 
     @property
-    def n(self):
+    def n(self) -> int:
         """The number of grains."""
         return len(self.grains)
 
     @property
-    def periodic(self):
+    def periodic(self) -> Tuple[bool, bool, bool]:
         """Per axis x y z, whether it is periodic."""
-        return tuple(b == "periodic" for b in self.boundary)
+        return (self.boundary[0] == "periodic", self.boundary[1] == "periodic", self.boundary[2] == "periodic")
 
     @property
-    def volume(self):
+    def volume(self) -> float:
         """The box's volume (m^3)."""
         b = self.box
         return float((b[3] - b[0]) * (b[4] - b[1]) * (b[5] - b[2]))
 
     @property
-    def units_of(self):
+    def units_of(self) -> Dict[str, str]:
         """Column -> unit of the grain and contact columns ('' dimensionless)."""
         return {c: UNITS[c] for c in self.columns + _CONTACT_DTYPE.names}
 
-    def to_dataframe(self, which="grains"):
+    def to_dataframe(self, which: str = "grains") -> Any:
         """The grains (or with "contacts", the contact lines) as a pandas DataFrame, one
-        column per field, the units in df.attrs["units"]."""
+        column per field, the units in df.attrs["units"]: the way to pandas."""
         import pandas as pd
 
         if which not in ("grains", "contacts"):
@@ -213,7 +303,7 @@ class Pack:
         df.attrs["units"] = {f: UNITS[f] for f in a.dtype.names}
         return df
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "<qusgm.Pack version %s: %d grains, %d contacts, from %s:%s>" % (
             self.version, len(self.grains), len(self.contacts), self.name, self.line)
 
@@ -222,7 +312,7 @@ _ONCE = ("units", "box", "refbox", "walls", "friction", "grains", "contacts", "b
 _REQUIRED_KEYS = ("units", "box", "walls", "friction", "grains", "contacts")
 
 
-def _read_header(lines, magic):
+def _read_header(lines: _Lines, magic: str) -> Tuple[Pack, int, int]:
     p = Pack()
     p.name, p.line = lines.name, lines.lineno
     tok = magic.split()
@@ -308,7 +398,8 @@ def _read_header(lines, magic):
     return p, seen["grains_n"], seen["contacts_n"]
 
 
-def _read_body(lines, p, ng, nc):
+def _grains_slow(lines: _Lines, p: Pack, ng: int) -> np.ndarray:
+    """The grain lines, one by one: the reference, and what names a wrong line."""
     ncol = len(p.columns)
     cols = [[] for _ in p.columns]
     ids = {}
@@ -328,10 +419,10 @@ def _read_body(lines, p, ng, nc):
                     raise lines.error("duplicate grain id %d" % v)
                 ids[v] = n
             elif c == "phase":
-                if tok[k] not in ("0", "1"):
+                v = _int(tok[k], "phase", lines)
+                if v not in (0, 1):
                     raise lines.error("grain %s: phase '%s' is neither 0 (mineral) nor 1 (hydrate)"
                                       % (tok[0], tok[k]))
-                v = int(tok[k])
             else:
                 v = _float(tok[k], c, lines)
             cols[k].append(v)
@@ -339,6 +430,12 @@ def _read_body(lines, p, ng, nc):
     g = np.empty(ng, dtype=dt)
     for k, c in enumerate(p.columns):
         g[c] = cols[k]
+    return g
+
+
+def _contacts_slow(lines: _Lines, p: Pack, nc: int, g: np.ndarray) -> np.ndarray:
+    """The contact lines, one by one."""
+    ids = dict.fromkeys(g["id"].tolist())
     walls = {w: -1 - k for k, w in enumerate(WALLS)}
     c = np.zeros(nc, dtype=_CONTACT_DTYPE)
     for n in range(nc):
@@ -365,13 +462,133 @@ def _read_body(lines, p, ng, nc):
         if v[0] < 0:
             raise lines.error("contact: P0 %s is negative" % tok[2])
         c[n] = (i, j, jw, *v)
+    return c
+
+
+def _parse_block(data: bytes, dtype: np.dtype) -> np.ndarray:
+    """Lines of numbers separated by single spaces into a structured array, by a C parser that
+    reads a number as Python's float() does (correctly rounded): pandas' with
+    float_precision="round_trip" where pandas is installed (about twice numpy's speed; its
+    default converter is not exact), else numpy's loadtxt.  Raises on what they cannot read."""
+    pd = _get_pandas()
+    if pd:
+        df = pd.read_csv(io.BytesIO(data), sep=" ", header=None, names=list(dtype.names),
+                         dtype={f: dtype[f] for f in dtype.names}, engine="c", float_precision="round_trip",
+                         quoting=3, na_filter=False, skip_blank_lines=False, comment=None, encoding="ascii")
+        a = np.empty(len(df), dtype=dtype)
+        for f in dtype.names:
+            col = df[f].to_numpy()
+            if col.dtype != dtype[f]:
+                raise ValueError(f)
+            a[f] = col
+        return a
+    return np.loadtxt(io.StringIO(data.decode("ascii")), dtype=dtype, comments=None, ndmin=1)
+
+
+def _loadtxt(lines: _Lines, n: int, dtype: np.dtype, subst: Sequence[Tuple[bytes, bytes]] = (),
+             refuse: Optional[bytes] = None) -> Tuple[Optional[np.ndarray], bytes]:
+    """The next n lines parsed by a C parser (_parse_block) into a structured array, or None
+    where it cannot (a token that is not a number of the field's kind, a line of another
+    length, fewer lines, a blank or a NUL byte...).  subst: replacements made before parsing,
+    and refuse a text that must not be there before them.  Also the raw lines, for
+    lines.unread."""
+    block = lines.take(n)
+    if block.count(b"\n") != n:
+        return None, block
+    data = block
+    if b"\0" in data or b"#" in data or b"\r" in data or (refuse is not None and refuse in data):
+        return None, block
+    for old, new in subst:
+        data = data.replace(old, new)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # an integer field written as a float is an error here
+        try:
+            a = _parse_block(data, dtype)
+        except Exception:  # whatever the C parser refuses, the line-by-line reader names
+            return None, block
+    return (a if len(a) == n else None), block
+
+
+def _grains_fast(lines: _Lines, p: Pack, ng: int) -> Optional[np.ndarray]:
+    """The grain lines through a C parser, checked as _grains_slow checks them; None,
+    the lines given back, where any check fails."""
+    dt = np.dtype([(c, _DTYPES.get(c, np.float64)) for c in p.columns])
+    g, block = _loadtxt(lines, ng, dt)
+    if g is not None:
+        floats = [c for c in p.columns if c not in _DTYPES]
+        ok = all(np.isfinite(g[c]).all() for c in floats)
+        ok = ok and (g["id"] >= 0).all() and np.unique(g["id"]).size == ng
+        if "phase" in p.columns:
+            ok = ok and ((g["phase"] == 0) | (g["phase"] == 1)).all()
+        if ok:
+            lines.lineno += ng
+            return g
+    lines.unread(block)
+    return None
+
+
+# A wall's name in a contact line becomes a number the C parser reads, far below any id (ids
+# are >= 0), the writer's single spaces around it: -(_WALL_BASE + 1) for xlo ... -(_WALL_BASE + 6).
+_WALL_BASE = 10 ** 18
+_WALL_SUBST = tuple((b" %s " % w.encode(), b" %d " % (-_WALL_BASE - 1 - k)) for k, w in enumerate(WALLS))
+
+
+def _contacts_fast(lines: _Lines, p: Pack, nc: int, g: np.ndarray) -> Optional[np.ndarray]:
+    """The contact lines through a C parser, checked as _contacts_slow checks them."""
+    if nc == 0:
+        return np.zeros(0, dtype=_CONTACT_DTYPE)
+    dt = np.dtype([("i", np.int64), ("j", np.int64), ("P0", np.float64), ("Q0x", np.float64),
+                   ("Q0y", np.float64), ("Q0z", np.float64), ("M0", np.float64)])
+    # refused: a number that reads as a substitute (the line-by-line reader says what it is)
+    a, block = _loadtxt(lines, nc, dt, _WALL_SUBST, b" -%d" % (_WALL_BASE // 10))
+    if a is not None:
+        ids = np.sort(g["id"])
+        i, j = a["i"], a["j"]
+        wall = j <= -_WALL_BASE - 1
+        w = np.where(wall, -_WALL_BASE - 1 - j, 0)
+        ok = bool((w < len(WALLS)).all())
+        ok = ok and all(np.isfinite(a[f]).all() for f in ("P0", "Q0x", "Q0y", "Q0z", "M0"))
+        ok = ok and bool((a["P0"] >= 0).all())
+        k = np.clip(np.searchsorted(ids, i), 0, len(ids) - 1)
+        ok = ok and bool((ids[k] == i).all())
+        jg = j[~wall]
+        k = np.clip(np.searchsorted(ids, jg), 0, len(ids) - 1)
+        ok = ok and bool((ids[k] == jg).all()) and bool((jg != i[~wall]).all())
+        for axis, periodic in enumerate(p.periodic):
+            if periodic:
+                ok = ok and not (wall & (w // 2 == axis)).any()
+        if ok:
+            c = np.zeros(nc, dtype=_CONTACT_DTYPE)
+            c["i"] = i
+            c["j"] = np.where(wall, -1 - w, j)
+            c["j_wall"] = np.where(wall, np.array(WALLS)[w], "")
+            for f in ("P0", "Q0x", "Q0y", "Q0z", "M0"):
+                c[f] = a[f]
+            lines.lineno += nc
+            return c
+    lines.unread(block)
+    return None
+
+
+def _read_body(lines: _Lines, p: Pack, ng: int, nc: int, fast: bool = True) -> Pack:
+    """The grain and contact lines: numpy's C parser (fast) where it can, line by line where
+    it cannot or finds something wrong, so that the error names its line; the same arrays,
+    byte for byte, either way (tests/tools/python.sh)."""
+    fast = fast and (_LOADTXT_C or bool(_get_pandas()))
+    g = _grains_fast(lines, p, ng) if fast else None
+    if g is None:
+        g = _grains_slow(lines, p, ng)
+    c = _contacts_fast(lines, p, nc, g) if fast else None
+    if c is None:
+        c = _contacts_slow(lines, p, nc, g)
     p.grains, p.contacts = g, c
     return p
 
 
-def read_packs(source):
+def read_packs(source: Source, fast: bool = True) -> Iterator[Pack]:
     """Every pack of a stream, in order (a generator): source is a path, '-' (stdin) or a
-    binary file object, plain or gzip."""
+    binary file object, plain or gzip.  fast=False reads every line in Python (the same
+    arrays, slower: the reference the fast path is tested against)."""
     lines = _Lines(source)
     try:
         s = lines.next()
@@ -379,7 +596,7 @@ def read_packs(source):
             raise lines.error("empty input", 1)
         while s is not None:
             p, ng, nc = _read_header(lines, s)
-            yield _read_body(lines, p, ng, nc)
+            yield _read_body(lines, p, ng, nc, fast)
             s = lines.next()
             if s is not None and not s.startswith("qusgm-pack"):
                 raise lines.error("unexpected line after the last contact")
@@ -387,7 +604,7 @@ def read_packs(source):
         lines.close()
 
 
-def read_pack(source):
+def read_pack(source: Source, fast: bool = True) -> Pack:
     """Exactly one pack (as the tools that transform one pack read): see read_packs."""
     lines = _Lines(source)
     try:
@@ -395,7 +612,7 @@ def read_pack(source):
         if s is None:
             raise lines.error("empty input", 1)
         p, ng, nc = _read_header(lines, s)
-        _read_body(lines, p, ng, nc)
+        _read_body(lines, p, ng, nc, fast)
         s = lines.next()
         if s is not None:
             raise lines.error("a second pack follows; use read_packs" if s.startswith("qusgm-pack")
@@ -408,31 +625,44 @@ def read_pack(source):
 class Table:
     """A qusgm table (see the module's docstring)."""
 
-    def __init__(self, names, units, meta, data, name):
+    names: List[str]
+    units: Dict[str, str]
+    meta: List[str]
+    data: np.ndarray
+    name: str
+
+    def __init__(self, names: List[str], units: Dict[str, str], meta: List[str], data: np.ndarray,
+                 name: str) -> None:
         self.names, self.units, self.meta, self.data, self.name = names, units, meta, data, name
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> np.ndarray:
         return self.data[name]
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.data)
 
-    def __contains__(self, name):
+    def __contains__(self, name: object) -> bool:
         return name in self.units
 
-    def to_dataframe(self):
-        """The table as a pandas DataFrame, the units in df.attrs["units"]."""
+    @property
+    def text_columns(self) -> List[str]:
+        """The columns of text (their dtype str), in order."""
+        return [n for n in self.names if self.data.dtype[n].kind == "U"]
+
+    def to_dataframe(self) -> Any:
+        """The table as a pandas DataFrame (text columns as str, the others float64), the units
+        in df.attrs["units"]: the way to pandas."""
         import pandas as pd
 
         df = pd.DataFrame({f: self.data[f] for f in self.names})
         df.attrs["units"] = dict(self.units)
         return df
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "<qusgm.Table %s: %d rows, columns %s>" % (self.name, len(self.data), " ".join(self.names))
 
 
-def _split_name(field):
+def _split_name(field: str) -> Tuple[str, str]:
     """'sig_zz[Pa]' -> ('sig_zz', 'Pa'); 'porosity' -> ('porosity', '')."""
     if field.endswith("]") and "[" in field:
         k = field.index("[")
@@ -441,12 +671,22 @@ def _split_name(field):
     return field, ""
 
 
-def read_table(source):
+def _table_number(t: str) -> float:
+    """A table's number as strtod reads it (nan allowed), or ValueError."""
+    if "_" in t or t != t.strip():
+        raise ValueError(t)
+    return float.fromhex(t) if "x" in t or "X" in t else float(t)
+
+
+def read_table(source: Source) -> Table:
     """A table (path, '-' or binary file object; plain or gzip).  '##' lines anywhere are
     collected in meta, repeats of the header (concatenated tables) skipped, a different
-    header refused, as the tools' table reader does."""
+    header refused, as the tools' table reader does.  A column whose value in the first row
+    is not a number (densify's stage) is a text column, read as str; in every other column
+    each value must be a number ('nan' included)."""
     lines = _Lines(source)
     header, names, meta, rows = None, [], [], []
+    text: List[bool] = []
     try:
         while True:
             s = lines.next()
@@ -472,12 +712,20 @@ def read_table(source):
             tok = s.split("\t")
             if len(tok) != len(names):
                 raise lines.error("%d fields, the header has %d" % (len(tok), len(names)))
-            row = []
-            for t, (n, _) in zip(tok, names):
+            if not rows:
+                for t in tok:
+                    try:
+                        _table_number(t)
+                        text.append(False)
+                    except ValueError:
+                        text.append(True)
+            row: List[Union[float, str]] = []
+            for t, (n, _), is_text in zip(tok, names, text):
+                if is_text:
+                    row.append(t)
+                    continue
                 try:
-                    if "_" in t or t != t.strip():
-                        raise ValueError
-                    row.append(float.fromhex(t) if "x" in t or "X" in t else float(t))
+                    row.append(_table_number(t))
                 except ValueError:
                     raise lines.error("column %s: '%s' is not a number" % (n, t)) from None
             rows.append(tuple(row))
@@ -485,5 +733,9 @@ def read_table(source):
             raise FormatError("%s: empty (no header line)" % lines.name)
     finally:
         lines.close()
-    data = np.array(rows, dtype=[(n, np.float64) for n, _ in names])
+    if not rows:
+        text = [False] * len(names)
+    width = [max([len(r[k]) for r in rows] + [1]) if is_text else 0 for k, is_text in enumerate(text)]  # type: ignore[arg-type]
+    dt = [(n, "U%d" % w if is_text else np.float64) for (n, _), is_text, w in zip(names, text, width)]
+    data = np.array(rows, dtype=dt)
     return Table([n for n, _ in names], {n: u for n, u in names}, meta, data, lines.name)
