@@ -84,24 +84,6 @@ _CONTACT_DTYPE = np.dtype([("i", np.int64), ("j", np.int64), ("j_wall", "U3"), (
                            ("Q0x", np.float64), ("Q0y", np.float64), ("Q0z", np.float64),
                            ("M0", np.float64)])
 
-# numpy's loadtxt is a C parser from numpy 1.23 on, and reads a number as Python's float()
-# does (correctly rounded): the fast path's condition without pandas (_parse_block).
-_LOADTXT_C = tuple(int(v) for v in np.__version__.split(".")[:2]) >= (1, 23)
-_pandas: Any = None  # the module once imported, False when it is not installed
-
-
-def _get_pandas() -> Any:
-    """pandas, imported on first use (it takes a while), or False."""
-    global _pandas
-    if _pandas is None:
-        try:
-            import pandas
-            _pandas = pandas
-        except ImportError:
-            _pandas = False
-    return _pandas
-
-
 class FormatError(ValueError):
     """A malformed pack or table: the message is "FILE:LINE: what is wrong"."""
 
@@ -465,30 +447,62 @@ def _contacts_slow(lines: _Lines, p: Pack, nc: int, g: np.ndarray) -> np.ndarray
     return c
 
 
-def _parse_block(data: bytes, dtype: np.dtype) -> np.ndarray:
-    """Lines of numbers separated by single spaces into a structured array, by a C parser that
-    reads a number as Python's float() does (correctly rounded): pandas' with
-    float_precision="round_trip" where pandas is installed (about twice numpy's speed; its
-    default converter is not exact), else numpy's loadtxt.  Raises on what they cannot read."""
-    pd = _get_pandas()
-    if pd:
-        df = pd.read_csv(io.BytesIO(data), sep=" ", header=None, names=list(dtype.names),
-                         dtype={f: dtype[f] for f in dtype.names}, engine="c", float_precision="round_trip",
-                         quoting=3, na_filter=False, skip_blank_lines=False, comment=None, encoding="ascii")
-        a = np.empty(len(df), dtype=dtype)
-        for f in dtype.names:
-            col = df[f].to_numpy()
-            if col.dtype != dtype[f]:
-                raise ValueError(f)
-            a[f] = col
-        return a
-    return np.loadtxt(io.StringIO(data.decode("ascii")), dtype=dtype, comments=None, ndmin=1)
+def _spans(arr: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """The bytes of arr[start[k]:end[k]] for every k, concatenated."""
+    lens = end - start
+    if (lens <= 0).any():
+        raise ValueError("an empty token")
+    first = np.repeat(start - np.concatenate(([0], np.cumsum(lens)[:-1])), lens)
+    return arr[first + np.arange(int(lens.sum()))]
 
 
-def _loadtxt(lines: _Lines, n: int, dtype: np.dtype, subst: Sequence[Tuple[bytes, bytes]] = (),
-             refuse: Optional[bytes] = None) -> Tuple[Optional[np.ndarray], bytes]:
-    """The next n lines parsed by a C parser (_parse_block) into a structured array, or None
-    where it cannot (a token that is not a number of the field's kind, a line of another
+def _parse_block(data: bytes, dtype: np.dtype, n: int) -> np.ndarray:
+    """n lines of numbers, separated by single spaces, into a structured array, or ValueError.
+    numpy's fromstring reads the numbers (its strtod rounds correctly, as Python's float()
+    does); the shape is checked on the bytes first: no other blank than one space between
+    tokens, as many tokens on every line as dtype has fields, and the integer fields' tokens
+    made of digits and signs alone (fromstring reads '1.5' as a float where the line-by-line
+    reader wants an integer)."""
+    ncol = len(dtype.names)
+    if (b"\t" in data or b"\r" in data or b"\v" in data or b"\f" in data or b"  " in data
+            or b" \n" in data or b"\n " in data or data[:1] == b" "):
+        raise ValueError("not single spaces")
+    arr = np.frombuffer(data, np.uint8)
+    nl = np.flatnonzero(arr == 10)
+    sp = np.flatnonzero(arr == 32)
+    if len(nl) != n or len(sp) != n * (ncol - 1):
+        raise ValueError("token count")
+    if ncol > 1 and (np.diff(np.searchsorted(sp, nl), prepend=0) != ncol - 1).any():
+        raise ValueError("tokens per line")
+    starts = np.concatenate(([0], nl[:-1] + 1))
+    for k, f in enumerate(dtype.names):
+        if dtype[f].kind != "i":
+            continue
+        lo = starts if k == 0 else sp[k - 1::ncol - 1] + 1
+        hi = nl if k == ncol - 1 else sp[k::ncol - 1]
+        b = _spans(arr, lo, hi)
+        if not (((b >= 48) & (b <= 57)) | (b == 43) | (b == 45)).all():
+            raise ValueError("an integer field that is not digits")
+    v = np.fromstring(data, dtype=np.float64, sep=" ")  # warns (an error here) at a bad token
+    if v.size != n * ncol:
+        raise ValueError("numbers")
+    v = v.reshape(n, ncol)
+    a = np.empty(n, dtype=dtype)
+    for k, f in enumerate(dtype.names):
+        col = v[:, k]
+        if dtype[f].kind == "i":
+            if not (np.abs(col) <= 2.0 ** 53).all():
+                raise ValueError("an integer beyond 2^53")
+            if not (col == col.astype(dtype[f])).all():
+                raise ValueError("an integer out of range")
+        a[f] = col
+    return a
+
+
+def _parse_lines(lines: _Lines, n: int, dtype: np.dtype, subst: Sequence[Tuple[bytes, bytes]] = (),
+                 refuse: Optional[bytes] = None) -> Tuple[Optional[np.ndarray], bytes]:
+    """The next n lines parsed by numpy's C parser (_parse_block) into a structured array, or
+    None where it cannot (a token that is not a number of the field's kind, a line of another
     length, fewer lines, a blank or a NUL byte...).  subst: replacements made before parsing,
     and refuse a text that must not be there before them.  Also the raw lines, for
     lines.unread."""
@@ -501,9 +515,9 @@ def _loadtxt(lines: _Lines, n: int, dtype: np.dtype, subst: Sequence[Tuple[bytes
     for old, new in subst:
         data = data.replace(old, new)
     with warnings.catch_warnings():
-        warnings.simplefilter("error")  # an integer field written as a float is an error here
+        warnings.simplefilter("error")  # fromstring warns at a token it cannot read
         try:
-            a = _parse_block(data, dtype)
+            a = _parse_block(data, dtype, n)
         except Exception:  # whatever the C parser refuses, the line-by-line reader names
             return None, block
     return (a if len(a) == n else None), block
@@ -513,7 +527,7 @@ def _grains_fast(lines: _Lines, p: Pack, ng: int) -> Optional[np.ndarray]:
     """The grain lines through a C parser, checked as _grains_slow checks them; None,
     the lines given back, where any check fails."""
     dt = np.dtype([(c, _DTYPES.get(c, np.float64)) for c in p.columns])
-    g, block = _loadtxt(lines, ng, dt)
+    g, block = _parse_lines(lines, ng, dt)
     if g is not None:
         floats = [c for c in p.columns if c not in _DTYPES]
         ok = all(np.isfinite(g[c]).all() for c in floats)
@@ -529,7 +543,7 @@ def _grains_fast(lines: _Lines, p: Pack, ng: int) -> Optional[np.ndarray]:
 
 # A wall's name in a contact line becomes a number the C parser reads, far below any id (ids
 # are >= 0), the writer's single spaces around it: -(_WALL_BASE + 1) for xlo ... -(_WALL_BASE + 6).
-_WALL_BASE = 10 ** 18
+_WALL_BASE = 10 ** 15
 _WALL_SUBST = tuple((b" %s " % w.encode(), b" %d " % (-_WALL_BASE - 1 - k)) for k, w in enumerate(WALLS))
 
 
@@ -540,7 +554,7 @@ def _contacts_fast(lines: _Lines, p: Pack, nc: int, g: np.ndarray) -> Optional[n
     dt = np.dtype([("i", np.int64), ("j", np.int64), ("P0", np.float64), ("Q0x", np.float64),
                    ("Q0y", np.float64), ("Q0z", np.float64), ("M0", np.float64)])
     # refused: a number that reads as a substitute (the line-by-line reader says what it is)
-    a, block = _loadtxt(lines, nc, dt, _WALL_SUBST, b" -%d" % (_WALL_BASE // 10))
+    a, block = _parse_lines(lines, nc, dt, _WALL_SUBST, b" -%d" % (_WALL_BASE // 10))
     if a is not None:
         ids = np.sort(g["id"])
         i, j = a["i"], a["j"]
@@ -574,7 +588,6 @@ def _read_body(lines: _Lines, p: Pack, ng: int, nc: int, fast: bool = True) -> P
     """The grain and contact lines: numpy's C parser (fast) where it can, line by line where
     it cannot or finds something wrong, so that the error names its line; the same arrays,
     byte for byte, either way (tests/tools/python.sh)."""
-    fast = fast and (_LOADTXT_C or bool(_get_pandas()))
     g = _grains_fast(lines, p, ng) if fast else None
     if g is None:
         g = _grains_slow(lines, p, ng)
