@@ -35,7 +35,7 @@ THREE_JS  = /usr/share/javascript/three/three.min.js
 # packview's browser test opens its pages in headless Chromium (tests/tools/packview.sh)
 DEB_BROWSER = chromium
 DEB_PLOT  = gnuplot-nox
-DEB_PY    = python3-numpy
+DEB_PY    = python3-numpy python3-pandas python3-setuptools
 DEB_PEERS = liggghts
 
 # The exact source of a build, which every tool's --version and every history line it writes
@@ -231,16 +231,17 @@ plotdeps:
 	  fi; \
 	fi
 
-# The Python reader's test (tests/tools/python.sh) needs numpy (Debian python3-numpy): installed
-# as root when no python3 has it, else the test says SKIP.
+# The Python package's test (tests/tools/python.sh) runs under PYTHON (Debian's python3) and needs
+# numpy, pandas (the documented read_csv call, to_dataframe) and setuptools (the wheel): installed
+# as root when missing, else the exact command; the test fails without numpy, never skips.
 pydeps:
-	@if ! python3 -c 'import numpy' >/dev/null 2>&1 && ! /usr/bin/python3 -c 'import numpy' >/dev/null 2>&1; then \
+	@if ! $(PYTHON) -c 'import numpy, pandas, setuptools' >/dev/null 2>&1; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
-	    echo "qusgm: installing $(DEB_PY) for the Python reader's test" >&2; \
-	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PY) >/dev/null || \
-	      echo "qusgm: apt-get install $(DEB_PY) failed: the Python test will be skipped" >&2; \
+	    echo "qusgm: installing $(DEB_PY) for the Python package's test" >&2; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PY); } >/dev/null || \
+	      echo "qusgm: apt-get install $(DEB_PY) failed: the Python test will fail" >&2; \
 	  else \
-	    echo "qusgm: numpy not found, the Python test will be skipped; run: sudo apt-get install $(DEB_PY)" >&2; \
+	    echo "qusgm: $(PYTHON) lacks numpy, pandas or setuptools, the Python test will fail; run: sudo apt-get install $(DEB_PY)" >&2; \
 	  fi; \
 	fi
 
