@@ -11,6 +11,7 @@
 
 #include "base/msg.h"
 #include "base/numfmt.h"
+#include "base/par.h"
 #include "pack/pack.h"
 #include "pack/packio.h"
 #include "contact/contacts.h"
