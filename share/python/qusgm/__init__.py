@@ -1,14 +1,16 @@
 """Read qusgm packs and tables into numpy arrays.
 
-A pure-Python reader of the two kinds of file the qusgm tools write (numpy required,
-pandas optional):
+A reader, in Python and numpy, of the two kinds of file the qusgm tools write (numpy
+required, pandas optional; share/doc/library.md, "Reading packs and tables in Python", says
+where make install puts it):
 
 - packs, qusgm-pack versions 1 and 2 (share/doc/pack-format.md, qusgm-pack(5)), plain or
   gzip-compressed (told by the magic bytes 1f 8b, not by the name), one pack or several
   back to back in one stream;
-- tables, the TSV of packinfo --tsv, loadtest, moduli and frictionalize --log
-  (share/doc/tables.md): '##' metadata lines, one '# ' header of TAB-separated names with
-  their units in brackets (sig_zz[Pa]), rows of numbers, 'nan' for a missing value.
+- tables, the TSV of packinfo --tsv, loadtest, moduli, frictionalize --log, densify --log and
+  shear (share/doc/tables.md): '##' metadata lines, one '# ' header of TAB-separated names
+  with their units in brackets (sig_zz[Pa]), rows of numbers, 'nan' for a missing value, and
+  text columns (densify's stage).
 
     import qusgm
     p = qusgm.read_pack("dense.pack.gz")
@@ -16,11 +18,18 @@ pandas optional):
     phi = 1 - (4 / 3 * np.pi * g["r"] ** 3).sum() / p.volume
     t = qusgm.read_table("curve.tsv")
     t["sig_zz"], t.units["sig_zz"]       # a column (float64 array) and its unit, 'Pa'
-    df = t.to_dataframe()                # with pandas
+    df = t.to_dataframe()                # the way to pandas, units in df.attrs["units"]
 
-Every number is converted by Python's float(), which rounds correctly, so a value reads as
-the exact double the tool wrote (the writers print the shortest decimal that reads back to
-it).  Units are SI: m, Pa, kg/m^3, N, N m.
+Every number is converted by a correctly rounded parser (Python's float(), or numpy's
+fromstring on the fast path), so a value reads as the exact double the tool wrote (the
+writers print the shortest decimal that reads back to it).  Units are SI: m, Pa, kg/m^3, N,
+N m.
+
+The grain and contact lines of a pack go through numpy's C parser (the fast path: a
+million grains in seconds rather than the line-by-line parser's tens of seconds) after their
+shape and integer columns are checked on the bytes; where anything is off, the lines go to
+the line-by-line parser, which names the line that is wrong.  Both give the same arrays byte
+for byte and accept the same input; read_pack(..., fast=False) is the line-by-line one.
 
 Pack (read_pack, read_packs): attributes version (1 or 2), history (list of the history
 lines' text, oldest first), meta (dict), units ('SI'), box and refbox (numpy arrays
@@ -36,7 +45,8 @@ the pack starts).  pack.to_dataframe() and pack.to_dataframe("contacts") need pa
 
 Table (read_table): names (column names without their units), units (dict name -> unit,
 '' without brackets), meta (the '##' lines, without '## '), data (structured array, every
-field float64, nan for 'nan'), t[name] a column, len(t) the rows, t.to_dataframe().
+field float64, nan for 'nan', but a text column, one whose first row is not a number, str),
+text_columns (their names), t[name] a column, len(t) the rows, t.to_dataframe().
 
 Malformed input raises FormatError (a ValueError) "FILE:LINE: what is wrong", as the tools
 report it.  This reader checks the structure of a pack (header keywords, counts, columns,
@@ -506,9 +516,7 @@ def _parse_lines(lines: _Lines, n: int, dtype: np.dtype, subst: Sequence[Tuple[b
     length, fewer lines, a blank or a NUL byte...).  subst: replacements made before parsing,
     and refuse a text that must not be there before them.  Also the raw lines, for
     lines.unread."""
-    block = lines.take(n)
-    if block.count(b"\n") != n:
-        return None, block
+    block = lines.take(n)  # fewer lines than n: _parse_block counts them
     data = block
     if b"\0" in data or b"#" in data or b"\r" in data or (refuse is not None and refuse in data):
         return None, block
