@@ -283,6 +283,8 @@ cases = [("dense.pack", 0, "1 ", x) for x in ("1.0 ", "+1 ", "01 ", "1e0 ", "0x1
     ("dense.pack", ng, c0[1] + " ", "-1000000000000001 "), ("dense.pack", ng, c0[1] + " ", "xlo "), ("dense.pack", ng, c0[1] + " ", "XLO "),
     ("dense.pack", ng, c0[0] + " ", "0 "), ("dense.pack", ng, c0[2], "-" + c0[2]), ("dense.pack", ng, "\n", "\t\n"),
     ("dense.pack", wk, " " + wl.split()[1] + " ", "\t" + wl.split()[1] + " "), ("dense.pack", wk, " " + wl.split()[1] + " ", " xmid "),
+    ("dense.pack", wk, " " + wl.split()[1] + " ", " xhx "), ("dense.pack", wk, " " + wl.split()[1] + " ", " zlo1 "),
+    ("dense.pack", wk, " " + wl.split()[1] + " ", " " + ("yhi" if wl.split()[1] != "yhi" else "xlo") + " "),
     ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " 2\n"),
     ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " +1\n"),
     ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " 01\n")]

@@ -466,13 +466,15 @@ def _spans(arr: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarray:
     return arr[first + np.arange(int(lens.sum()))]
 
 
-def _parse_block(data: bytes, dtype: np.dtype, n: int) -> np.ndarray:
+def _parse_block(data: bytes, dtype: np.dtype, n: int, wall_col: int = -1) -> Tuple[np.ndarray, np.ndarray]:
     """n lines of numbers, separated by single spaces, into a structured array, or ValueError.
     numpy's fromstring reads the numbers (its strtod rounds correctly, as Python's float()
     does); the shape is checked on the bytes first: no other blank than one space between
     tokens, as many tokens on every line as dtype has fields, and the integer fields' tokens
     made of digits and signs alone (fromstring reads '1.5' as a float where the line-by-line
-    reader wants an integer)."""
+    reader wants an integer).  In the column wall_col a token may be a wall's name instead,
+    which is written over with a number before fromstring reads the lines; the second array
+    returned is each line's wall index in WALLS there, -1 for a number."""
     ncol = len(dtype.names)
     if (b"\t" in data or b"\r" in data or b"\v" in data or b"\f" in data or b"  " in data
             or b" \n" in data or b"\n " in data or data[:1] == b" "):
@@ -485,14 +487,34 @@ def _parse_block(data: bytes, dtype: np.dtype, n: int) -> np.ndarray:
     if ncol > 1 and (np.diff(np.searchsorted(sp, nl), prepend=0) != ncol - 1).any():
         raise ValueError("tokens per line")
     starts = np.concatenate(([0], nl[:-1] + 1))
+    walls = np.full(n, -1, dtype=np.int64)
     for k, f in enumerate(dtype.names):
         if dtype[f].kind != "i":
             continue
         lo = starts if k == 0 else sp[k - 1::ncol - 1] + 1
         hi = nl if k == ncol - 1 else sp[k::ncol - 1]
-        b = _spans(arr, lo, hi)
-        if not (((b >= 48) & (b <= 57)) | (b == 43) | (b == 45)).all():
-            raise ValueError("an integer field that is not digits")
+        if k == wall_col:
+            # xlo xhi ylo yhi zlo zhi: x, y or z, then lo or hi; the index 2 axis + (hi)
+            first = arr[lo]
+            cand = (hi - lo == 3) & (first >= 120) & (first <= 122)
+            at = lo[cand]
+            s1, s2 = arr[at + 1], arr[at + 2]
+            is_hi = (s1 == 104) & (s2 == 105)
+            if not (is_hi | ((s1 == 108) & (s2 == 111))).all():
+                raise ValueError("a word that is not a wall's name")
+            walls[cand] = (first[cand] - 120) * 2 + is_hi
+            lo, hi = lo[~cand], hi[~cand]
+            if len(at):  # the names written over with 0 (the same length), one copy
+                pieces, prev = [], 0
+                for q in at.tolist():
+                    pieces += (data[prev:q], b"  0")
+                    prev = q + 3
+                pieces.append(data[prev:])
+                data = b"".join(pieces)
+        if len(lo):
+            b = _spans(arr, lo, hi)
+            if not (((b >= 48) & (b <= 57)) | (b == 43) | (b == 45)).all():
+                raise ValueError("an integer field that is not digits")
     v = np.fromstring(data, dtype=np.float64, sep=" ")  # warns (an error here) at a bad token
     if v.size != n * ncol:
         raise ValueError("numbers")
@@ -506,36 +528,33 @@ def _parse_block(data: bytes, dtype: np.dtype, n: int) -> np.ndarray:
             if not (col == col.astype(dtype[f])).all():
                 raise ValueError("an integer out of range")
         a[f] = col
-    return a
+    return a, walls
 
 
-def _parse_lines(lines: _Lines, n: int, dtype: np.dtype, subst: Sequence[Tuple[bytes, bytes]] = (),
-                 refuse: Optional[bytes] = None) -> Tuple[Optional[np.ndarray], bytes]:
+def _parse_lines(lines: _Lines, n: int, dtype: np.dtype,
+                 wall_col: int = -1) -> Tuple[Optional[np.ndarray], np.ndarray, bytes]:
     """The next n lines parsed by numpy's C parser (_parse_block) into a structured array, or
     None where it cannot (a token that is not a number of the field's kind, a line of another
-    length, fewer lines, a blank or a NUL byte...).  subst: replacements made before parsing,
-    and refuse a text that must not be there before them.  Also the raw lines, for
-    lines.unread."""
+    length, fewer lines, a blank or a NUL byte...); the lines' walls (_parse_block); the raw
+    lines, for lines.unread."""
     block = lines.take(n)  # fewer lines than n: _parse_block counts them
-    data = block
-    if b"\0" in data or b"#" in data or b"\r" in data or (refuse is not None and refuse in data):
-        return None, block
-    for old, new in subst:
-        data = data.replace(old, new)
+    none = np.zeros(0, dtype=np.int64)
+    if b"\0" in block or b"#" in block or b"\r" in block:
+        return None, none, block
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # fromstring warns at a token it cannot read
         try:
-            a = _parse_block(data, dtype, n)
+            a, walls = _parse_block(block, dtype, n, wall_col)
         except Exception:  # whatever the C parser refuses, the line-by-line reader names
-            return None, block
-    return (a if len(a) == n else None), block
+            return None, none, block
+    return (a if len(a) == n else None), walls, block
 
 
 def _grains_fast(lines: _Lines, p: Pack, ng: int) -> Optional[np.ndarray]:
     """The grain lines through a C parser, checked as _grains_slow checks them; None,
     the lines given back, where any check fails."""
     dt = np.dtype([(c, _DTYPES.get(c, np.float64)) for c in p.columns])
-    g, block = _parse_lines(lines, ng, dt)
+    g, _, block = _parse_lines(lines, ng, dt)
     if g is not None:
         floats = [c for c in p.columns if c not in _DTYPES]
         ok = all(np.isfinite(g[c]).all() for c in floats)
@@ -549,27 +568,19 @@ def _grains_fast(lines: _Lines, p: Pack, ng: int) -> Optional[np.ndarray]:
     return None
 
 
-# A wall's name in a contact line becomes a number the C parser reads, far below any id (ids
-# are >= 0), the writer's single spaces around it: -(_WALL_BASE + 1) for xlo ... -(_WALL_BASE + 6).
-_WALL_BASE = 10 ** 15
-_WALL_SUBST = tuple((b" %s " % w.encode(), b" %d " % (-_WALL_BASE - 1 - k)) for k, w in enumerate(WALLS))
-
-
 def _contacts_fast(lines: _Lines, p: Pack, nc: int, g: np.ndarray) -> Optional[np.ndarray]:
     """The contact lines through a C parser, checked as _contacts_slow checks them."""
     if nc == 0:
         return np.zeros(0, dtype=_CONTACT_DTYPE)
     dt = np.dtype([("i", np.int64), ("j", np.int64), ("P0", np.float64), ("Q0x", np.float64),
                    ("Q0y", np.float64), ("Q0z", np.float64), ("M0", np.float64)])
-    # refused: a number that reads as a substitute (the line-by-line reader says what it is)
-    a, block = _parse_lines(lines, nc, dt, _WALL_SUBST, b" -%d" % (_WALL_BASE // 10))
+    a, walls, block = _parse_lines(lines, nc, dt, wall_col=1)
     if a is not None:
         ids = np.sort(g["id"])
         i, j = a["i"], a["j"]
-        wall = j <= -_WALL_BASE - 1
-        w = np.where(wall, -_WALL_BASE - 1 - j, 0)
-        ok = bool((w < len(WALLS)).all())
-        ok = ok and all(np.isfinite(a[f]).all() for f in ("P0", "Q0x", "Q0y", "Q0z", "M0"))
+        wall = walls >= 0
+        w = np.where(wall, walls, 0)
+        ok = all(np.isfinite(a[f]).all() for f in ("P0", "Q0x", "Q0y", "Q0z", "M0"))
         ok = ok and bool((a["P0"] >= 0).all())
         k = np.clip(np.searchsorted(ids, i), 0, len(ids) - 1)
         ok = ok and bool((ids[k] == i).all())
