@@ -25,9 +25,9 @@ fromstring on the fast path), so a value reads as the exact double the tool wrot
 writers print the shortest decimal that reads back to it).  Units are SI: m, Pa, kg/m^3, N,
 N m.
 
-The grain and contact lines of a pack go through numpy's C parser (the fast path: a
-million grains in seconds rather than the line-by-line parser's tens of seconds) after their
-shape and integer columns are checked on the bytes; where anything is off, the lines go to
+The grain and contact lines of a pack go through numpy's C parser (the fast path, about half
+the time of the line-by-line parser, whose cost is per line) after their shape and integer
+columns are checked on the bytes; where anything is off, the lines go to
 the line-by-line parser, which names the line that is wrong.  Both give the same arrays byte
 for byte and accept the same input; read_pack(..., fast=False) is the line-by-line one.
 
