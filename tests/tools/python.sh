@@ -288,15 +288,22 @@ cases = [("dense.pack", 0, "1 ", x) for x in ("1.0 ", "+1 ", "01 ", "1e0 ", "0x1
     ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " 2\n"),
     ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " +1\n"),
     ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " 01\n")]
-same_outcome, errors = [], 0
-for path, line, old, new in cases:
-    t = mutate(path, line, old, new)
-    f, s = outcome(t, True), outcome(t, False)
-    errors += f[0] == "error"
-    if f != s:
-        same_outcome.append((path, line, old, new, f[:2], s[:2]))
-check("damaged packs: the fast path accepts and refuses as the line-by-line reader, the same message (%d cases, %d refused)"
-      % (len(cases), errors), not same_outcome and errors > len(cases) // 2, same_outcome[:3])
+for chunk in (qusgm._CHUNK, 37):  # the default (one chunk here), and chunks of 37 lines
+    qusgm._CHUNK = chunk
+    same_outcome, errors = [], 0
+    for path, line, old, new in cases + [("dense.pack", k, None, "\n") for k in (36, 37, 38, ng + 36)]:
+        t = mutate(path, line, old, new)
+        f, s = outcome(t, True), outcome(t, False)
+        errors += f[0] == "error"
+        if f != s:
+            same_outcome.append((path, line, old, new, f[:2], s[:2]))
+    check("damaged packs, %d lines a chunk: the fast path accepts and refuses as the line-by-line reader, "
+          "the same message (%d cases, %d refused)" % (chunk, len(cases) + 4, errors),
+          not same_outcome and errors > len(cases) // 2, same_outcome[:3])
+    ok = all(qusgm.read_pack(f).grains.tobytes() + qusgm.read_pack(f).contacts.tobytes() ==
+             qusgm.read_pack(f, fast=False).grains.tobytes() + qusgm.read_pack(f, fast=False).contacts.tobytes()
+             for f in ("dense.pack", "dense.pack.gz", "fr.pack", "plates.pack"))
+    check("%d lines a chunk: fast and line-by-line the same bytes" % chunk, ok)
 
 if pd is not None:
     df = d.to_dataframe()
