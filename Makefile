@@ -9,7 +9,11 @@ DATADIR  ?= $(PREFIX)/share/qusgm
 LIBDIR   ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
 PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
-PYTHONDIR ?= $(DATADIR)/python
+# The Python package (share/python/qusgm) goes where PYTHON finds it for PREFIX
+# (share/python/pythondir.py): Debian's /usr/lib/python3/dist-packages for PREFIX=/usr,
+# /usr/local/lib/python3.X/dist-packages for /usr/local; Debian's python3 by default.
+PYTHON   ?= $(firstword $(wildcard /usr/bin/python3) python3)
+PYTHONDIR ?= $(shell $(PYTHON) share/python/pythondir.py $(PREFIX))
 DESTDIR  ?=
 
 CC       ?= cc
@@ -36,7 +40,7 @@ THREE_JS  = /usr/share/javascript/three/three.min.js
 # packview's browser test opens its pages in headless Chromium (tests/tools/packview.sh)
 DEB_BROWSER = chromium
 DEB_PLOT  = gnuplot-nox
-DEB_PY    = python3-numpy
+DEB_PY    = python3-numpy python3-pandas python3-setuptools
 DEB_PEERS = liggghts
 
 # The exact source of a build, which every tool's --version and every history line it writes
@@ -98,8 +102,8 @@ all: deps
 	@$(MAKE) --no-print-directory tools unit libs
 
 tools: $(TOOL_BIN)
-# The installable library, static and shared (the tools link the static one).
-libs: $(B)/libqusgm.a $(B)/$(SOLIB)
+# The installable library, static and shared (the tools link the static one, as compiled).
+libs: $(B)/libqusgm.a $(B)/$(SOLIB) $(B)/api/libqusgm.a $(B)/api/rename.sed
 unit: $(UNIT_BIN) $(FUZZ_REPLAY)
 
 # The dependencies come from Debian packages.  As root, install what is missing; otherwise
@@ -158,7 +162,34 @@ $(B)/pic/%.o: lib/%.c $(LIB_HDR)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -fPIC -c -o $@ $<
 
-$(B)/$(SOLIB): $(PIC_OBJ)
+# The installed libraries export the API alone (lib/qusgm.api), each name prefixed qusgm_: the
+# objects linked into one (-r), the API's names renamed and kept global, every other symbol made
+# local, so that a program's own table_read or path_parse never meets the library's.  The
+# installed headers are the closure of the umbrella lib/qusgm.h, the API's names renamed the
+# same way (share/doc/library.md, "Using the library").
+OBJCOPY  ?= objcopy
+API       = lib/qusgm.api
+$(B)/api/names: $(API)
+	@mkdir -p $(@D)
+	sed -e 's/#.*//' -e '/^[[:space:]]*$$/d' $(API) >$@
+$(B)/api/rename.sed: $(B)/api/names
+	sed 's/.*/s\/\\<&\\>\/qusgm_\&\/g/' $(B)/api/names >$@
+define api_object
+$(CC) -r -nostdlib -o $@.all $(filter %.o,$^)
+sed 's/.*/& qusgm_&/' $(B)/api/names >$@.redefine
+sed 's/^/qusgm_/' $(B)/api/names >$@.keep
+$(OBJCOPY) --redefine-syms=$@.redefine --keep-global-symbols=$@.keep $@.all $@
+rm -f $@.all $@.redefine $@.keep
+endef
+$(B)/api/static.o: $(LIB_OBJ) $(B)/api/names
+	$(api_object)
+$(B)/api/shared.o: $(PIC_OBJ) $(B)/api/names
+	$(api_object)
+$(B)/api/libqusgm.a: $(B)/api/static.o
+	rm -f $@
+	ar rcs $@ $^
+
+$(B)/$(SOLIB): $(B)/api/shared.o
 	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -shared -Wl,-soname,$(SONAME) -o $@ $^ $(ALL_LIBS)
 
 $(B)/bin/%: tools/%.c $(B)/libqusgm.a $(LIB_HDR)
@@ -205,16 +236,17 @@ plotdeps:
 	  fi; \
 	fi
 
-# The Python reader's test (tests/tools/python.sh) needs numpy (Debian python3-numpy): installed
-# as root when no python3 has it, else the test says SKIP.
+# The Python package's test (tests/tools/python.sh) runs under PYTHON (Debian's python3) and needs
+# numpy, pandas (the documented read_csv call, to_dataframe) and setuptools (the wheel): installed
+# as root when missing, else the exact command; the test fails without numpy, never skips.
 pydeps:
-	@if ! python3 -c 'import numpy' >/dev/null 2>&1 && ! /usr/bin/python3 -c 'import numpy' >/dev/null 2>&1; then \
+	@if ! $(PYTHON) -c 'import numpy, pandas, setuptools' >/dev/null 2>&1; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
-	    echo "qusgm: installing $(DEB_PY) for the Python reader's test" >&2; \
-	    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PY) >/dev/null || \
-	      echo "qusgm: apt-get install $(DEB_PY) failed: the Python test will be skipped" >&2; \
+	    echo "qusgm: installing $(DEB_PY) for the Python package's test" >&2; \
+	    { apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEB_PY); } >/dev/null || \
+	      echo "qusgm: apt-get install $(DEB_PY) failed: the Python test will fail" >&2; \
 	  else \
-	    echo "qusgm: numpy not found, the Python test will be skipped; run: sudo apt-get install $(DEB_PY)" >&2; \
+	    echo "qusgm: $(PYTHON) lacks numpy, pandas or setuptools, the Python test will fail; run: sudo apt-get install $(DEB_PY)" >&2; \
 	  fi; \
 	fi
 
@@ -349,6 +381,9 @@ cluster-check: all
 interop: all
 	@sh tests/interop.sh build/bin
 
+# The installed headers: lib/qusgm.h and what it includes (its public headers and theirs).
+API_HDR   = $(filter lib/%.h,$(shell $(CC) -MM -Ilib $(PKG_CFLAGS) lib/qusgm.h))
+
 # make install copies what make built; it installs no dependency (make does that, as root)
 install: tools libs
 	mkdir -p $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANPREFIX)/man1 $(DESTDIR)$(MANPREFIX)/man5 $(DESTDIR)$(MANPREFIX)/man7 $(DESTDIR)$(DATADIR)
@@ -361,14 +396,15 @@ install: tools libs
 	cp pipelines/Makefile pipelines/README.md pipelines/*.sh $(DESTDIR)$(DATADIR)/pipelines/
 	cp share/plot/* $(DESTDIR)$(DATADIR)/plot/
 	cp examples/README.md examples/*.sh $(DESTDIR)$(DATADIR)/examples/
-	mkdir -p $(DESTDIR)$(PYTHONDIR)
-	cp share/python/qusgm.py $(DESTDIR)$(PYTHONDIR)/
+	mkdir -p $(DESTDIR)$(PYTHONDIR)/qusgm
+	cp share/python/qusgm/__init__.py share/python/qusgm/py.typed $(DESTDIR)$(PYTHONDIR)/qusgm/
 	mkdir -p $(DESTDIR)$(LIBDIR) $(DESTDIR)$(PKGCONFIGDIR)
-	cp $(B)/libqusgm.a $(B)/$(SOLIB) $(DESTDIR)$(LIBDIR)/
+	cp $(B)/api/libqusgm.a $(B)/$(SOLIB) $(DESTDIR)$(LIBDIR)/
 	ln -sf $(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME)
 	ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libqusgm.so
-	for h in $(LIB_HDR:lib/%=%); do \
-	  mkdir -p $(DESTDIR)$(INCLUDEDIR)/qusgm/$${h%/*} && cp lib/$$h $(DESTDIR)$(INCLUDEDIR)/qusgm/$$h || exit 1; \
+	for h in $(sort $(API_HDR:lib/%=%)); do \
+	  mkdir -p $(DESTDIR)$(INCLUDEDIR)/qusgm/$$(dirname $$h) && \
+	  sed -f $(B)/api/rename.sed lib/$$h >$(DESTDIR)$(INCLUDEDIR)/qusgm/$$h || exit 1; \
 	done
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(patsubst $(PREFIX)%,$${prefix}%,$(LIBDIR))|' \
 	  -e 's|@INCLUDEDIR@|$(patsubst $(PREFIX)%,$${prefix}%,$(INCLUDEDIR))|' -e 's|@VERSION@|$(VERSION)|' \
@@ -379,8 +415,7 @@ uninstall:
 	for m in $(notdir $(MAN1)); do rm -f $(DESTDIR)$(MANPREFIX)/man1/$$m; done
 	for m in $(notdir $(MAN5)); do rm -f $(DESTDIR)$(MANPREFIX)/man5/$$m; done
 	for m in $(notdir $(MAN7)); do rm -f $(DESTDIR)$(MANPREFIX)/man7/$$m; done
-	rm -rf $(DESTDIR)$(DATADIR)
-	rm -f $(DESTDIR)$(PYTHONDIR)/qusgm.py
+	rm -rf $(DESTDIR)$(DATADIR) $(DESTDIR)$(PYTHONDIR)/qusgm
 	rm -f $(DESTDIR)$(LIBDIR)/libqusgm.a $(DESTDIR)$(LIBDIR)/$(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME) \
 	  $(DESTDIR)$(LIBDIR)/libqusgm.so $(DESTDIR)$(PKGCONFIGDIR)/qusgm.pc
 	rm -rf $(DESTDIR)$(INCLUDEDIR)/qusgm
@@ -458,7 +493,7 @@ help:
 	@echo "make interop    open the exports in third-party readers (needs python3; paraview/ovito if present)"
 	@echo "make fuzz       each libFuzzer harness (tests/fuzz/) for FUZZ_SECONDS=$(FUZZ_SECONDS) s, built with clang in build-fuzz/"
 	@echo "make install    PREFIX=$(PREFIX) DESTDIR= : tools, man pages, docs, studies, plot scripts, examples, the library (libqusgm.a, $(SOLIB),"
-	@echo "                headers in include/qusgm, qusgm.pc) and the Python reader (share/qusgm/python/qusgm.py)"
+	@echo "                the public headers in include/qusgm, qusgm.pc) and the Python package qusgm in PYTHONDIR"
 	@echo "make deb        Debian packages in build-deb/ (debian/; dpkg-buildpackage, lintian; installs the packaging tools as root)"
 	@echo "make uninstall  removes what make install installed (same PREFIX and DESTDIR)"
-	@echo "knobs: CC OPT (or CFLAGS) CPPFLAGS LDFLAGS EXTRA_CFLAGS PREFIX DESTDIR BINDIR LIBDIR INCLUDEDIR PKGCONFIGDIR MANPREFIX DATADIR PYTHONDIR"
+	@echo "knobs: CC OPT (or CFLAGS) CPPFLAGS LDFLAGS EXTRA_CFLAGS PREFIX DESTDIR BINDIR LIBDIR INCLUDEDIR PKGCONFIGDIR MANPREFIX DATADIR PYTHON PYTHONDIR"

@@ -55,6 +55,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 struct fabric_interaction {
 	double n[3];	/* unit normal */
 	double l[3];	/* branch vector, from the other centre to this one's (along n) */
@@ -84,5 +88,9 @@ void fabric_planar(const double t[6], double *a, double *theta);
  * every interaction descriptor is NaN. */
 void fabric_describe(const struct fabric_interaction *it, size_t n, const double *m, size_t np, const double sig[6],
     struct fabric_desc *d);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

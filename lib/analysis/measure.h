@@ -33,6 +33,10 @@
 #include "contact/contacts.h"
 #include "pack/pack.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Floor of a grain's largest contact force in the residual, relative to the mean normal
  * contact force: packinfo and the minimisers share it (qs/functional.h, qs_residual). */
 #define MEASURE_RESIDUAL_FLOOR 1e-3
@@ -229,5 +233,9 @@ int measure_plate_contact_list(const struct pack *p, struct plate_contact **list
  * degenerate largest eigenvalue leaves the director one of its eigenvectors.  0, or -1 with
  * msg_seterr (n = 0, GSL failure). */
 int measure_nematic(const double *u, size_t n, double *S, double director[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The release: the Makefile's VERSION (tests/tools/version.sh checks that they agree). */
 #define QUSGM_VERSION "0.2.0"
 
@@ -98,5 +102,9 @@ void cli_progress_end(void);
 
 /* Wall-clock seconds since cli_parse, to the millisecond: the logs' elapsed[s] column. */
 double cli_elapsed(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -16,7 +16,20 @@
 #define QUSGM_MSG_H
 
 #include <stdarg.h>
-#include <stdnoreturn.h>
+
+/* A function that does not return, in C (_Noreturn) and in C++ ([[noreturn]]): the installed
+ * headers compile as both (share/doc/library.md, "Using the library"). */
+#ifndef QUSGM_NORETURN
+#ifdef __cplusplus
+#define QUSGM_NORETURN [[noreturn]]
+#else
+#define QUSGM_NORETURN _Noreturn
+#endif
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* EXIT_STOPPED: a run stopped on purpose with its state saved (a checkpoint at a time limit),
  * to be rerun to go on; sysexits.h's EX_TEMPFAIL, which job schedulers read as "try again". */
@@ -31,7 +44,7 @@ extern void (*msg_before)(void);
 void msg_init(const char *argv0);
 
 /* Print "prog: fmt" and exit with status.  A format ending in ':' gets ": strerror(errno)". */
-noreturn void msg_die(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+QUSGM_NORETURN void msg_die(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void msg_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void msg_info(int level, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
@@ -39,9 +52,13 @@ void msg_info(int level, const char *fmt, ...) __attribute__((format(printf, 2, 
  * prints it with msg_die_err().  Keeps the library from printing. */
 void msg_seterr(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 const char *msg_geterr(void);
-noreturn void msg_die_err(int status);
+QUSGM_NORETURN void msg_die_err(int status);
 
 /* Replace GSL's abort() handler with one that records the error in the slot. */
 void msg_gsl_handler_install(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -7,11 +7,19 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Writes into buf (at least 32 bytes); returns the length. */
 int num_format(char *buf, double v);
 /* Parse a whole token as a finite double; 0 on success, -1 otherwise. */
 int num_parse(const char *s, double *v);
 /* Parse a whole token as a long; 0 on success. */
 int num_parse_long(const char *s, long *v);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -23,6 +23,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Loops over grains below this many are not split: par_min(), 4 par_block_min() (1024);
  * loops over vector elements below PAR_MIN_VEC, 16 par_block_min() (4096), where a
  * thread's share would cost less than waking it. */
@@ -92,5 +96,9 @@ double par_axpy_scale_dot(double *y, double f, const double *x, double c, const 
 double par_quad3(const double *M, const double *y, size_t n);
 void par_diff_dots(double *s, const double *a, const double *b, double *y, const double *u, const double *v, size_t n,
     double *sy, double *yy);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

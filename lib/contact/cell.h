@@ -11,6 +11,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 struct cell_grid {
 	double lo[3], inv[3];	/* origin and 1/cell edge per axis */
 	int periodic[3];	/* wrap along this axis: cells, and branch vectors to the nearest image */
@@ -42,5 +46,9 @@ long cell_for_pairs(const struct cell_grid *g, const double *x, const double *r,
  * that cover the grid meet every pair once (the threads of nlist_build). */
 long cell_for_pairs_in(const struct cell_grid *g, size_t c0, size_t c1, const double *x, const double *r,
     double skin, cell_pair_fn fn, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

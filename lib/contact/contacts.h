@@ -33,6 +33,10 @@
 #include "contact/nlist.h"
 #include "pack/pack.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The enumerator and its callbacks in the hot loops must be inlined into each other, or the
  * callback is a call through a pointer per contact (1.7x slower per evaluation, measured
  * with bench/evalscale): GCC and clang are told so. */
@@ -413,5 +417,9 @@ int contacts_store_in(struct pack *p, struct contact_enum *e, int keep_history);
  * new line.  A frictional increment's commit and the start of the next settle pass, at the
  * same positions, then walk the contacts once instead of twice.  0 or -1. */
 int contacts_store_found(struct pack *p, struct contact_enum *e, int keep_history, struct geo_contacts *found);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

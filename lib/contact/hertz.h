@@ -22,6 +22,10 @@
 #include <math.h>
 #include "contact/law.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A grain's (or the walls') normal compliance (1 - nu^2) / E (1/Pa). */
 LAW_INLINE double
 hertz_compliance(double E, double nu)
@@ -212,6 +216,10 @@ hertz_dem_force2(double zeta, double kt_ratio, double mu, double Es, v2d Rs, v2d
 	v2d kn = hertz_stiffness_t2(Es, Rs, h);
 
 	return law_dem_damped2(zeta, kt_ratio, mu, n, vr, meff, dt, kn, hertz_force_k2(kn, h), xi, ft);
+}
+#endif
+
+#ifdef __cplusplus
 }
 #endif
 

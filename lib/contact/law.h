@@ -37,6 +37,10 @@
 #include "base/lanes.h"
 #include "pack/pack.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A pair's physics, set once per pair by the law's pair setup (struct contact_law's pair;
  * hertz_mindlin_pair for both laws of the table). */
 struct law_pair {
@@ -235,6 +239,10 @@ law_dem_damped2(double zeta, double kt_ratio, double mu, const v2d n[3], const v
 		vt[a] = vr[a] - vn * n[a];
 	law_dem_spring2(xi, n, vt, dt, kt_ratio * kn, law_coulomb_limit2(mu, fn), ft);
 	return fn;
+}
+#endif
+
+#ifdef __cplusplus
 }
 #endif
 

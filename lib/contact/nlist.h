@@ -12,6 +12,10 @@
 #include <stdint.h>
 #include "contact/cell.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 struct nlist {
 	size_t n;
 	size_t *first;		/* n + 1 row offsets */
@@ -36,5 +40,9 @@ int nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, co
     const double hi[3], double rmax, double skin, const int *periodic);
 /* 1 when a pair may have come within range since the build. */
 int nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const double hi[3]);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -25,6 +25,10 @@
 #include <stddef.h>
 #include "pack/shape.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define PACK_FORMAT_NAME "qusgm-pack"
 #define PACK_FORMAT_VERSION 2	/* the newest version read and written */
 
@@ -143,7 +147,7 @@ int pack_set_phases(struct pack *p);
 static inline int
 pack_grain_phase(const struct pack *p, size_t i)
 {
-	return p->has_phase ? p->phase[i] : PHASE_MINERAL;
+	return p->has_phase ? p->phase[i] : (int)PHASE_MINERAL;
 }
 /* Give p the glued column, every grain free (0): what the shear's snapshots call, and what
  * the reader calls for a columns line that names it.  Nothing happens when p has it already.
@@ -242,5 +246,9 @@ size_t pack_find_id(const struct pack *p, long id, size_t *scratch_sorted);
  * X the CRC-32 of the ids, centres and radii (and sides and orientations when it has them),
  * into buf (64 bytes are enough). */
 void pack_checksum(const struct pack *p, char *buf, size_t len);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

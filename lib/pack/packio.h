@@ -24,6 +24,10 @@
 #include "base/cli.h"
 #include "pack/pack.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The ranges in which the reader takes a value, those where the physics of the tools holds
  * and the bounds their options already keep (share/doc/pack-format.md, "Ranges"):
  * - friction coefficients (the friction and walls lines) in [0, PACK_MU_MAX], the range of
@@ -84,5 +88,9 @@ int pack_write_tool_out(struct pack *p, const struct cli_tool *tool, const struc
  * committed together, all or none: 0, or -1 with msg_seterr and neither committed (also
  * aborted when the pack could not be written). */
 int pack_write_tool_with(struct pack *p, const struct cli_tool *tool, const struct cli_state *st, struct file_out *also);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -24,6 +24,10 @@
 #ifndef QUSGM_SHAPE_H
 #define QUSGM_SHAPE_H
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum shape_radius { SHAPE_R_EDGE = 0, SHAPE_R_CORNER = 1 };
 
 extern const char *const shape_radius_names[2];	/* "edge", "corner" */
@@ -43,5 +47,9 @@ double shape_volume(double r, double L);
  * I_normal/rho  = r L^4/3 + (2 pi/3) r^2 L^3 + (8/3 + 2 pi/3) r^3 L^2 + (3 pi/2) r^4 L + (8 pi/15) r^5,
  * I_inplane/rho = r L^4/6 + (pi/3) r^2 L^3 + (2 + pi/3) r^3 L^2 + (5 pi/4) r^4 L + (8 pi/15) r^5. */
 void shape_inertia(double r, double L, double *Inormal, double *Iinplane);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -27,6 +27,10 @@
 #include "pack/pack.h"
 #include "qs/layout.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Default floor of a grain's largest contact force in the residual, relative to the mean
  * normal contact force (see qs_residual); packinfo and the minimisers share it. */
 #define QS_RESIDUAL_FLOOR MEASURE_RESIDUAL_FLOOR
@@ -127,10 +131,13 @@ int qs_hessian(struct qs_system *s, const double *x, struct qs_hessian *H);
 void qs_wall_stress(const struct qs_system *s, double sig[3]);
 
 
-
 /* After an evaluation at x: contacts per grain (grain and wall) into counts (n). */
 void qs_coordination(const struct qs_system *s, const double *x, unsigned *counts);
 /* Radii changed (grains grown): rebuild the neighbour list at the next evaluation. */
 void qs_radii_changed(struct qs_system *s);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -1,8 +1,12 @@
 # install: make install into a staged DESTDIR installs the library (static and shared, with its
-# soname links), its headers under include/qusgm, qusgm.pc and the Python reader; a user's
-# program (tests/install/example.c) compiles against the staged install through
-# `pkg-config --cflags --libs qusgm`, linked shared and static, and reads a pack and evaluates
-# the functional as packinfo measures it; make uninstall leaves no file behind (issue 18).
+# soname links), its public headers under include/qusgm (the umbrella qusgm.h and what it
+# includes, no other), qusgm.pc and the Python package where the python3 of PREFIX finds it;
+# the libraries export the API of lib/qusgm.api alone, each name prefixed qusgm_, and the list
+# is what the public headers declare; every installed header compiles alone as C and as C++;
+# a user's program (tests/install/example.c), which defines functions named as qusgm's
+# internal ones, compiles against the staged install through `pkg-config --cflags --libs
+# qusgm` as C (linked shared and static) and as C++, and reads a pack and evaluates the
+# functional as packinfo measures it; make uninstall leaves no file behind (issues 18, 46).
 . "$TOP/tests/tools/lib.sh"
 
 # the install is the optimised build's: make check builds the shared library there only (its
@@ -36,14 +40,63 @@ elif readelf -d "$lib/libqusgm.so.$ver" | grep -q 'SONAME.*\[libqusgm\.so\.0\]';
 else
 	fail "soname libqusgm.so.0" "$(readelf -d "$lib/libqusgm.so.$ver" | grep SONAME)"
 fi
-# every header of lib/ is installed, in its layer's folder
-missing=
-for h in "$TOP"/lib/*/*.h; do
-	rel=${h#"$TOP"/lib/}
-	[ -f "$inc/$rel" ] || missing="$missing $rel"
+# the headers installed are the umbrella lib/qusgm.h and those it includes, in their layers'
+# folders, and no other (table.h, fileio.h, loadpath.h... are internal)
+want=$(cd "$TOP/lib" && ${CC:-cc} -MM -I. $(pkg-config --cflags gsl 2>/dev/null) qusgm.h | tr ' \\' '\n\n' | grep '\.h$' | sort -u)
+have=$(cd "$inc" 2>/dev/null && find . -name '*.h' | sed 's|^\./||' | sort)
+if [ -n "$want" ] && [ "$want" = "$have" ]; then
+	pass "headers: qusgm.h and what it includes, no other ($(echo "$have" | wc -l))"
+else
+	fail "headers: qusgm.h and what it includes, no other" "missing: $(echo "$want" | grep -vxF "$have" | tr '\n' ' ') extra: $(echo "$have" | grep -vxF "$want" | tr '\n' ' ')"
+fi
+for h in base/table.h base/fileio.h qs/loadpath.h; do
+	if [ -e "$inc/$h" ]; then fail "internal $h not installed" "$inc/$h"; else pass "internal $h not installed"; fi
 done
-if [ -z "$missing" ]; then pass "headers in include/qusgm/LAYER/"; else fail "headers in include/qusgm/LAYER/" "missing:$missing"; fi
-if [ -f "$stage/usr/local/share/qusgm/python/qusgm.py" ]; then pass "installed share/qusgm/python/qusgm.py"; else fail "installed share/qusgm/python/qusgm.py" missing; fi
+
+# the exported symbols: the API of lib/qusgm.api, prefixed qusgm_, and no other
+api=$(sed -e 's/#.*//' -e '/^[[:space:]]*$/d' "$TOP/lib/qusgm.api" | sort)
+if command -v nm >/dev/null 2>&1; then
+	want=$(echo "$api" | sed 's/^/qusgm_/' | sort)
+	dyn=$(nm -D --defined-only "$lib/libqusgm.so.$ver" 2>/dev/null | awk 'NF == 3 && $2 ~ /[A-Z]/ { print $3 }' | sort)
+	sta=$(nm -g --defined-only "$lib/libqusgm.a" 2>/dev/null | awk 'NF == 3 { print $3 }' | sort)
+	if [ "$dyn" = "$want" ]; then
+		pass "libqusgm.so exports the API alone, qusgm_ names ($(echo "$dyn" | wc -l))"
+	else
+		fail "libqusgm.so exports the API alone, qusgm_ names" "extra: $(echo "$dyn" | grep -vxF "$want" | head -n 5 | tr '\n' ' ') missing: $(echo "$want" | grep -vxF "$dyn" | head -n 5 | tr '\n' ' ')"
+	fi
+	if [ "$sta" = "$want" ]; then
+		pass "libqusgm.a defines the API alone as globals, qusgm_ names"
+	else
+		fail "libqusgm.a defines the API alone as globals, qusgm_ names" "extra: $(echo "$sta" | grep -vxF "$want" | head -n 5 | tr '\n' ' ') missing: $(echo "$want" | grep -vxF "$sta" | head -n 5 | tr '\n' ' ')"
+	fi
+	# the list is what the public headers (those qusgm.h includes by name) declare, of the
+	# library's own symbols: a function added to a public header joins the API
+	own=$(nm -g --defined-only "$B/libqusgm.a" | awk 'NF == 3 { print $3 }' | sort -u)
+	decl=$(for h in $(sed -n 's/^#include "\(.*\)"$/\1/p' "$TOP/lib/qusgm.h"); do
+		gcc -fpreprocessed -dD -E -P "$TOP/lib/$h" 2>/dev/null | grep -oE '[A-Za-z_][A-Za-z_0-9]*'
+	done | sort -u | grep -xF "$own")
+	if [ "$decl" = "$api" ]; then
+		pass "lib/qusgm.api lists what the public headers declare ($(echo "$api" | wc -l) names)"
+	else
+		fail "lib/qusgm.api lists what the public headers declare" "not listed: $(echo "$decl" | grep -vxF "$api" | tr '\n' ' ') not declared: $(echo "$api" | grep -vxF "$decl" | tr '\n' ' ')"
+	fi
+else
+	echo "SKIP exported symbols (no nm)"
+fi
+
+# the Python package, where the python3 of PREFIX finds it (the Makefile's PYTHON and PYTHONDIR)
+py=$(command -v /usr/bin/python3 || command -v python3)
+pydir=$("$py" "$TOP/share/python/pythondir.py" /usr/local)
+if [ -f "$stage$pydir/qusgm/__init__.py" ] && [ -f "$stage$pydir/qusgm/py.typed" ]; then
+	pass "installed the package qusgm in $pydir"
+else
+	fail "installed the package qusgm in $pydir" "$(find "$stage" -name '__init__.py' | head -n 3)"
+fi
+if "$py" -c 'import sys; sys.exit(sys.argv[1] not in sys.path)' "$pydir"; then
+	pass "$pydir is on $py's sys.path"
+else
+	fail "$pydir is on $py's sys.path" "$("$py" -c 'import sys; print(sys.path)')"
+fi
 
 # pkg-config, pointed at the stage: the staged qusgm.pc names /usr/local, so a copy with its
 # prefix line moved into the stage (libdir and includedir follow ${prefix}); a
@@ -65,19 +118,33 @@ else
 	cflags="-I$inc" libs="-L$lib -lqusgm" slibs="-L$lib -l:libqusgm.a -lgsl -lgslcblas -lccd -lz -lm"
 fi
 
-# each installed header compiles on its own with nothing but the installed -I
-bad=
-for h in "$inc"/*/*.h; do
+# each installed header compiles on its own with nothing but the installed -I, as C and as C++
+CXX=${CXX:-c++}
+command -v "$CXX" >/dev/null 2>&1 || CXX=
+[ -n "$CXX" ] || echo "SKIP C++ (no c++ compiler; Debian: apt-get install g++)"
+bad= badxx=
+for h in "$inc"/qusgm.h "$inc"/*/*.h; do
 	rel=${h#"$inc"/}
 	printf '#include "%s"\n' "$rel" >hdr.c
 	${CC:-cc} -std=c11 -Wall -Wextra -Werror $cflags $(pkg-config --cflags gsl 2>/dev/null) -fsyntax-only hdr.c 2>hdr.err || bad="$bad $rel"
+	[ -z "$CXX" ] || "$CXX" -x c++ -std=c++11 -Wall -Wextra -Werror $cflags $(pkg-config --cflags gsl 2>/dev/null) -fsyntax-only hdr.c 2>hdrxx.err || badxx="$badxx $rel"
 done
 if [ -z "$bad" ]; then pass "every installed header compiles alone"; else fail "every installed header compiles alone" "$bad: $(head -c 300 hdr.err)"; fi
+if [ -n "$CXX" ]; then
+	if [ -z "$badxx" ]; then pass "every installed header compiles alone as C++"; else fail "every installed header compiles alone as C++" "$badxx: $(head -c 300 hdrxx.err)"; fi
+fi
 
 # A user's program, linked against the staged library.
 cc_ex() { ${CC:-cc} -std=c11 -Wall -Wextra -Werror -o "$1" "$TOP/tests/install/example.c" $cflags $2 >"$1.err" 2>&1; }
 if cc_ex ex_shared "$libs"; then pass "example.c: cc \$(pkg-config --cflags --libs qusgm)"; else fail "example.c: cc \$(pkg-config --cflags --libs qusgm)" "$(head -c 400 ex_shared.err)"; fi
 if cc_ex ex_static "$slibs"; then pass "example.c linked with libqusgm.a ($slibs)"; else fail "example.c linked with libqusgm.a" "$(head -c 400 ex_static.err)"; fi
+if [ -n "$CXX" ]; then
+	if "$CXX" -x c++ -std=c++11 -Wall -Wextra -Werror -o ex_cxx "$TOP/tests/install/example.c" $cflags $libs >ex_cxx.err 2>&1; then
+		pass "example.c as C++: c++ -x c++ \$(pkg-config --cflags --libs qusgm)"
+	else
+		fail "example.c as C++" "$(head -c 400 ex_cxx.err)"
+	fi
+fi
 if command -v readelf >/dev/null 2>&1; then
 	if readelf -d ex_shared | grep -q 'NEEDED.*libqusgm\.so\.0\]'; then pass "ex_shared needs libqusgm.so.0"; else fail "ex_shared needs libqusgm.so.0" "$(readelf -d ex_shared | grep NEEDED | tr '\n' ' ')"; fi
 	if readelf -d ex_static | grep -q 'NEEDED.*libqusgm'; then fail "ex_static needs no libqusgm.so" "$(readelf -d ex_static | grep NEEDED | tr '\n' ' ')"; else pass "ex_static needs no libqusgm.so"; fi
@@ -90,8 +157,20 @@ LD_LIBRARY_PATH=$lib ./ex_shared dense.pack >shared.txt 2>shared.err
 rc_sh=$?
 ./ex_static dense.pack.gz >static.txt 2>static.err
 rc_st=$?
-if [ "$rc_sh" -eq 0 ] && [ "$rc_st" -eq 0 ]; then pass "example runs, shared and static (.gz)"; else fail "example runs, shared and static (.gz)" "exit $rc_sh $rc_st: $(cat shared.err static.err | head -c 300)"; fi
+if [ "$rc_sh" -eq 0 ] && [ "$rc_st" -eq 0 ]; then pass "example runs, shared and static (.gz), its own table_read path_parse file_is_gz called"; else fail "example runs, shared and static (.gz)" "exit $rc_sh $rc_st: $(cat shared.err static.err | head -c 300)"; fi
 expect_same "shared and static print the same" shared.txt static.txt
+if [ -n "$CXX" ]; then
+	LD_LIBRARY_PATH=$lib ./ex_cxx dense.pack >cxx.txt 2>cxx.err
+	if [ $? -eq 0 ]; then pass "the C++ example runs"; else fail "the C++ example runs" "$(head -c 300 cxx.err)"; fi
+	expect_same "C++ and C print the same" cxx.txt shared.txt
+fi
+# the Python package of the stage, imported through PYTHONPATH, reads the pack as packinfo does
+n=$(PYTHONPATH=$stage$pydir "$py" -c 'import sys, qusgm; p = qusgm.read_pack(sys.argv[1]); print(qusgm.__file__, len(p.grains))' dense.pack.gz 2>py.err)
+if [ "$n" = "$stage$pydir/qusgm/__init__.py $(info_value info.txt grains)" ]; then
+	pass "PYTHONPATH=\$DESTDIR$pydir: import qusgm, the installed one, reads the pack"
+else
+	fail "PYTHONPATH=\$DESTDIR$pydir: import qusgm" "'$n' $(tail -n 1 py.err)"
+fi
 # grains, porosity and sigma_c come from measure_pack, as packinfo's: the same numbers
 for k in grains porosity sigma_c residual; do
 	a=$(info_value shared.txt "$k") b=$(info_value info.txt "$k")
@@ -110,9 +189,9 @@ expect_num "energy > 0" "$(info_value shared.txt energy)" '>' 0
 printf 'qusgm-pack 9\n' >bad.pack
 ./ex_static bad.pack >bad.out 2>bad.err
 if [ $? -eq 1 ] && grep -q 'bad.pack:1: pack format version 9 is newer' bad.err && [ ! -s bad.out ]; then
-	pass "example: a reader error through msg_geterr (file:line)"
+	pass "example: a reader error through qusgm_msg_geterr (file:line)"
 else
-	fail "example: a reader error through msg_geterr (file:line)" "$(cat bad.err)"
+	fail "example: a reader error through qusgm_msg_geterr (file:line)" "$(cat bad.err)"
 fi
 
 # make uninstall with the same DESTDIR and PREFIX: no file left (the folders may stay)

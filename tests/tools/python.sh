@@ -1,17 +1,19 @@
-# python: share/python/qusgm.py reads packs (plain and .gz, versions 1 and 2, streams) and
-# tables into numpy arrays with the exact doubles the tools wrote: every grain and contact
-# number equals the file's token read by float(), the radii extremes equal packinfo's to the
-# bit, the porosity recomputed in numpy equals packinfo's to 1e-12, a table's columns, units,
-# rows and values are those of pipelines/cols.sh; malformed input is a FormatError naming
-# file:line (issue 18).  Skipped without a python3 that has numpy.
+# python: the package share/python/qusgm reads packs (plain and .gz, versions 1 and 2,
+# streams) and tables into numpy arrays with the exact doubles the tools wrote: every grain
+# and contact number equals the file's token read by float(), the radii extremes equal
+# packinfo's to the bit, the porosity recomputed in numpy equals packinfo's to 1e-12; the fast
+# path (numpy's C parser) gives the same bytes as the line-by-line reader, and accepts and
+# refuses what it does, with the same message; every kind of table (packinfo --tsv, loadtest,
+# moduli, frictionalize's and densify's logs, shear's table and profile) reads with its
+# columns, units, rows, values and text columns, and through the pandas call that
+# share/doc/tables.md gives; malformed input is a FormatError naming file:line; pyproject.toml
+# builds a wheel of the package (issues 18, 46).  Run with Debian's python3 (the one make
+# check installs python3-numpy and python3-pandas for): without numpy it fails, never skips.
 . "$TOP/tests/tools/lib.sh"
 
-py=
-for p in ${PYTHON:-} python3 /usr/bin/python3; do
-	if command -v "$p" >/dev/null 2>&1 && "$p" -c 'import numpy' 2>/dev/null; then py=$p; break; fi
-done
-if [ -z "$py" ]; then
-	echo "SKIP python reader (no python3 with numpy; Debian: apt-get install python3-numpy)"
+py=${PYTHON:-$(command -v /usr/bin/python3 || command -v python3)}
+if [ -z "$py" ] || ! "$py" -c 'import numpy' 2>/dev/null; then
+	fail "a python3 with numpy" "'$py' (make check installs it as root: apt-get install python3-numpy)"
 	exit 0
 fi
 PYTHONPATH=$TOP/share/python
@@ -19,7 +21,8 @@ export PYTHONPATH
 
 # The packs: version 1 (densify's, with contact lines; frictionalize's, with Q0 and M0), its
 # gzip, version 2 with the phase column and with the shape columns; a stream of two.
-small_pack frictional
+small_pack dense
+frictionalize --log frlog.tsv -o fr.pack dense.pack 2>/dev/null
 gzip -c dense.pack >dense.pack.gz
 packgen -n 60 --seed 3 --hydrate-volume 0.15 -o hyd.pack 2>/dev/null
 packgen --shape spheroplate -n 27 --seed 3 -o plates.pack 2>/dev/null
@@ -32,6 +35,15 @@ loadtest --path uniaxial --steps 2 fr.pack >curve.tsv 2>/dev/null
 moduli curve.tsv >moduli.tsv 2>/dev/null
 sh "$TOP/pipelines/cols.sh" curve.tsv sig_zz porosity >curve.cols
 sh "$TOP/pipelines/cols.sh" moduli.tsv K nu >moduli.cols
+# every other kind: packinfo --tsv, densify's log (a text column), shear's table and profile
+packinfo --tsv dense.pack fr.pack hyd.pack >info.tsv 2>/dev/null
+densify --stress 1e6 --log dlog.tsv -o hyd-dense.pack hyd.pack 2>/dev/null
+packgen --shape spheroplate --platyness 0.5 -n 125 --seed 2 -o shear.pack 2>/dev/null
+shear --strain 0.004 --every 0.002 --profile shear.prof --profile-bins 3 --profile-from 0 -o /dev/null shear.pack \
+	>shear.tsv 2>/dev/null
+for f in info.tsv dlog.tsv frlog.tsv shear.tsv shear.prof; do
+	[ -s "$f" ] || fail "the table $f written" "empty or missing"
+done
 
 "$py" - <<'EOF'
 import gzip, math, sys
@@ -180,11 +192,120 @@ try:
 except qusgm.FormatError as e:
     check("a table row short of a field (%s)" % e, str(e).startswith("bad.tsv:3: "), str(e))
 
+# every kind of table: names, units, rows, each value the token read by float() (nan too),
+# text columns (densify's stage) as str; and the pandas call of share/doc/tables.md
 try:
-    import pandas
+    import pandas as pd
 except ImportError:
-    print("SKIP to_dataframe (no pandas)")
-else:
+    pd = None
+    check("pandas installed (make check installs python3-pandas)", False, "import pandas failed")
+def same(a, b):
+    return a == b or (isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b))
+for path in ("info.tsv", "curve.tsv", "moduli.tsv", "frlog.tsv", "dlog.tsv", "shear.tsv", "shear.prof"):
+    try:
+        t = qusgm.read_table(path)
+    except Exception as e:
+        check("%s: read_table" % path, False, repr(e))
+        continue
+    raw = open(path).read().splitlines()
+    header = [l for l in raw if l.startswith("# ")][0][2:].split("\t")
+    rows = [l.split("\t") for l in raw if not l.startswith("#")]
+    text = [k for k in range(len(header)) if not all(r[k].lstrip("+-").replace(".", "", 1).replace("e", "", 1).replace("-", "").replace("+", "").isdigit() or r[k] == "nan" for r in rows)]
+    ok = t.names == [h.split("[")[0] for h in header] and all(t.units[h.split("[")[0]] == (h.split("[")[1][:-1] if "[" in h else "") for h in header)
+    check("%s: %d columns, their units" % (path, len(header)), ok, (t.names, t.units))
+    vals = [tuple(r[k] if k in text else float(r[k]) for k in range(len(header))) for r in rows]
+    ok = len(t) == len(rows) > 0 and all(all(same(a, b) for a, b in zip(t.data[i].tolist(), vals[i])) for i in range(len(rows)))
+    check("%s: %d rows, every value the file's token%s" % (path, len(rows), ", text columns %s" % [header[k] for k in text] if text else ""), ok)
+    check("%s: text columns as str, the others float64" % path,
+          t.text_columns == [t.names[k] for k in text] and all(t.data.dtype[n] == np.float64 for n in t.names if n not in t.text_columns))
+    if pd is not None:
+        with open(path) as f:
+            hdr = next(line for line in f if not line.startswith("##"))
+        df = pd.read_csv(path, sep="\t", comment="#", header=None, names=hdr[2:].rstrip("\n").split("\t"),
+                         float_precision="round_trip")
+        ok = list(df.columns) == header and len(df) == len(rows) and all(
+            all(same(a, b) for a, b in zip(df.iloc[i].tolist(), vals[i])) for i in range(len(rows)))
+        check("%s: pandas.read_csv(sep='\\t', comment='#', names=the header's, float_precision='round_trip'): the same values" % path, ok)
+        d2 = t.to_dataframe()
+        check("%s: Table.to_dataframe, the same values, units in attrs" % path,
+              list(d2.columns) == t.names and all(all(same(a, b) for a, b in zip(d2.iloc[i].tolist(), vals[i])) for i in range(len(rows)))
+              and d2.attrs["units"] == t.units)
+t = qusgm.read_table("dlog.tsv")
+check("dlog.tsv: densify's stages, relax first (%s)" % " ".join(sorted(set(t["stage"].tolist()))),
+      t["stage"][0] == "relax" and set(t["stage"].tolist()) <= {"relax", "grow", "retry", "compact"})
+
+# the fast path: the same arrays, byte for byte, as the line-by-line reader; taken on every
+# pack a tool writes (the line-by-line reader made to fail); and on damaged packs the same
+# acceptance and the same message
+for path in ("dense.pack", "dense.pack.gz", "fr.pack", "hyd.pack", "plates.pack"):
+    a, b = qusgm.read_pack(path), qusgm.read_pack(path, fast=False)
+    check("%s: fast and line-by-line the same bytes (%d grains, %d contacts)" % (path, len(a.grains), len(a.contacts)),
+          a.grains.dtype == b.grains.dtype and a.grains.tobytes() == b.grains.tobytes()
+          and a.contacts.dtype == b.contacts.dtype and a.contacts.tobytes() == b.contacts.tobytes())
+a, b = list(qusgm.read_packs("two.pack")), list(qusgm.read_packs("two.pack", fast=False))
+check("two.pack: fast and line-by-line the same bytes, a stream", [x.grains.tobytes() + x.contacts.tobytes() for x in a]
+      == [x.grains.tobytes() + x.contacts.tobytes() for x in b] and [x.line for x in a] == [x.line for x in b])
+slow = qusgm._grains_slow, qusgm._contacts_slow
+def no_slow(*args):
+    raise RuntimeError("the line-by-line reader")
+qusgm._grains_slow = qusgm._contacts_slow = no_slow
+try:
+    for path in ("dense.pack", "dense.pack.gz", "fr.pack", "hyd.pack", "plates.pack", "two.pack"):
+        list(qusgm.read_packs(path))
+    check("the fast path reads every pack here alone", True)
+except RuntimeError as e:
+    check("the fast path reads every pack here alone", False, "%s: %s" % (path, e))
+qusgm._grains_slow, qusgm._contacts_slow = slow
+
+def outcome(text, fast):
+    open("mut.pack", "w").write(text)
+    try:
+        p = qusgm.read_pack("mut.pack", fast=fast)
+        return "ok", p.grains.dtype.descr, p.grains.tobytes(), p.contacts.tobytes()
+    except qusgm.FormatError as e:
+        return "error", str(e)
+def mutate(path, line, old, new, count=1):
+    L = open(path).read().splitlines(True)
+    k = L.index("end\n") + 1 + line
+    L[k] = L[k].replace(old, new, count) if old is not None else new
+    return "".join(L)
+dl = open("dense.pack").read().splitlines(True)
+ng = len(qusgm.read_pack("dense.pack").grains)
+c0 = dl[dl.index("end\n") + 1 + ng].split()
+wl = [l for l in dl[dl.index("end\n") + 1 + ng:] if l.split()[1] in qusgm.WALLS][0]
+wk = dl.index(wl) - dl.index("end\n") - 1
+hl = open("hyd.pack").read().splitlines(True)
+cases = [("dense.pack", 0, "1 ", x) for x in ("1.0 ", "+1 ", "01 ", "1e0 ", "0x1 ", " 1 ", "-1 ", "2 ", "1_0 ", '"1" ')] + [
+    ("dense.pack", 0, dl[dl.index("end\n") + 1].split()[1], x) for x in ("0x1p-12", "nan", "inf", "1e-4x", "", "1e400", "-0")] + [
+    ("dense.pack", 1, " ", "\t"), ("dense.pack", 1, " ", "  "), ("dense.pack", 1, "\n", " \n"), ("dense.pack", 1, "\n", "\r\n"),
+    ("dense.pack", 1, "\n", " 7\n"), ("dense.pack", 1, None, "\n"), ("dense.pack", 1, "\n", "#\n"),
+    ("dense.pack", ng, c0[1] + " ", "-1 "), ("dense.pack", ng, c0[1] + " ", c0[0] + " "), ("dense.pack", ng, c0[1] + " ", "99999 "),
+    ("dense.pack", ng, c0[1] + " ", "-1000000000000001 "), ("dense.pack", ng, c0[1] + " ", "xlo "), ("dense.pack", ng, c0[1] + " ", "XLO "),
+    ("dense.pack", ng, c0[0] + " ", "0 "), ("dense.pack", ng, c0[2], "-" + c0[2]), ("dense.pack", ng, "\n", "\t\n"),
+    ("dense.pack", wk, " " + wl.split()[1] + " ", "\t" + wl.split()[1] + " "), ("dense.pack", wk, " " + wl.split()[1] + " ", " xmid "),
+    ("dense.pack", wk, " " + wl.split()[1] + " ", " xhx "), ("dense.pack", wk, " " + wl.split()[1] + " ", " zlo1 "),
+    ("dense.pack", wk, " " + wl.split()[1] + " ", " " + ("yhi" if wl.split()[1] != "yhi" else "xlo") + " "),
+    ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " 2\n"),
+    ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " +1\n"),
+    ("hyd.pack", 0, None, hl[hl.index("end\n") + 1].rsplit(" ", 1)[0] + " 01\n")]
+for chunk in (qusgm._CHUNK, 37):  # the default (one chunk here), and chunks of 37 lines
+    qusgm._CHUNK = chunk
+    same_outcome, errors = [], 0
+    for path, line, old, new in cases + [("dense.pack", k, None, "\n") for k in (36, 37, 38, ng + 36)]:
+        t = mutate(path, line, old, new)
+        f, s = outcome(t, True), outcome(t, False)
+        errors += f[0] == "error"
+        if f != s:
+            same_outcome.append((path, line, old, new, f[:2], s[:2]))
+    check("damaged packs, %d lines a chunk: the fast path accepts and refuses as the line-by-line reader, "
+          "the same message (%d cases, %d refused)" % (chunk, len(cases) + 4, errors),
+          not same_outcome and errors > len(cases) // 2, same_outcome[:3])
+    ok = all(qusgm.read_pack(f).grains.tobytes() + qusgm.read_pack(f).contacts.tobytes() ==
+             qusgm.read_pack(f, fast=False).grains.tobytes() + qusgm.read_pack(f, fast=False).contacts.tobytes()
+             for f in ("dense.pack", "dense.pack.gz", "fr.pack", "plates.pack"))
+    check("%d lines a chunk: fast and line-by-line the same bytes" % chunk, ok)
+
+if pd is not None:
     df = d.to_dataframe()
     check("Pack.to_dataframe: the grains, units in attrs", list(df.columns) == list(d.columns) and len(df) == len(d.grains)
           and df["r"].tolist() == d.grains["r"].tolist() and df.attrs["units"]["x"] == "m")
@@ -195,9 +316,27 @@ else:
 EOF
 rc=$?
 if [ "$rc" -ne 0 ]; then fail "the python checks ran" "exit $rc"; fi
-# the module reads standard input too, and is what make install copies
+# the module reads standard input too
 if "$py" -c 'import qusgm, sys; p = qusgm.read_pack("-"); print(len(p.grains))' <dense.pack.gz | grep -qx 200; then
 	pass "read_pack('-'): gzip on standard input"
 else
 	fail "read_pack('-'): gzip on standard input" "$("$py" -c 'import qusgm; qusgm.read_pack("-")' <dense.pack.gz 2>&1 | tail -n 1)"
+fi
+
+# pyproject.toml: one version with the Makefile's and the module's, and a wheel of the package
+# built by setuptools' backend (Debian python3-setuptools) from a copy of share/python
+ver=$(awk '$1 == "VERSION" && $2 == "=" { print $3; exit }' "$TOP/Makefile")
+pv=$(sed -n 's/^version = "\(.*\)"$/\1/p' "$TOP/share/python/pyproject.toml")
+mv_=$("$py" -c 'import qusgm; print(qusgm.__version__)')
+if [ "$pv" = "$ver" ] && [ "$mv_" = "$ver" ]; then pass "pyproject.toml and qusgm.__version__ say $ver"; else fail "pyproject.toml and qusgm.__version__ say $ver" "'$pv' '$mv_'"; fi
+if "$py" -c 'import setuptools.build_meta' 2>/dev/null; then
+	rm -rf pysrc wheel && cp -R "$TOP/share/python" pysrc && mkdir wheel
+	if (cd pysrc && "$py" -c 'import sys, setuptools.build_meta as b; print(b.build_wheel(sys.argv[1]))' ../wheel) >wheel.log 2>&1 &&
+	   "$py" -c 'import sys, zipfile; n = zipfile.ZipFile(sys.argv[1]).namelist(); sys.exit(not {"qusgm/__init__.py", "qusgm/py.typed"} <= set(n))' wheel/qusgm-"$ver"-py3-none-any.whl; then
+		pass "pyproject.toml builds qusgm-$ver-py3-none-any.whl, with py.typed"
+	else
+		fail "pyproject.toml builds a wheel" "$(tail -n 3 wheel.log)"
+	fi
+else
+	echo "SKIP the wheel (no setuptools; Debian: apt-get install python3-setuptools)"
 fi

@@ -14,7 +14,7 @@ same_version() {	# NAME FOUND
 	if [ "$2" = "$ver" ]; then pass "$1 says $ver"; else fail "$1 says $ver" "'$2'"; fi
 }
 same_version "lib/base/cli.h QUSGM_VERSION" "$(sed -n 's/^#define QUSGM_VERSION "\(.*\)"$/\1/p' "$TOP/lib/base/cli.h")"
-same_version "share/python/qusgm.py __version__" "$(sed -n 's/^__version__ = "\(.*\)"$/\1/p' "$TOP/share/python/qusgm.py")"
+same_version "share/python/qusgm __version__" "$(sed -n 's/^__version__ = "\(.*\)"$/\1/p' "$TOP/share/python/qusgm/__init__.py")"
 same_version "CITATION.cff version" "$(sed -n 's/^version: *//p' "$TOP/CITATION.cff")"
 same_version "NEWS's newest version" "$(grep -E '^[0-9]+\.[0-9]+\.[0-9]+' "$TOP/NEWS" | head -n 1)"
 bad=
