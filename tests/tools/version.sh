@@ -19,9 +19,11 @@ same_version "CITATION.cff version" "$(sed -n 's/^version: *//p' "$TOP/CITATION.
 same_version "NEWS's newest version" "$(grep -E '^[0-9]+\.[0-9]+\.[0-9]+' "$TOP/NEWS" | head -n 1)"
 bad=
 for m in "$TOP"/share/man/man*/*.[0-9]; do
-	grep -qx "\.Os qusgm $ver" "$m" || bad="$bad ${m#"$TOP"/}"
+	# mdoc pages (.Os), or a man(7) page made from markdown (.TH's fourth field)
+	grep -qx "\.Os qusgm $ver" "$m" || grep -q "^\.TH [^ ]* [0-9] \"[^\"]*\" \"qusgm $ver\"" "$m" ||
+		bad="$bad ${m#"$TOP"/}"
 done
-if [ -z "$bad" ]; then pass "every man page's .Os says qusgm $ver"; else fail "every man page's .Os says qusgm $ver" "not:$bad"; fi
+if [ -z "$bad" ]; then pass "every man page names qusgm $ver (.Os or .TH)"; else fail "every man page names qusgm $ver (.Os or .TH)" "not:$bad"; fi
 
 # --- the source version the tools were built with ----------------------------------------------
 build=$(dirname "$BIN")
