@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # qusgm: quasi-static granular mechanics toolkit.
 # Targets: all check run bench bench-peers validate install uninstall deb clean deps help (see `make help`).
 

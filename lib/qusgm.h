@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* qusgm.h: the umbrella header of the installed library, <qusgm/qusgm.h>.
  *
  * The public headers, whose functions and variables the installed libqusgm.a and

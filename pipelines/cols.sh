@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # cols.sh FILE NAME...: print the named columns of a qusgm table (loadtest, frictionalize --log,
 # densify --log, moduli; share/doc/tables.md), tab-separated, without the header.  Units in
 # brackets are ignored in the names ("sigma_c" finds "sigma_c[Pa]"); '##' lines are skipped.

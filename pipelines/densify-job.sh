@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 #SBATCH --job-name=qusgm-densify
 #SBATCH --time=4:00:00
 #SBATCH --nodes=1 --ntasks=1 --cpus-per-task=4

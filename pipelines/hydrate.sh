@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # hydrate.sh BIN RUN...: the hydrate study's summary table (pipelines/Makefile, s-fig5), one
 # row per run directory (RUN/diss.pack.gz from dissociate, RUN/moduli.tsv from the three-axis
 # probe that followed): the dissociation applied (dS, p_ex, from the pack's meta lines), the

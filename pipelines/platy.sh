@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # platy.sh RUNS FROM ETA...: the platy study's summary table (pipelines/Makefile), one row per
 # platyness: the means and standard deviations over the steady state (gamma >= FROM) of the
 # shear's rows (RUNS/platy-etaETA/shear.tsv: tau_sigma, qp, phi, Z) and of the descriptors

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # report-html.sh STUDY DIR: DIR/report.md as a page to open in a browser, on standard output:
 # its text and tables, the study's figure DIR/STUDY.png and the picture of its pack
 # (pack.png), and a link to the 3D view of the pack, DIR/pack.html (packview), each when

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # report.sh STUDY OUT "N_G2740 N_G5036 N_Q2654": the markdown report of one study, from the
 # tables the study made (pipelines/Makefile calls it; OUT/STUDY/commands.txt holds the exact
 # commands).  Every number below is computed here from those tables; the paper's numbers are

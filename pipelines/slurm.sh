@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # slurm.sh CMD [ARG...]: run CMD as one Slurm task, the launcher of the studies' tool runs
 # (make -C pipelines SLURM=1, pipelines/README.md "On a Slurm cluster").
 #

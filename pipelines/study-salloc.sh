@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # study-salloc.sh [MAKE-ARGS...]: a study of pipelines/Makefile inside a Slurm allocation,
 # every tool run a job step of it (pipelines/README.md, "On a Slurm cluster"):
 #

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # timed.sh LOG NAME OUT CMD [ARG...]: run CMD with its standard output to OUT (- keeps it),
 # then append "NAME<tab>seconds" to LOG when it succeeded.  The studies' reports add up the
 # times of the stages they need (report.sh), so a study's cost is known however make -j

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make run: the main job on built-in defaults, the papers' whole chain on a G2740-style glass
 # pack: packgen -> densify (4 MPa, frictionless) -> frictionalize (mu 0.3) -> loadtest
 # (uniaxial strain to 20 MPa) -> moduli (K, G, lambda, E, nu per 10 increments), printed at

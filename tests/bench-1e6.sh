@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # tests/bench-1e6.sh BIN BENCHBIN: make bench-1e6.  The chain's first stages at a million grains
 # (issue 17): packgen, densify to 4 MPa, one frictional uniaxial 1e-4 increment, each timed
 # with its peak memory, in BENCH_1E6_DIR (default bench/1e6; at 1e6 about 250 MB: the loose

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The chain's memory at 1e6 grains and more (issue 17: at most 1 KiB per grain for a pack in
 # memory, 8 GiB for 1e6 grains through the chain), without the days a real 1e6 chain takes
 # here: make bench's dense 1e4 pack tiled M x M x M times (build/bench/evalscale -o; 5: 1.25e6

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make bench-peers: qusgm against LIGGGHTS (Hertz-Mindlin DEM) on the same oedometric
 # increments of 1e-4 from the same frictional G2740-like pack; results in bench/peers.md.
 #

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make bench-plates (and make bench): the spheroplate DEM's costs.
 #  - packgen --shape spheroplate: wall time, steps to static equilibrium and packing fraction per
 #    platyness and size (the packs are kept in bench/plates-N-ETA.pack.gz and reused;

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # tests/bench-threads.sh [BINDIR]: densify of a 2740-grain pack (packgen -n 2740 --seed 1) to
 # 4 MPa beside a competing job (`yes >/dev/null`, one core busy), with the default threads,
 # with --threads 1, and with --threads 2 (idle threads waiting passively, the tools' default

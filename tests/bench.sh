@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make bench: at 2740, 1e4 and 1e5 grains,
 #  - packgen: wall time and peak memory of making the loose pack (seed 1, glass);
 #  - densify to 4 MPa: wall time, peak memory, iterations (the log's sum), per minimiser;

@@ -1,4 +1,5 @@
 #!/usr/bin/perl
+# SPDX-License-Identifier: GPL-3.0-or-later
 # citations.pl TOP [FILE...]: every citation in the tree TOP (or in the FILEs only, resolved
 # against TOP) resolves (tests/tools/citations.sh runs it).
 #

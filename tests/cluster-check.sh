@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # tests/cluster-check.sh BIN: make cluster-check.  Sets up Debian's slurm-wlm as a one-node
 # cluster on this machine (a private munged, slurmctld and slurmd, their configuration, keys,
 # sockets, state and logs in tests/out/cluster-check, on ports of their own), runs a small

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make interop: open packexport's files in the programs they are meant for, where installed.
 # Usage: sh tests/interop.sh BINDIR
 #

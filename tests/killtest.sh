@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make killtest: every tool that writes files is killed with TERM, INT, HUP and KILL at
 # moments drawn from a seeded sequence (reproducible: KILLTEST_SEED, KILLTEST_REPS), including
 # during the .gz compression of its output (big inputs for packimport and packexport), and

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # layers.sh [ROOT]: checks the #include lines of ROOT/lib and ROOT/tools against the layering
 # of lib/ (share/doc/architecture.md, "Layers").  Layers, lowest first:
 #     base < pack < contact < analysis < {qs, dem}

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Runs every test against each build directory given (build, build-san) and prints one
 # closing line "N passed, N failed".  Unit tests (B/tests/*) and tool tests (tests/tools/*.sh)
 # print one PASS/FAIL line per check; a test program that exits nonzero without printing a

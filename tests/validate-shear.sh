@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make validate (part): the simple shear of frictional spheres against published DEM.  1000
 # spheres made by the plate engine (packgen --shape spheroplate --platyness 0: the
 # platy-particle paper's law, mu = 0.58, kappa 1e4) sheared by `shear` to gamma 2.5 at I = 1e-2;

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # make validate: the frictionless compaction of the paper's G5036 glass pack (physics.md §10;
 # Holtzman et al. 2009): a pack of 5036 grains densified to 1 MPa, then compacted
 # frictionlessly to 2, 5, 10, 20 and 35 MPa, each stage by running densify again on the

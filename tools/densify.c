@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* densify: frictionless isotropic compaction of a loose pack to a confining stress. */
 #include "base/cli.h"
 #include "base/fileio.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* dissociate: hydrate dissociation, a drop dS of the hydrate saturation and an excess pore
  * pressure p_ex, then the new equilibrium (physics.md section 11; the rules in
  * qs/dissociate.h). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* frictionalize: switch Mindlin-Deresiewicz friction on by uniaxial loading until the sliding
  * ratio saturates (phase (b), physics.md §9). */
 #include "base/cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* loadtest: quasi-static loading of a pack along a path of wall displacements, one TSV row per
  * increment (physics.md §8; the path grammar is in loadpath.h and loadtest(1)). */
 #include "base/cli.h"

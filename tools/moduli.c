@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* moduli: Hooke's-law moduli of each interval of a loadtest curve (physics.md §8). */
 #include "base/cli.h"
 #include "base/fileio.h"

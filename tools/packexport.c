@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* packexport: write a pack for ParaView/OVITO (VTK), LAMMPS or YADE. */
 #include "base/cli.h"
 #include "base/fileio.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* packgen: a loose, irregular pack of polydisperse elastic spheres in a box, or a static pack
  * of monodisperse spheroplates (--shape spheroplate: the platy-particle paper's samples). */
 #include "base/cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* packimport: make a qusgm pack from "x y z r" lines (YADE, LAMMPS scripts, anything). */
 #include "base/cli.h"
 #include "base/fileio.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* packinfo: describe packs as "key value" lines (or one TSV row per pack with --tsv). */
 #include "base/cli.h"
 #include "base/fileio.h"

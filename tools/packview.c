@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* packview: a pack as one self-contained HTML page with a 3D view (three.js inlined). */
 #include "analysis/measure.h"
 #include "analysis/view.h"

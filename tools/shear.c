@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* shear: simple shear of a pack of spheroplates (or of the plate engine's spheres) between
  * glued walls at constant normal stress, the platy-particle paper's test (dem/plateshear.h). */
 #include "base/cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cholmod probe (issue 16): the cost of a sparse Cholesky factor of a pack's Hessian, as
  * Newton's preconditioner.  Not built by make: it needs SuiteSparse (libsuitesparse-dev),
  * which qusgm does not depend on, because this probe showed the factor costs far more than

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hypre probe (issue 16): BoomerAMG as the preconditioner of CG on a pack's Hessian, against
  * block Jacobi.  Not built by make: it needs hypre and MPI (libhypre-dev), which qusgm does not
  * depend on, because AMG lost to block Jacobi here (bench/newton.md, "Preconditioners tried").

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* curve: per-interval Hooke fits of a loading curve (see curve.h). */
 #include "analysis/curve.h"
 #include "base/msg.h"

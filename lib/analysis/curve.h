@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* curve: moduli along a stress-strain curve (physics.md §8), the physics behind the moduli
  * tool.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* emt: effective-medium moduli (see emt.h). */
 #include "analysis/emt.h"
 

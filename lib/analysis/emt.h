@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* emt: effective-medium (Walton / Digby-type) moduli of a random pack of identical Hertz
  * spheres (physics.md §13; Mavko, Mukerji & Dvorkin, The Rock Physics Handbook), to set
  * beside simulated moduli:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* export: VTK, LAMMPS and YADE writers and the "x y z r" reader (see export.h). */
 #include "analysis/export.h"
 #include "analysis/measure.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* export: packs in other programs' formats, and spheres from plain "x y z r" text.
  *
  * Owns the writers behind packexport and the reader behind packimport:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fabric: the platy-particle paper's descriptors in the shear plane (see fabric.h). */
 #include "analysis/fabric.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fabric: the microstructure descriptors of the platy-particle paper (P §IV; physics.md §12),
  * in the shear plane xy of its simple shear test.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hooke: least-squares Hooke's law (see hooke.h). */
 #include "analysis/hooke.h"
 #include "base/msg.h"

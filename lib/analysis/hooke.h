@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hooke: isotropic Hooke's-law fits of stress-strain increments (physics.md §8).
  *
  * For strain increments de (3 principal components, compression positive) and the stress

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* measure: porosity, coordination, stresses, residual, fabric (see measure.h). */
 #include "analysis/measure.h"
 #include "base/msg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* measure: what a pack says about itself (physics.md §7-8).
  *
  * Porosity, coordination (grain plus wall contacts per grain), grains under 4 contacts,

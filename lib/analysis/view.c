@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* view: a pack as one self-contained HTML page (view.h). */
 #include "analysis/view.h"
 #include "base/msg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* view: a pack as one self-contained HTML page, for any browser, offline (packview).
  *
  * The page holds the pack's grains, their fields and contacts as base64 float32 arrays in a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cli: option tables, help, history line, progress (see cli.h). */
 #include "base/cli.h"
 #include "base/par.h"

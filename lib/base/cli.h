@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cli: the command-line conventions every tool keeps.
  *
  * A tool declares its options once, in a table (name, argument, destination, help, unit);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fileio: inputs by name, atomic outputs (see fileio.h). */
 #include "base/fileio.h"
 #include "base/msg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fileio: opening an input by name, and writing an output atomically.
  *
  * Inputs: NULL or "-" is standard input, shown as "<stdin>" in messages.  Outputs named by

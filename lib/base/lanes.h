@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lanes: two doubles side by side in one SSE register (GCC and clang vector extensions),
  * for the hot kernels that evaluate two contacts or two grains at once (friction.c; dem.c, the
  * DEM pair force; functional.c's residual and minimize.c's step cap; par.c's dot products),

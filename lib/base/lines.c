@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lines: text lines of any length from plain or gzip input (see lines.h). */
 #include "base/lines.h"
 #include "base/fileio.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lines: the one reader of text lines, behind every qusgm reader (packs, tables, material
  * files, size tables, "x y z r" spheres).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* msg: diagnostics and the error slot (see msg.h). */
 #include "base/msg.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* msg: one-line diagnostics on stderr, the exit-status table, verbosity.
  *
  * Every message is "tool: where: what" on one line.  Exit statuses are the same in every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* numfmt: round-trip-safe number formatting and strict parsing (see numfmt.h). */
 #include "base/numfmt.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* numfmt: the one way qusgm prints a double in its files and tables.
  *
  * The shortest of %.15g, %.16g, %.17g that reads back (strtod) to the same double, so that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* par: threads and thread-count-independent sums (see par.h). */
 #include "base/par.h"
 #include "base/lanes.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* par: the library's threads, and sums whose value does not depend on how many there are.
  *
  * The evaluations of the functional, the minimisers' vector algebra and (later) the DEM run

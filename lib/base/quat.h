@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* quat: unit quaternions for the orientation of non-spherical grains (inline, no state).
  *
  * q = (w, x, y, z) with w the scalar part.  A grain's quaternion turns its body frame into

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* table: TSV header and rows (see table.h). */
 #include "base/table.h"
 #include "base/numfmt.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* table: the TSV convention shared by every tool that writes tables.
  *
  * One header line: '#' then tab-separated column names, each optionally followed by its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* vec3: the few 3-vector operations the physics modules share (inline, no state). */
 #ifndef QUSGM_VEC3_H
 #define QUSGM_VEC3_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cell: uniform grid neighbour search (see cell.h). */
 #include "contact/cell.h"
 #include "base/msg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cell: a uniform grid of cells for finding overlapping spheres in O(N).
  *
  * The cell edge is at least the largest interaction distance (2 r_max + skin), so every

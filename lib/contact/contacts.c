@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* contacts: geometric contact detection (see contacts.h). */
 #include "contact/contacts.h"
 #include "base/msg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* contacts: the one contact enumerator of the library, and the contact network it collects.
  *
  * Every consumer of contacts (the functional and its gradient, the minimisers' stiffness

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hertz: the Hertz-Mindlin contact law through the interface of law.h, from the kernels of
  * hertz.h (see there and law.h). */
 #include "contact/hertz.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hertz: the Hertz-Mindlin contact law's closed forms, the one home of each (physics.md §2-5).
  *
  * Normal (Hertz): R* = (1/R_i + 1/R_j)^-1 (wall: R_i), E* = ((1-nu_i^2)/E_i + (1-nu_j^2)/E_j)^-1,

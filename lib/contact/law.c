@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* law: the table of the contact laws (see law.h); each law is its own file (hertz.c,
  * linear.c). */
 #include "contact/law.h"

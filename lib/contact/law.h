@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* law: a contact law as an interface, so that the enumerator and the engines never name one,
  * the pieces every law shares, and the table of the laws.
  *

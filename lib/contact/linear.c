@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linear: the linear spring law through the interface of law.h, from the kernels of linear.h
  * (see there and law.h). */
 #include "contact/linear.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* linear: the linear spring-dashpot contact law's closed forms, the one home of each.
  *
  * Normal: P = k_n h, U = k_n h^2 / 2, dP/dh = k_n (h > 0).  Tangential (quasi-static):

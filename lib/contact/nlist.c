@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* nlist: Verlet lists over the cell grid (see nlist.h). */
 #include "contact/nlist.h"
 #include "base/par.h"

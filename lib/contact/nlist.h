@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* nlist: Verlet neighbour lists of polydisperse spheres, built in O(N) with the cell grid.
  *
  * A list holds every pair i < j closer than r_i + r_j + skin at the positions and box of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plate: the element contacts of spheroplates (see plate.h; physics.md §12).
  *
  * The rules.  Everything is found from two enumerations done once per pair: each vertex of

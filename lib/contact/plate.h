@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plate: the element contacts of an interaction between two spheroplates, or between a
  * spheroplate and a wall (physics.md §12, the platy-particle paper's §II B).
  *

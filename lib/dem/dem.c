@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* dem: explicit DEM compaction for loose packs (see dem.h). */
 #include "dem/dem.h"
 #include "dem/servo.h"

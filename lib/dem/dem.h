@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* dem: explicit discrete-element dynamics that makes packgen's loose packs.
  *
  * The papers start from a loose DEM pack in which grains touch their neighbours and many

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* platedem: explicit DEM of spheroplates (see platedem.h). */
 #include "dem/platedem.h"
 #include "contact/law.h"

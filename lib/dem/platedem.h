@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* platedem: explicit DEM of spheroplates, the platy-particle paper's engine (P §II B,
  * App. A; physics.md §12).
  *

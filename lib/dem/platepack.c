@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* platepack: spheroplate packs by grid placement and DEM compaction (see platepack.h). */
 #include "dem/platepack.h"
 #include "dem/servo.h"

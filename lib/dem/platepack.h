@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* platepack: packs of spheroplates by DEM, as the platy-particle paper makes them (P §II C).
  *
  * The grains (radius column = spheroradius, side, any orientation) are put on the nodes of a

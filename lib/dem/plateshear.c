@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plateshear: simple shear between glued walls (see plateshear.h). */
 #include "dem/plateshear.h"
 #include "dem/platepack.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plateshear: the platy-particle paper's simple shear test (P §II C, Fig. 4b), for packs of
  * spheroplates and of spheres made by the plate engine (dem/platedem.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* servo: the wall servo and the unbalanced force the DEM compactions share (see servo.h). */
 #include "dem/servo.h"
 #include "base/par.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* servo: what the DEM compactions share (dem.c for spheres, platepack.c for spheroplates):
  * the wall servo, under which each axis with walls strains its box towards a target stress
  * and the grain centres follow the box affinely, and the rest criterion's unbalanced force. */

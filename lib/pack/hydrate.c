@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hydrate: tagging the smallest grains (see hydrate.h). */
 #include "pack/hydrate.h"
 #include "base/msg.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hydrate: which grains of a pack are gas hydrate (the phase column, pack.h).
  *
  * packgen --hydrate-volume F makes the smallest grains hydrate, the pore-filling hydrate of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* material: presets, preset files and sampling (see material.h). */
 #include "pack/material.h"
 #include "pack/packio.h"

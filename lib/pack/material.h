@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* material: grain materials (presets and preset files) and sampling of per-grain moduli.
  *
  * A material is a mean Young's modulus E (Pa), Poisson ratio nu and density rho (kg/m^3),

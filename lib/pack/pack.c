@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* pack: the data model (see pack.h). */
 #include "pack/pack.h"
 #include "pack/shape.h"

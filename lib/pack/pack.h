@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* pack: the data model every tool shares.
  *
  * A pack is N grains in a rectangular box bounded by six walls (or periodic), the reference box

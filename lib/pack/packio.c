@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* packio: the strict pack reader and the round-trip-exact writer (see packio.h). */
 #include "pack/packio.h"
 #include "base/fileio.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* packio: reading and writing qusgm-pack versions 1 and 2 (share/doc/pack-format.md).
  *
  * The reader is strict and reports the first problem as "file:line: what is wrong" in the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* psd: radius distributions (see psd.h). */
 #include "pack/psd.h"
 #include "base/lines.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* psd: grain-size (radius) distributions for packgen.
  *
  * Specs: "uniform:RMIN,RMAX" (m), "lognormal:MEDIAN,SIGMA[,RMIN,RMAX]" (SIGMA of ln r,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* shape: spheroplate geometry in closed form (see shape.h). */
 #include "pack/shape.h"
 

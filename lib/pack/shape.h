@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* shape: the grains' shapes, spheres and spheroplates (physics.md §12).
  *
  * A spheroplate is the Minkowski sum of a square plate (its core) of side L and a sphere of

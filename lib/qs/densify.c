@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* densify: grow under-coordinated grains, shrink, minimise; then compact (see densify.h). */
 #include "qs/densify.h"
 #include "contact/contacts.h"

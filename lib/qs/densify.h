@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* densify: phase (a) of making a pack (physics.md §9, S §2.4): frictionless isotropic
  * compaction of a loose pack.
  *

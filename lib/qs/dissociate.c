@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* dissociate: hydrate dissociation in a pack (see dissociate.h). */
 #include "qs/dissociate.h"
 #include "base/msg.h"

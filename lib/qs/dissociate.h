@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* dissociate: hydrate dissociation in a pack (physics.md section 11; S section 4.2).
  *
  * A drop dS < 0 of the hydrate saturation S = V_hydrate / V_pores (the hydrate counted as

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fr_lanes: the friction kernel on FR_LN contacts at once, included by friction.c once per
  * lane count (2: SSE2's v2d, fr_pair2; 4: AVX2's v4d, fr_pair4), so that both are one text.
  *

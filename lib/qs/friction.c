@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* friction: Mindlin-Deresiewicz tangential force and torsion over a frozen increment
  * (see friction.h). */
 #include "qs/friction.h"

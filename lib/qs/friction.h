@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* friction: Mindlin-Deresiewicz tangential forces and torsional couples (physics.md §3-6).
  *
  * With friction the unknowns of an equilibrium are 6N lengths: the grain centres x (3N) and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* frictionalize: uniaxial loading with friction until the sliding ratio saturates (see
  * frictionalize.h). */
 #include "qs/frictionalize.h"

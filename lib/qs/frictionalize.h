@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* frictionalize: phase (b) of making a pack (physics.md §9, F §3.2): friction is switched on
  * and the pack is loaded in uniaxial strain, increment by increment, until the fraction of
  * sliding contacts stops growing.

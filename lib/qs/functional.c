@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* functional: Hertz energy and gradient over a pack (see functional.h). */
 #include "qs/functional.h"
 #include "contact/hertz.h"

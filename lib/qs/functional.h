@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* functional: the total potential energy Pi of a pack and its exact gradient (physics.md §2, §6).
  *
  * Pi is a sum of terms (struct qs_term), each adding its energy, its gradient and its part

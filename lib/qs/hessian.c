@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hessian: the block-sparse Hessian of Pi over the centres (see hessian.h). */
 #include "qs/hessian.h"
 #include "base/msg.h"

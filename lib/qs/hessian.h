@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hessian: the sparse Hessian of Pi over the unknowns, for Newton's method (minimize.h).
  *
  * Block storage over nodes of three unknowns: the N centres (node i), and with friction the N

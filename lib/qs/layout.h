@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* layout: the unknowns of a quasi-static equilibrium, and the one place that knows their order.
  *
  * Frictionless: the grain centres, 3N lengths (m), grain i at 3i.  With friction: the centres

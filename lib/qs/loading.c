@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* loading: strain increments with the affine guess (see loading.h). */
 #include "qs/loading.h"
 #include "contact/contacts.h"

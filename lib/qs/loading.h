@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* loading: moving the walls of a pack and carrying the grains along (physics.md §7-8).
  *
  * The loader (struct loader) is what frictionalize and loadtest share: it holds a pack and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* loadpath: parsing and walking loading paths (see loadpath.h). */
 #include "qs/loadpath.h"
 #include "analysis/measure.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* loadpath: the loading paths of loadtest, their text form and the driver that walks them
  * (physics.md §8; share/man/man1/loadtest.1 documents the grammar).
  *

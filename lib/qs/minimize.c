@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* minimize: the papers' modified CG and FIRE (see minimize.h). */
 #include "qs/minimize.h"
 #include "base/lanes.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* minimize: finding the equilibrium of a pack by minimising Pi (physics.md §7).
  *
  * Methods:

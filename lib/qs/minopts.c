@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* minopts: validation of the shared minimiser options (see minopts.h). */
 #include "qs/minopts.h"
 

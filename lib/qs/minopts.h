@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* minopts: the minimiser's command-line options, shared by every tool that finds
  * equilibria (densify, frictionalize, loadtest), so that each option has one name, one
  * help line and one default everywhere.  Use QS_MIN_OPTS(mp) inside a cli_opt table, then

@@ -1,4 +1,5 @@
 #!/usr/bin/perl
+# SPDX-License-Identifier: GPL-3.0-or-later
 # md2man.pl VERSION < share/doc/tables.md > share/man/man5/qusgm-tables.5
 # The manual page of a document of share/doc/, in man(7) macros, so that the document stays
 # the one source (qusgm-tables(5) is share/doc/tables.md: make man-tables).  The document

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The frictional paper's Fig. 4: G and the sliding ratio against sigma_c during phase (b)
 # (frictionalize's log, one point per increment) and the uniaxial test that follows (moduli
 # per window, sliding ratio per increment), against the volume-averaged sigma_c (the stress

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The frictional paper's Figs. 5-6: deviatoric stress (axial - mean lateral) against the axial
 # strain of the uniaxial test (measured from the test's start), and K and G against sigma_c
 # with each pack's own effective-medium K and G (physics.md §13; dashed: rough, dotted: smooth).

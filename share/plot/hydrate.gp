@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The frictionless paper's Fig. 5 (pipelines/Makefile, s-fig5): K and G of the hydrate-bearing
 # pack after dissociation, from the study's summary table (pipelines/hydrate.sh).  Left: against
 # the excess pore pressure at dS = -0.01; right: against the fall of the hydrate saturation -dS

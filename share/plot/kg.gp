@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # K and G against confining stress for several simulations (pipelines/Makefile): for each run
 # directory, phase (b) from fric.tsv when it exists (open points, one per increment) and the
 # uniaxial test from moduli.tsv (lines, one point per fitted window), both against the

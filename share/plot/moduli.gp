@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # K and G against confining stress from a moduli table (moduli(1)).
 # gnuplot -e "in='moduli.tsv'; out='moduli.png'" share/plot/moduli.gp
 if (!exists("in")) in = 'moduli.tsv'

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # pack.gp: the force-network picture of packpic.sh (which makes the two tables and calls it);
 # with segs (spheroplates: x y dx dy colour, x0 z0 x1 z1 the box in x and y), the plates' traces.
 # discs: id x z section-radius colour; x0 z0 x1 z1 the box (m); lines: x z dx dz class (1-8, the width in half points).

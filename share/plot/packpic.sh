@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # packpic.sh PACK OUT.png [COLOUR] [TITLE]: a picture of a sphere pack's force network, drawn
 # by gnuplot from packexport's tables: the slab of grains whose centres lie within one mean
 # radius of the box's middle plane y = y_c, seen along y (x across, z up), each grain the

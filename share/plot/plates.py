@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # plates.py: a ParaView picture of a spheroplate pack written by packexport --vtk.
 # usage: xvfb-run -a pvbatch share/plot/plates.py PLATES.vtp OUT.png
 # (the camera is set for a box of about 1.1 um, packgen's 1000 plates at eta 0.5; each

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The platy-particle paper's figures from the platy study (pipelines/Makefile): the velocity
 # profiles (its Fig. 6), tau_w/sigma_w against gamma (Fig. 5), and against the platyness eta the
 # shear strength q/p with eq. 28's harmonic sum (Figs. 7, 22), the packing fraction (Fig. 8),

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The frictionless paper's Fig. 3: the three principal stresses against their strains through a
 # polyaxial loading (solid) and unloading (dashed) cycle; hysteresis shows as different curves.
 # gnuplot -e "out='f.png'; cols='pipelines/cols.sh'; run='DIR'" share/plot/polyaxial.gp

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """The folder make install puts the qusgm package in, for PREFIX (argv[1]): where the python3
 that runs this finds it.  PREFIX=/usr on Debian: /usr/lib/python3/dist-packages, Debian's own
 folder for every python3 version; otherwise the entry of sys.path under PREFIX/lib (Debian's

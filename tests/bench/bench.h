@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* bench: what the benchmark programs share: a monotonic wall clock and the process's CPU clock. */
 #ifndef QUSGM_BENCH_H
 #define QUSGM_BENCH_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* evalscale: is the cost of one energy+gradient evaluation linear in N?
  *
  * usage: evalscale PACK M...

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fincrement: the cost of uniaxial strain increments with and without friction.
  *
  * usage: fincrement PACK [STEPS [STRAIN [METHOD]]]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* frevaluate: the cost of one evaluation of the frictional functional, term by term.
  *
  * usage: frevaluate PACK [SECONDS]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* increment: the cost of one isotropic strain increment from a dense pack, per minimiser.
  *
  * usage: increment PACK [STRAIN]

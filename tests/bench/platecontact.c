@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* platecontact: the cost of the spheroplate element contacts (contact/plate.h) against libccd.
  *
  * usage: platecontact [PAIRS]

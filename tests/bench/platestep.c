@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* platestep: the cost of one explicit DEM step of a spheroplate pack (lib/dem/platedem.c).
  *
  * usage: platestep PACK [STEPS]

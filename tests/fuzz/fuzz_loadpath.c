@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_loadpath: the loading-path parser (qs/loadpath.h path_parse) on arbitrary bytes (as a
  * NUL-terminated string); an accepted path must respect the struct's bounds. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_material: the material preset file reader (pack/material.h) on arbitrary bytes,
  * through a temporary ".mat" file; an accepted material must be a physical one. */
 #include <math.h>

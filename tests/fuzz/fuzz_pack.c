@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_pack: the pack reader (pack/packio.h) on arbitrary bytes, and the round trip the
  * reader promises: when a pack is accepted, write(read(write(p))) == write(p) byte for byte
  * (abort() otherwise).  Every pack of a multi-pack stream is checked (the first 8).  The

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_psd: the size-table reader (pack/psd.h, "table:FILE") on arbitrary bytes, through a
  * temporary file; an accepted table is sampled a few times. */
 #include <math.h>

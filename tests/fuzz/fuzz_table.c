@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_table: the TSV table reader (base/table.h) on arbitrary bytes; an accepted table must
  * be consistent (every named column, table_find finds it).  The reader needs a stream with
  * a file descriptor, so the input goes through a temporary file. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_tmpfile: the material and size-table readers take a file name, so the fuzz input is
  * written to one temporary file per process (removed at exit) and read from there. */
 #ifndef QUSGM_FUZZ_TMPFILE_H

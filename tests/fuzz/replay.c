@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* replay: runs a fuzz harness's LLVMFuzzerTestOneInput on every file of its seed corpus and
  * of its crash reproducers (FUZZ_CORPUS/NAME and FUZZ_CRASHES/NAME, compiled in), without
  * libFuzzer, so make check replays them as a regression test under the normal cc and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* example: a program of a user of the installed library (share/doc/library.md, "Using the
  * library"), built by tests/tools/install.sh as C and as C++ with
  *

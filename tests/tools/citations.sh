@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # citations: every document, section of physics.md and paper equation that code, tests, man
 # pages and documents cite exists in the tree (tests/citations.pl says what is looked for).
 # The checker runs on the tree, then on files with citations that exist, which it must accept,

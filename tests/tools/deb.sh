@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # deb: the Debian packaging (debian/) against what make install installs, cheaply (make deb
 # builds the packages themselves, minutes, and runs lintian and the packaged tools): the
 # changelog's version is the Makefile's, make install with debian/rules' own INSTALL_VARS

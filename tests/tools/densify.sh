@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # densify as a user runs it: a loose packgen pack compacted frictionlessly to 1 and 4 MPa,
 # checked with packinfo (which finds the contacts and forces itself, so its residual and
 # stresses are an independent check), the log, determinism, the FIRE minimiser, and every

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # dissociate on a small hydrate-bearing quartz pack (packgen --hydrate-volume 0.15, 200 grains,
 # densify --stress 4e6), frictionless unless said: nothing asked changes nothing; the probe's K
 # against loadtest's isotropic unloading step; p_ex alone lowers the effective stress by about

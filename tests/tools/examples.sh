@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # examples: every script of examples/ runs as its README says, at a small size, with the
 # tools under test, and shows what its comments say it shows: the triaxial test holds its
 # lateral stress while q rises, the cycle unloads stiffer than it loaded and keeps a

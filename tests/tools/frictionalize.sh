@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # frictionalize as a user runs it: a small dense pack (200 grains, densify --stress 4e6) is
 # frictionalized and checked with packinfo (contact history, sliding ratio, residual), the log
 # (columns, one row per increment, saturation), determinism, --mu 0, the iteration and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # history: the one rule for which grain a contact line's Q0 acts on (pack_contact_q0_on).
 # A line may name its pair 'i j' or 'j i' (pack-format.md); Q0 is the force on the first
 # grain named.  A frictional pack and its twin with every grain-grain line reversed

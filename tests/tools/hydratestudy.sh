@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The hydrate study's small form end to end (make -C pipelines SMALL=1 s-fig5: 1000 grains of
 # quartz and hydrate densified to 21 MPa, dissociated along the paper's two series, a
 # three-axis probe after each), then the paper's finding from its summary table: K and G fall

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # install: make install into a staged DESTDIR installs the library (static and shared, with its
 # soname links), its public headers under include/qusgm (the umbrella qusgm.h and what it
 # includes, no other), qusgm.pc and the Python package where the python3 of PREFIX finds it;

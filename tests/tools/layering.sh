@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # layering: lib/'s include graph keeps its layers (tests/layers.sh, share/doc/library.md).
 # The checker runs on the tree, then on copies with one fault added on purpose (a forbidden
 # include, a circle, an include without its layer), each of which it must reject.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Helpers for tool tests: source it, then call the checks.  Each check prints one
 # "PASS name" or "FAIL name: why" line; tests/run.sh counts them.  $BIN is the directory of
 # the tools under test, $TOP the source tree; the test runs in a fresh scratch directory.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # loadtest as a user runs it, on a small frictional pack (200 grains: packgen, densify --stress
 # 4e6, frictionalize): the table's header and rows, a test split in two runs through the -o
 # pack against one run (the friction history must survive), a loading-unloading cycle with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # manpages: every tool has a man page that describes every long option its --help prints (in
 # its OPTIONS, or in qusgm-solver(7) where its page points there) and lists no option --help
 # does not know, --help and --version succeed, the pages render without warnings, every

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # moduli as a user runs it: on loadtest curves of a small frictional pack (200 grains) and on
 # tables written by hand from a known linear isotropic material, whose K and G it must give
 # back; --window, segments, continued tests, isotropic paths (K only), --stress lw, --emt,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Newton's method (--method newton) against L-BFGS on the same frictionless increments: six
 # uniaxial 1e-4 steps and three isotropic ones of the 200-grain dense pack with --mu 0, once
 # per method from the same start.  Both stop at the residual 1e-4 (each grain's unbalanced

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # packexport: VTK, LAMMPS and xyzr output, checked by parsing it back; usage and data errors.
 . "$TOP/tests/tools/lib.sh"
 

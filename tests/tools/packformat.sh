@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # packformat: the pack reader (lib/pack/packio.c) as a user meets it, through packinfo.
 # One check for every error the reader reports (share/doc/pack-format.md, "Errors"), each
 # with exit status 1, an empty stdout and exactly one "packinfo: FILE:LINE: what" line on

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # packgen as a user runs it: a valid loose pack, same seed same bytes, the loose-pack
 # properties the issue asks for, and every usage error.
 . "$TOP/tests/tools/lib.sh"

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # packimport: x y z r text to a pack; the exact round trip through packexport --xyzr;
 # materials, walls, box, seed; every reader error as one file:line message.
 . "$TOP/tests/tools/lib.sh"

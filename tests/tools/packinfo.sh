@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # packinfo's bulk keys on a real pack (the small pack of the loading tests: 200 grains,
 # densify --stress 4e6): the walls order the grains next to them, so the box away from them
 # is denser and better connected than the whole box; --bulk-margin 0 is the box itself; a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # packview: the tool's contract, the page's content, and the page in a real browser: headless
 # Chromium opens four views of two packs in one window, with no JavaScript error, and the
 # screenshot's pixels show the grains in their phase colours, fewer grains in a slab, and

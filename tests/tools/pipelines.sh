@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The smallest study end to end, as a user runs it: make -C pipelines SMALL=1 fig4 (the
 # frictional paper's Fig. 4 on a 300-grain pack) into this test's directory, then the trends
 # the paper reports, read back from the tables the study wrote: phase (b) ends with a

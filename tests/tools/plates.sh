@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # plates: what the tools do with packs of spheroplates (the shape columns side qw qx qy qz of
 # share/doc/pack-format.md).  The sphere physics (densify, frictionalize, loadtest) refuses a
 # pack with any side > 0 in one line, through pack_require_spheres, and takes one whose shape

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The platy study's small form end to end (make -C pipelines SMALL=1 platy: 216 plates at eta
 # 0.33, 0.5 and 0.8, compacted, sheared to gamma 0.6 at I = 1e-2, the descriptors of four
 # snapshots over gamma 0.3-0.6), then the paper's trends from its report: with the platyness

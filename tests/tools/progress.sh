@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Progress (lib/base/cli.h): on a terminal a status line redrawn in place, with a bar and an
 # ETA where the run has a target; in a pipe nothing without -v, and with -v plain lines.
 # The terminal is a pseudo-terminal made by script(1) (util-linux), 200 columns wide.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # python: the package share/python/qusgm reads packs (plain and .gz, versions 1 and 2,
 # streams) and tables into numpy arrays with the exact doubles the tools wrote: every grain
 # and contact number equals the file's token read by float(), the radii extremes equal

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The frictional increment minimised loosely before its commit (--inc-tol, default 1e-3) and
 # settled to --tol afterwards (lib/qs/loading.h, LOAD_INC_TOL; loading.c, settle) against the
 # increment minimised to --tol itself (--inc-tol 1e-4), from the same frictional pack: six

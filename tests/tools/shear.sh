@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # shear as a user runs it: a short shear of the plate engine's spheres and of plates, its
 # table, profile, snapshots and final pack, determinism, and the refusals; then (optimised
 # build only: it takes about 20 s) a steady shear of plates whose velocity profile must be

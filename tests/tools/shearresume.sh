@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # shear --checkpoint and --time-limit: a shear cut into several calls (each stopped at its
 # time limit with exit 75, or killed with SIGKILL) goes on from its checkpoint to the same
 # bytes as the uninterrupted run: the table, the profile, the snapshots and the final pack

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Signals during an atomic .gz output (issue 19): a tool killed by TERM while it compresses
 # leaves neither the target nor a temporary file (.NAME.XXXXXX, .NAME.XXXXXX.z); a signal that
 # was ignored at start (nohup: HUP; `cmd &` in a non-interactive shell: INT) stays ignored and

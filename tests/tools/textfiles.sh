@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # textfiles: the small text inputs read through the line reader (lib/base/lines.c): a
 # material preset file (packgen --material FILE), a size table (packgen --psd
 # table:FILE), and packimport's "x y z r" lines.  Their readers used 512- and 256-byte fgets buffers, which split a longer

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Threads (lib/base/par.h): every tool that minimises gives the same bytes on one thread and
 # on two.  The packs here have 300 grains, under the 4096 at which loops are split by default,
 # so QUSGM_PAR_BLOCK=16 cuts them into 19 blocks of 16 grains, and two threads take 9 and 10

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # version: one version everywhere, and the exact source in every tool's --version and in the
 # history lines they write.  The Makefile's VERSION is the release; cli.h, the Python reader,
 # the man pages, CITATION.cff and NEWS name the same one.  Built from a git checkout, the

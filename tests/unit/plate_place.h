@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plate_place.h: a pair of spheroplates at a chosen core distance, for test_plate and the
  * plate-contact benchmark (tests/bench/platecontact.c). */
 #ifndef QUSGM_TEST_PLATE_PLACE_H

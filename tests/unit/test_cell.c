@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_cell: the cell grid finds exactly the pairs an O(N^2) search finds.
  *
  * Random polydisperse packs (radii uniform in 0.7-1.3) at several volume fractions, from a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_contacts: the contact seam.  The enumerator (contact/contacts.h) against a brute-force
  * O(N^2) search written here, with walls and with periodic axes (nearest images); its history
  * slots carried over a rebuild; the contact-law interface (contact/law.h) against the

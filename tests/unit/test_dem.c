@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_dem: packgen's sphere DEM (lib/dem/dem.c): a small pack comes to rest at the target
  * overlap with every grain inside the box and no pair overlapping by more than the servo
  * allows; the pair forces in lanes give the bytes of one pair at a time, on one thread and on

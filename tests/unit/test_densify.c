@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_densify: densify_run's end conditions with the release of unbraced grains done both
  * ways, restarting the minimiser after each release (the default) and keeping its memory
  * (release_keep, through qs_minimizer_moved): from the same loose pack, each run ends at the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_dissociate: the rules of hydrate dissociation (qs/dissociate.h) against numbers
  * computed by hand: (a) the hydrate grains' volumes fall by dS / S, (b) every grain's by
  * p_ex / K_i, (c) the box grows by alpha_b p_ex / K in volume, 1 + eps_kk / 3 per length;

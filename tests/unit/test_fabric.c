@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_fabric: the platy-particle paper's descriptors (analysis/fabric.h) on synthetic sets of
  * interactions whose anisotropies are known in closed form.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_fileio: the atomic outputs of lib/base/fileio.h as a tool with several outputs uses
  * them (a pack and its log, the three files of packexport --vtk -o NAME.vtm): committed all
  * or none, a failed write reported with its own errno, and the checks a tool makes on its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_friction: lib/friction.c, the Mindlin-Deresiewicz tangential force and torsion of
  * physics.md §3-6, against closed forms, the papers' Fig. 2 loop and finite differences.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_functional: lib/functional.c (Hertz energy, gradient, wall forces) and the neighbour
  * list behind it, against closed forms, finite differences and O(N^2) searches.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_hessian: lib/qs/hessian.c and Newton's method of lib/qs/minimize.c.
  *
  *  - H v against central differences of the exact gradient, (g(x + e v) - g(x - e v)) / 2e,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_hooke: the moduli chain of the moduli tool (physics.md §8, §13) on data whose answers
  * are known exactly: lib/hooke.c (least-squares Hooke fit), lib/curve.c (per-interval fits of
  * a loadtest table), lib/table.c (the TSV reader) and lib/emt.c (effective-medium moduli).

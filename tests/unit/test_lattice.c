@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_lattice: compressed lattices of identical spheres between walls, brought to equilibrium
  * by qs_minimize (CG and FIRE), against solutions known independently of lib/.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_lattice_moduli: moduli of Hertz lattices of identical spheres (radius R, E, nu; E* = E /
  * (2 (1 - nu^2)) between two grains, R* = R/2), frictionless unless said otherwise, against
  * moduli derived here.  Strains are compression positive and measured against the touching

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_lines: the line reader behind every qusgm reader (lib/base/lines.h).
  *
  * Each check writes a small file (plain, or gzip through zlib), reads it back through

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_loading: the loader's choices that the tools leave to it.  L-BFGS's stored steps
  * (--lbfgs-m 0, the tools' default): LOAD_LBFGS_M in frictional increments, QS_LBFGS_M
  * without friction (where 4 steps led frictionless probes to other equilibria,

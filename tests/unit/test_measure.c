@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_measure: lib/measure.c and lib/contacts.c on configurations whose answers are known in
  * closed form, and the Hertz closed forms of lib/hertz.h against their own derivatives.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_packio: the pack writer and reader are exact inverses, and num_format is the shortest
  * round-trip-safe form (share/doc/pack-format.md, "Numbers").
  *

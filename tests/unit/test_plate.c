@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_plate: the spheroplate element contacts (contact/plate.h).  (a) The cores' distance
  * against a reference written here: a grid on one square with the exact point-square distance
  * to the other, and a nested golden-section search of that convex function; (b) every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_platedem: the spheroplate DEM (lib/dem/platedem.c) against conservation laws and
  * closed forms: the shape's volume and inertia by Monte Carlo, a torque-free spinning plate,
  * head-on collisions' restitution, a plate pressed on a wall, a pack at rest. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* unit: a minimal test harness for lib/.  Each check prints one "PASS name" or
  * "FAIL name: detail" line; main returns unit_summary(), nonzero when anything failed.
  * tests/run.sh counts the lines. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* unit_lattice: blocks of identical spheres on a simple cubic or face-centred cubic lattice
  * between walls, and the Newton reference that brings them to equilibrium (the exact Hessian of
  * an O(N^2) Hertz energy written here, independent of lib/functional.c and lib/minimize.c),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* unit_min: minimising a copy of a start and comparing two equilibria, shared by the unit
  * tests of the minimisers (test_minimize, test_hessian). */
 #ifndef QUSGM_UNIT_MIN_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* unit_pack: a random polydisperse pack with controlled overlaps, shared by the unit tests
  * of the functional and the minimisers. */
 #ifndef QUSGM_UNIT_PACK_H

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Read qusgm packs and tables into numpy arrays.
 
 A reader, in Python and numpy, of the two kinds of file the qusgm tools write (numpy
