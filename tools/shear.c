@@ -290,6 +290,8 @@ write_snapshot(struct run_ctx *c, struct pdem *d, double gamma, const char *path
 	return r;
 }
 
+static void write_profile(const double *mean, const double *n, double to, struct file_out *out);
+
 static int
 on_row(const struct shear_row *row, struct pdem *d, void *vc)
 {
@@ -325,6 +327,23 @@ on_row(const struct shear_row *row, struct pdem *d, void *vc)
 	}
 	cli_progress_stage("shear");
 	cli_progress_frac(row->gamma / o.sp.strain);	/* the bar and the ETA (cli.h) */
+	/* the profile so far, as the run goes (kept when it stops or is killed); the end writes
+	 * it again, to the strain reached, with the pack */
+	if (o.profile && row->gamma >= o.sp.profile_from && row->gamma < o.sp.strain) {
+		struct file_out out;
+		double *mean = malloc((size_t)o.sp.profile_bins * sizeof *mean);
+		int b, r;
+
+		if (!mean)
+			return -1;
+		for (b = 0; b < o.sp.profile_bins; b++)	/* as plateshear_run makes res->profile */
+			mean[b] = row->profile_n[b] > 0 ? row->profile_sum[b] / row->profile_n[b] : NAN;
+		write_profile(mean, row->profile_n, row->gamma, &out);
+		r = file_out_commit(&out);
+		free(mean);
+		if (r)
+			return -1;
+	}
 	cli_progress("step %ld gamma %.3f of %g: tau/sigma %.3f  q/p %.3f  phi %.4f  Z %.2f", (long)row->step, row->gamma,
 	    o.sp.strain, row->tau_ratio, row->qp, row->phi, row->z);
 	return 0;
@@ -411,9 +430,10 @@ resume_from(struct run_ctx *c)
 	return in;
 }
 
-/* The profile into out, uncommitted: it is committed with the pack, all or none. */
+/* The profile up to strain `to` into out, uncommitted: each bin's mean (NaN where it saw no
+ * grain) and samples. */
 static void
-write_profile(const struct shear_result *res, struct file_out *out)
+write_profile(const double *mean, const double *n, double to, struct file_out *out)
 {
 	static const struct table_col pc[] = {{"y_over_yw", NULL}, {"vx_over_vw", NULL}, {"samples", NULL}};
 	int b;
@@ -421,10 +441,10 @@ write_profile(const struct shear_result *res, struct file_out *out)
 	if (file_out_open(out, o.profile))
 		msg_die_err(EXIT_DATA);
 	fprintf(out->fp, "## shear: <v_x>(y) / v_w over every grain, from gamma %g to %g, every 10 steps\n", o.sp.profile_from,
-	    o.sp.strain);
+	    to);
 	table_header(out->fp, pc, 3);
 	for (b = 0; b < o.sp.profile_bins; b++) {
-		double v[3] = {(b + 0.5) / o.sp.profile_bins, res->profile[b], res->profile_n[b]};
+		double v[3] = {(b + 0.5) / o.sp.profile_bins, mean[b], n[b]};
 		table_row(out->fp, v, 3);
 	}
 }
@@ -483,7 +503,7 @@ main(int argc, char **argv)
 	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, I %.4g, kappa %.4g; %ld rows",
 	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.inertial, res.kappa, c.rows);
 	if (o.profile)
-		write_profile(&res, &profout);
+		write_profile(res.profile, res.profile_n, o.sp.strain, &profout);
 	if (st.output) {
 		num_format(buf, o.sp.strain);
 		if (pack_set_meta(&p, "shear_gamma", buf) || pack_write_tool_out(&p, &tool, &st, &packout)) {

@@ -335,6 +335,8 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 			row.step = ss.step;
 			row.time = ss.step * d.dt * d.u_time;
 			row.gamma = gamma;
+			row.profile_sum = ss.psum;
+			row.profile_n = ss.pn;
 			memset(&rs, 0, sizeof rs);
 			while (ss.next_row <= gamma)
 				ss.next_row += sp->every;

@@ -68,6 +68,9 @@ struct shear_row {
 	double p, q, qp;	/* in the xy plane */
 	double phi, z, elements;
 	double height;		/* y_w, m */
+	/* the velocity profile's sums so far (profile_bins of each; samples 0 before
+	 * profile_from): the mean of bin b is profile_sum[b] / profile_n[b] */
+	const double *profile_sum, *profile_n;
 };
 
 /* Called at every row; nonzero stops the run (and the run returns -1).  d is the engine

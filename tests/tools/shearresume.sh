@@ -3,6 +3,7 @@
 # time limit with exit 75, or killed with SIGKILL) goes on from its checkpoint to the same
 # bytes as the uninterrupted run: the table, the profile, the snapshots and the final pack
 # (all but their history lines, which name the command); calls on 1 and 2 threads mixed.
+# A failed run keeps the profile it has.
 # Then the refusals: another run's checkpoint, a damaged one, --time-limit alone.
 . "$TOP/tests/tools/lib.sh"
 
@@ -60,5 +61,16 @@ if [ -s c.ck ]; then
 	expect_error "shear: a damaged checkpoint" 1 "^shear: c4.ck:[0-9]+: " shear $args --checkpoint c4.ck s.pack
 else
 	fail "shear: the checkpoint a kill left" "none after 30 s"
+fi
+# the profile is written as the run goes: a run that fails at gamma 0.05 (--max-steps) keeps
+# the profile from gamma 0.03 to there
+k=$(awk -F '\t' '!/^#/ && $3 >= 0.05 { print $1 + 5; exit }' a.tsv)
+shear $args --profile f.prof --max-steps "$k" s.pack >/dev/null 2>f.err
+rc=$?
+if [ "$rc" = 1 ] && grep -q '^## shear: .* from gamma 0.03 to 0.05' f.prof 2>/dev/null &&
+   [ "$(awk -F '\t' '!/^#/ { s += $3 } END { print s + 0 }' f.prof)" -gt 0 ]; then
+	pass "shear: a failed run keeps its profile so far"
+else
+	fail "shear: a failed run keeps its profile so far" "exit $rc; $(head -c 200 f.prof 2>&1)"
 fi
 expect_error "shear: --time-limit needs --checkpoint" 2 "^shear: --time-limit needs --checkpoint" shear --time-limit 10 s.pack
