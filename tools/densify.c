@@ -66,7 +66,6 @@ struct log_ctx {
 	size_t rowlen;
 	const char *ckpath;
 	char *run;
-	struct timespec t0;
 	double longest;		/* the longest stage so far, in any call (s) */
 	double last;		/* when the last checkpoint was written, in this call (s) */
 	double before;		/* the wall time of the earlier calls (s) */
@@ -77,14 +76,6 @@ struct log_ctx {
  * on the same whatever it says): the longest stage, the wall time of the calls, their count. */
 #define CK_CLOCK "densify-clock"
 
-static double
-since(const struct timespec *t0)
-{
-	struct timespec t;
-
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
-}
 
 static void
 on_stage(const struct densify_stage *st, void *vctx)
@@ -116,7 +107,7 @@ static int
 on_checkpoint(const struct pack *p, const struct densify_resume *at, void *vctx)
 {
 	struct log_ctx *c = vctx;
-	double now = since(&c->t0), wrote;
+	double now = cli_elapsed(), wrote;
 	char clock[96];
 
 	c->longest = fmax(c->longest, now - c->last);
@@ -124,7 +115,7 @@ on_checkpoint(const struct pack *p, const struct densify_resume *at, void *vctx)
 	if (fflush(c->rows) || densify_resume_put((struct pack *)p, at, c->run, c->rowbuf) ||
 	    pack_set_meta((struct pack *)p, CK_CLOCK, clock) || pack_write_path(p, c->ckpath))
 		return -1;
-	wrote = since(&c->t0);
+	wrote = cli_elapsed();
 	c->last = wrote;
 	return o.time_limit > 0 && wrote + c->longest + (wrote - now) > o.time_limit;
 }
@@ -342,7 +333,6 @@ main(int argc, char **argv)
 	int r, resumed = 0;
 
 	msg_init(argv[0]);
-	clock_gettime(CLOCK_MONOTONIC, &lc.t0);
 	parse_args(argc, argv, &st);
 	read_pack(st.input, &p);
 	check_stress(&p);
@@ -367,7 +357,7 @@ main(int argc, char **argv)
 		lc.run = run_identity(&p);
 		resumed = resume_from(o.checkpoint, &p, &at, &lc);
 	}
-	lc.last = since(&lc.t0);	/* the first stage's time does not count the reading */
+	lc.last = cli_elapsed();	/* the first stage's time does not count the reading */
 	r = densify_run_resumable(&p, &o.dp, on_stage, &lc, o.checkpoint ? on_checkpoint : NULL, resumed ? &at : NULL,
 	    &last);
 	cli_progress_end();
@@ -375,7 +365,7 @@ main(int argc, char **argv)
 		if (o.log)
 			file_out_abort(&logout);
 		msg_info(0, "stopped after %s %ld at the time limit (%.0f s); the same command goes on from %s", last.stage,
-		    last.round, since(&lc.t0), o.checkpoint);
+		    last.round, cli_elapsed(), o.checkpoint);
 		fclose(lc.rows);
 		free(lc.rowbuf), free(lc.run);
 		pack_free(&p);
@@ -388,7 +378,7 @@ main(int argc, char **argv)
 	densify_resume_clear(&p);
 	pack_unset_meta(&p, CK_CLOCK);
 	if (o.checkpoint)
-		msg_info(1, "%.0f s of wall time in %ld call%s", lc.before + since(&lc.t0), lc.calls, lc.calls == 1 ? "" : "s");
+		msg_info(1, "%.0f s of wall time in %ld call%s", lc.before + cli_elapsed(), lc.calls, lc.calls == 1 ? "" : "s");
 	num_format(buf, last.sigma_c);
 	pack_set_meta(&p, "sigma_c0", buf);
 	if (pack_write_tool_with(&p, &tool, &st, o.log ? &logout : NULL))	/* the log closed with it: a log that failed writes no pack */

@@ -231,8 +231,7 @@ struct run_ctx {
 	char *tablebuf;
 	size_t tablelen;
 	char *run;		/* what a checkpoint must match (cli_run_identity) */
-	struct timespec t0;
-	double last_row, last_save, longest, longest_save;	/* s since t0; the longest row and save in any call */
+	double last_row, last_save, longest, longest_save;	/* s since the start (cli_elapsed); the longest row and save in any call */
 	double before;		/* the wall time of the earlier calls (s) */
 	long calls;
 	double gamma;		/* the last row's strain */
@@ -260,14 +259,6 @@ print_header(FILE *fp, double inertial)
 	table_header(fp, cols, NCOLS);
 }
 
-static double
-since(const struct timespec *t0)
-{
-	struct timespec t;
-
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (double)(t.tv_sec - t0->tv_sec) + 1e-9 * (double)(t.tv_nsec - t0->tv_nsec);
-}
 
 /* A snapshot: the state as a pack, with its strain in meta shear_gamma and this run's
  * history line, to PREFIX-G.pack (atomically). */
@@ -358,7 +349,7 @@ static int
 on_checkpoint(const struct shear_state *ss, void *vc)
 {
 	struct run_ctx *c = vc;
-	double now = since(&c->t0), wrote;
+	double now = cli_elapsed(), wrote;
 	struct file_out out;
 	int past;
 
@@ -376,7 +367,7 @@ on_checkpoint(const struct shear_state *ss, void *vc)
 		file_out_abort(&out);
 		return -1;
 	}
-	wrote = since(&c->t0);
+	wrote = cli_elapsed();
 	c->longest_save = fmax(c->longest_save, wrote - now);
 	c->last_save = wrote;
 	return o.time_limit > 0 && wrote + c->longest + c->longest_save > o.time_limit;
@@ -455,7 +446,7 @@ main(int argc, char **argv)
 	struct cli_state st;
 	struct pack p;
 	struct shear_result res;
-	struct run_ctx c = {&p, &res, &st, 0, 0, 0, NULL, NULL, 0, NULL, {0, 0}, 0, 0, 0, 0, 0, 1, 0, 0};
+	struct run_ctx c = {&p, &res, &st, 0, 0, 0, NULL, NULL, 0, NULL, 0, 0, 0, 0, 0, 1, 0, 0};
 	struct file_out profout, packout;
 	struct lines *from = NULL;
 	const char *in;
@@ -468,7 +459,6 @@ main(int argc, char **argv)
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
 	set_law(&p, in);
-	clock_gettime(CLOCK_MONOTONIC, &c.t0);
 	if (o.checkpoint) {
 		/* where output goes, when to stop or save, and the snapshots' names change no row */
 		static const char *const skip[] = {"checkpoint", "checkpoint-every", "time-limit", "profile", "snapshot-prefix", NULL};
@@ -491,7 +481,7 @@ main(int argc, char **argv)
 	cli_progress_end();
 	if (r == 2) {
 		msg_info(0, "stopped at gamma %g at the time limit (%.0f s); the same command goes on from %s", c.gamma,
-		    since(&c.t0), o.checkpoint);
+		    cli_elapsed(), o.checkpoint);
 		fclose(c.table);
 		free(c.tablebuf), free(c.run);
 		pack_free(&p);
