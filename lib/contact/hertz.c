@@ -16,7 +16,6 @@ hertz_mindlin_pair(const struct contact_law *law, const struct pack *p, size_t i
 {
 	double Gi = shear_modulus(p->E[i], p->nu[i]), Gj, nuj;
 
-	(void)law;
 	hertz_pair_moduli(p, i, j, &lp->Es, &lp->Rs);
 	if (PACK_IS_WALL(j)) {
 		Gj = shear_modulus(p->wall_E, p->wall_nu);
@@ -28,6 +27,7 @@ hertz_mindlin_pair(const struct contact_law *law, const struct pack *p, size_t i
 	lp->Ct = (2 - p->nu[i]) / Gi + (2 - nuj) / Gj;
 	lp->Ctor = 1 / Gi + 1 / Gj;
 	lp->mu = pack_contact_mu(p, j);
+	lp->kn = law->kn;
 }
 
 static double
@@ -56,15 +56,16 @@ mindlin_tangent(const struct contact_law *law, const struct law_pair *lp, double
 }
 
 static double
-hertz_mindlin_dem_force(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in,
-    double *hist, double ft[3], double *fel)
+hertz_mindlin_dem_interaction(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    double *hist, double *fk, double ft[3], double *fel)
 {
-	return hertz_dem_force(law->zeta, law->kt_ratio, lp, in, hist, ft, fel);
+	(void)law;
+	return hertz_dem_interaction(lp, in, hist, fk, ft, fel);
 }
 
 /* kt_ratio 2(1-nu)/(2-nu) at nu = 0.2 (Mindlin stick over Hertz stiffness), zeta 0.3: the
  * DEM settling of packgen's loose packs (dem.h) */
 const struct contact_law contact_law_hertz_mindlin = {
 	"hertz-mindlin", 3, 0, 0.888888888888889, 0.3,
-	hertz_mindlin_pair, hertz_normal, mindlin_tangent, hertz_mindlin_dem_force, "hertz",
+	hertz_mindlin_pair, hertz_normal, mindlin_tangent, hertz_mindlin_dem_interaction, "hertz",
 };

@@ -185,6 +185,35 @@ hertz_dem_force(double zeta, double kt_ratio, const struct law_pair *lp, const s
 	return law_dem_damped(zeta, kt_ratio, lp->mu, in, kn, hertz_force_k(kn, in->h), hist, ft, fel);
 }
 
+/* The DEM forces of an interaction of m element contacts (law.h, struct law_dem_elems) under
+ * Hertz-Mindlin: element k carries the Hertz force 2/3 k_k h_k, k_k = 2 E* sqrt(R* h_k) its
+ * stiffness dP/dh, less the viscous damping law_damping(zeta, m* / m, k_k) v_n,k, not below 0
+ * (the interaction's reduced mass shared by its elements, so that a head-on collision has
+ * the damping ratio zeta whether it meets one element or four); the interaction's tangential
+ * spring has kt_ratio times the elements' summed stiffness, within the Coulomb limit of the
+ * summed normal force.  Every element has the pair's E* and R* (for two spheroplates, R* of
+ * their spheroradii: the element contacts are between the rounded rims and faces, and the
+ * value joins the sphere's as the platyness goes to 0).  With one element this is
+ * hertz_dem_force to the bit (tests/unit/test_law.c). */
+LAW_INLINE double
+hertz_dem_interaction(const struct law_pair *lp, const struct law_dem_elems *in, double *hist, double *fk,
+    double ft[3], double *fel)
+{
+	double fsum = 0, ksum = 0, esum = 0;
+	int k;
+
+	for (k = 0; k < in->m; k++) {
+		double h = in->h[k] > 0 ? in->h[k] : 0, kn = hertz_stiffness_t(lp->Es, lp->Rs, h), f0 = hertz_force_k(kn, h), f;
+
+		f = f0 - law_damping(in->zeta, in->meff / in->m, kn) * in->vn[k];
+		fk[k] = f < 0 ? 0 : f;
+		fsum += fk[k], ksum += kn, esum += f0;
+	}
+	*fel = esum;
+	law_dem_spring(hist, in->n, in->vt, in->dt, in->kt_ratio * ksum, law_coulomb_limit(lp->mu, fsum), ft);
+	return fsum;
+}
+
 #if LANES_OK
 /* The twins of the kernels the sphere DEM's pair loop calls, on two contacts at once, one in
  * each lane (lanes.h, and law.h's twins): lane by lane the same operations in the same order

@@ -50,6 +50,7 @@ struct law_pair {
 	double Ct;	/* (2 - nu_i)/G_i + (2 - nu_j)/G_j (1/Pa): Mindlin tangential compliance */
 	double Ctor;	/* 1/G_i + 1/G_j (1/Pa): torsional compliance */
 	double mu;	/* friction coefficient (pack_contact_mu: grain-grain or grain-wall) */
+	double kn;	/* linear law: normal stiffness (N/m; the law's kn, or the DEM's scaled 1) */
 };
 
 /* The frozen tangential state of a contact at its reference overlap. */
@@ -62,6 +63,23 @@ struct law_tangent {
  * of the contact point (i minus j), reduced mass, time step. */
 struct law_dem_in {
 	double h, n[3], vr[3], meff, dt;
+};
+
+/* The most element contacts of one interaction (contact/plate.h's PLATE_MAX_ELEMENTS). */
+#define LAW_DEM_ELEMENTS 16
+
+/* One explicit step's input for an interaction of m element contacts sharing the unit normal
+ * n (on i): a pair of spheres, or a sphere and a wall, has one; two spheroplates up to
+ * LAW_DEM_ELEMENTS (vertex-face, edge-edge, ...).  Element k has overlap h[k] (at most 0: it
+ * carries no elastic force) and relative normal velocity vn[k] of its two material points
+ * (i minus j, along n: -dh/dt); vt is the relative velocity at the interaction's contact
+ * point in the tangent plane; meff the reduced mass, dt the step; zeta the normal damping
+ * ratio of the whole interaction and kt_ratio its tangential over normal stiffness (the
+ * engine's: the law's own defaults, or a restitution coefficient's). */
+struct law_dem_elems {
+	int m;
+	double h[LAW_DEM_ELEMENTS], vn[LAW_DEM_ELEMENTS];
+	double n[3], vt[3], meff, dt, zeta, kt_ratio;
 };
 
 struct contact_law {
@@ -77,11 +95,14 @@ struct contact_law {
 	double (*normal)(const struct contact_law *law, const struct law_pair *lp, double h, double *P, double *k);
 	/* The tangential state at overlap h carrying normal force P, with the pair's mu. */
 	void (*tangent)(const struct contact_law *law, const struct law_pair *lp, double h, double P, struct law_tangent *t);
-	/* DEM: the normal force magnitude (returned, >= 0, damping included), its elastic part
-	 * into *fel, and the tangential force on i into ft, updating the contact's history
-	 * (law->history doubles); the Coulomb limit at the pair's mu. */
-	double (*dem_force)(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in,
-	    double *hist, double ft[3], double *fel);
+	/* DEM: the forces of one interaction (struct law_dem_elems): each element's normal
+	 * force magnitude into fk[k] (>= 0, damping included), their sum returned, its elastic
+	 * part into *fel, and the interaction's tangential force on i into ft, updating its
+	 * history (law->history doubles: the tangential spring); the Coulomb limit at the pair's
+	 * mu times the summed normal force.  The one DEM entry of a law: the engine
+	 * (dem/platedem.h) calls it for every shape. */
+	double (*dem_interaction)(const struct contact_law *law, const struct law_pair *lp,
+	    const struct law_dem_elems *in, double *hist, double *fk, double ft[3], double *fel);
 	/* The value of a pack's meta key contact-law that names this law (pack_claim_hertz
 	 * writes 'hertz'; the plate engine writes 'linear'). */
 	const char *pack_key;

@@ -2,12 +2,11 @@
 /* linear: the linear spring-dashpot contact law's closed forms, the one home of each.
  *
  * Normal: P = k_n h, U = k_n h^2 / 2, dP/dh = k_n (h > 0).  Tangential (quasi-static):
- * k_t = kt_ratio k_n, sliding limit mu P (law_coulomb_limit), no torsion.  DEM (spheres,
- * contact_law_linear's dem_force): law.h's law_dem_damped at k_n, elastic force k_n h.
+ * k_t = kt_ratio k_n, sliding limit mu P (law_coulomb_limit), no torsion.
  *
- * The element force of the spheroplates' DEM (the platy-particle paper, Boton et al. 2013,
- * eq. 4), which dem/platedem.c's interaction_force computes today and is to call: an
- * interaction of M element contacts (vertex-face, edge-edge, ...) sharing the normal n;
+ * DEM (linear_dem_interaction, for spheres and spheroplates alike): the spring-dashpot law of
+ * the platy-particle paper (Boton et al. 2013, eqs. 2-4), an interaction of M element
+ * contacts (vertex-face, edge-edge, ...; one for spheres) sharing the normal n;
  *  - each element's normal force k_n h - gamma_n dh/dt, with h its overlap (below 0: 0) and
  *    dh/dt = -v_n (v_n: the elements' relative velocity along n), not below 0
  *    (linear_element_force);
@@ -38,15 +37,6 @@ LAW_INLINE double
 linear_energy(double kn, double h)
 {
 	return 0.5 * kn * h * h;
-}
-
-/* The DEM force of the linear law (sphere contacts): law_dem_damped at k_n, elastic force
- * k_n h, with damping ratio zeta, tangential ratio kt_ratio and the pair's mu. */
-LAW_INLINE double
-linear_dem_force(double zeta, double kt_ratio, double kn, const struct law_pair *lp, const struct law_dem_in *in,
-    double *hist, double ft[3], double *fel)
-{
-	return law_dem_damped(zeta, kt_ratio, lp->mu, in, kn, linear_force(kn, in->h), hist, ft, fel);
 }
 
 /* One element's normal force k_n h - gn v_n, not below 0 (returned), with overlap h (below 0
@@ -81,6 +71,30 @@ linear_tangential_force(double *hist, const double n[3], const double vt[3], dou
 	if (fm > cap && fm > 0)
 		for (a = 0; a < 3; a++)
 			ft[a] *= cap / fm;
+}
+
+
+/* The DEM forces of an interaction of m element contacts (law.h, struct law_dem_elems) under
+ * the linear law, P eqs. 2-4 (see above): each element k_n h_k - gamma_n v_n,k, not below 0,
+ * gamma_n = law_damping(zeta, m* / m, k_n); one tangential force of stiffness m kt_ratio k_n
+ * and dashpot law_damping(zeta, m*, that stiffness) within the Coulomb limit of the summed
+ * normal force.  A pair of spheres or a sphere on a wall is its one-element case. */
+LAW_INLINE double
+linear_dem_interaction(const struct law_pair *lp, const struct law_dem_elems *in, double *hist, double *fk,
+    double ft[3], double *fel)
+{
+	double gn = law_damping(in->zeta, in->meff / in->m, lp->kn), Kt = in->m * in->kt_ratio * lp->kn;
+	double fsum = 0, esum = 0, fe;
+	int k;
+
+	for (k = 0; k < in->m; k++) {
+		fk[k] = linear_element_force(lp->kn, gn, in->h[k], in->vn[k], &fe);
+		esum += fe, fsum += fk[k];
+	}
+	*fel = esum;
+	linear_tangential_force(hist, in->n, in->vt, in->dt, Kt, law_damping(in->zeta, in->meff, Kt),
+	    law_coulomb_limit(lp->mu, fsum), ft);
+	return fsum;
 }
 
 #endif

@@ -2,6 +2,7 @@
 /* platedem: explicit DEM of spheroplates (see platedem.h). */
 #include "dem/platedem.h"
 #include "contact/law.h"
+#include "contact/hertz.h"
 #include "contact/linear.h"
 #include "dem/servo.h"
 #include "contact/plate.h"
@@ -20,7 +21,10 @@
 void
 pdem_params_default(struct pdem_params *pp)
 {
+	pp->law = &contact_law_linear;	/* P's */
 	pp->kn = pp->kt = 1.5e3;	/* P §II C: 1.5e-3 N/um */
+	pp->hertz_overlap = 1e-2;
+	pp->viscous = 0;
 	pp->mu = pp->wall_mu = 0.58;	/* P: tan 30 deg, kaolinite */
 	pp->restitution = 0.6;
 	pp->damping = 0;
@@ -39,7 +43,8 @@ pdem_free(struct pdem *d)
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
 	free(d->pcache), free(d->q0), free(d->turn), free(d->gen), free(d->wl);
-	free(d->prec), free(d->sums), free(d->ptouch), free(d->frow);
+	free(d->prec), free(d->sums), free(d->ptouch), free(d->frow), free(d->mob);
+	free(d->xrec), free(d->xslot), free(d->xin_first);
 	contact_enum_free(&d->ce);
 	memset(d, 0, sizeof *d);
 }
@@ -76,9 +81,10 @@ zeta_of_restitution(double e)
 	return 0.5 * (lo + hi);
 }
 
-static int
+int
 pdem_alloc(struct pdem *d, size_t n)
 {
+	memset(d, 0, sizeof *d);
 	d->n = n;
 	d->x = calloc(3 * n, sizeof *d->x), d->v = calloc(3 * n, sizeof *d->v);
 	d->q = calloc(4 * n, sizeof *d->q), d->w = calloc(3 * n, sizeof *d->w);
@@ -86,12 +92,13 @@ pdem_alloc(struct pdem *d, size_t n)
 	d->R = calloc(9 * n, sizeof *d->R), d->m = calloc(n, sizeof *d->m);
 	d->J = calloc(3 * n, sizeof *d->J), d->r = calloc(n, sizeof *d->r);
 	d->half = calloc(n, sizeof *d->half), d->rb = calloc(n, sizeof *d->rb);
-	d->turn = calloc(n, sizeof *d->turn), d->q0 = calloc(4 * n, sizeof *d->q0);
-	d->gen = calloc(n, sizeof *d->gen);
 	d->wl = calloc(3 * n, sizeof *d->wl);
-	d->frow = calloc(6 * n, sizeof *d->frow);
+	d->mob = calloc(2 * n, sizeof *d->mob);
+	d->mob_dt = NAN;	/* made at the first step, whatever its length */
+	d->cache_margin = PDEM_CACHE_MARGIN;
+	d->rec_builds = d->x_builds = -1;
 	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
-	    !d->rb || !d->turn || !d->q0 || !d->gen || !d->wl || !d->frow) {
+	    !d->rb || !d->wl || !d->mob) {
 		msg_seterr("out of memory for %zu grains", n);
 		return -1;
 	}
@@ -99,21 +106,59 @@ pdem_alloc(struct pdem *d, size_t n)
 }
 
 int
+pdem_start(struct pdem *d, double skin)
+{
+	size_t i, n = d->n;
+
+	d->spheres = 1;
+	for (i = 0; i < n; i++)
+		if (d->half[i] > 0)
+			d->spheres = 0;
+	/* a sphere's orientation is not observable and its Euler equations have no gyroscopic
+	 * term: its frame is kept as the lab's, so its body-frame spin is the lab's too */
+	for (i = 0; i < n; i++)
+		if (d->half[i] == 0) {
+			memset(d->q + 4 * i, 0, 4 * sizeof *d->q);
+			d->q[4 * i] = 1;
+		}
+	if (!d->spheres) {	/* what the plate pass keeps per grain */
+		d->turn = calloc(n, sizeof *d->turn), d->q0 = calloc(4 * n, sizeof *d->q0);
+		d->gen = calloc(n, sizeof *d->gen);
+		d->frow = calloc(6 * n, sizeof *d->frow);
+		if (!d->turn || !d->q0 || !d->gen || !d->frow) {
+			msg_seterr("out of memory for %zu grains", n);
+			return -1;
+		}
+	}
+	return contact_enum_init(&d->ce, n, d->rb, d->lo, d->hi, d->periodic, skin, d->law->history);
+}
+
+int
 pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 {
-	double r0 = 0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY;
+	double r0 = 0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY, rmin = INFINITY, k0, Em = 0, num = 0, Eg = 1;
 	size_t i, n = p->n;
 	int a;
 
 	memset(d, 0, sizeof *d);
 	if (n == 0 || pdem_alloc(d, n))
 		return n == 0 ? (msg_seterr("no grains"), -1) : (pdem_free(d), -1);
+	d->law = pp->law;
 	for (i = 0; i < n; i++)
 		r0 += p->r[i] / n, rho0 += p->rho[i] / n;
 	d->u_len = r0;
 	d->u_mass = rho0 * r0 * r0 * r0;
-	d->u_time = sqrt(d->u_mass / pp->kn);
-	d->u_force = pp->kn * r0;
+	/* the stiffness unit: the linear law's k_n; Hertz's E* r0 between two mean grains */
+	if (d->law == &contact_law_linear) {
+		k0 = pp->kn;
+	} else {
+		for (i = 0; i < n; i++)
+			Em += p->E[i] / n, num += p->nu[i] / n;
+		Eg = hertz_Estar(Em, num, Em, num);
+		k0 = Eg * r0;
+	}
+	d->u_time = sqrt(d->u_mass / k0);
+	d->u_force = k0 * r0;
 	for (i = 0; i < n; i++) {
 		double L = p->side ? p->side[i] / r0 : 0, rho = p->rho[i] / rho0, In, Ip;
 
@@ -133,6 +178,7 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 		quat_normalize(d->q + 4 * i);
 		mmin = fmin(mmin, d->m[i]);
 		rbmin = fmin(rbmin, d->rb[i]);
+		rmin = fmin(rmin, d->r[i]);
 	}
 	for (a = 0; a < 3; a++) {
 		d->lo[a] = p->box[a] / r0, d->hi[a] = p->box[3 + a] / r0;
@@ -142,11 +188,20 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	d->mu = pp->mu, d->wall_mu = pp->wall_mu;
 	d->zeta = zeta_of_restitution(pp->restitution);
 	d->damping = pp->damping;
-	d->dt = pp->dt_factor * sqrt(mmin);
-	d->cache_margin = PDEM_CACHE_MARGIN;
-	d->rec_builds = -1;
+	d->viscous = pp->viscous;
+	/* the pair physics in these units (R* per interaction) */
+	d->lp_grain.kn = d->lp_wall.kn = 1;
+	d->lp_grain.Es = 1;
+	/* Hertz: the walls' E* with the mean grain, rigid walls (no modulus) as E/(1 - nu^2) */
+	d->lp_wall.Es = d->law == &contact_law_linear ? 1 :
+	    hertz_Estar_c(hertz_compliance(Em, num), p->wall_E > 0 ? hertz_compliance(p->wall_E, p->wall_nu) : 0) / Eg;
+	d->lp_grain.mu = d->mu, d->lp_wall.mu = d->wall_mu;
+	if (d->law == &contact_law_linear)
+		d->dt = pp->dt_factor * sqrt(mmin);
+	else	/* the stiffest likely contact: the smallest grain on a wall at hertz_overlap */
+		d->dt = pp->dt_factor * sqrt(mmin / hertz_stiffness_t(d->lp_wall.Es, rmin, pp->hertz_overlap * rmin));
 	/* the skin: a tenth of the smallest bounding radius, so the list lasts many steps */
-	if (contact_enum_init(&d->ce, n, d->rb, d->lo, d->hi, d->periodic, 0.1 * rbmin, 3)) {
+	if (pdem_start(d, 0.1 * rbmin)) {
 		pdem_free(d);
 		return -1;
 	}
@@ -180,6 +235,7 @@ apply(const double *xi, const double p[3], const double Fk[3], double F[3], doub
 	}
 }
 
+
 /* The forces of interaction it between grain i and grain j (j < 0: a wall), with j's centre
  * xj (its nearest image): the force F and torque Ti on i, and for a pair into rec what j gets
  * (the opposite force, rec->F = F, and the torque about its centre); the block's sums; hist
@@ -189,33 +245,34 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
     double *hist, double F[3], double Ti[3], struct pdem_rec *rec, struct pdem_sums *sums)
 {
 	const double *n = it->n, *xi = d->x + 3 * i;
-	int wall = PACK_IS_WALL(j), M = it->m, k, a, gi, gj;
-	double meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]), Kt = M * d->kt_ratio;
-	/* the linear law's element forces (contact/linear.h), k_n = 1 in these units; the
-	 * interaction's damping ratio zeta whether it has one element or M (gn at m* / M) */
-	double gn = law_damping(d->zeta, meff / M, 1.0), fel = 0, fsum = 0, hsum = 0, pc[3] = {0, 0, 0};
-	double vi[3], vj[3] = {0, 0, 0}, vt[3], vn, ft[3], Fk[3], c[3];
+	int wall = PACK_IS_WALL(j), M = it->m, k, a;
+	struct law_dem_elems in;
+	struct law_pair lp = wall ? d->lp_wall : d->lp_grain;
+	double fk[LAW_DEM_ELEMENTS], fel, fsum, hsum = 0, pc[3] = {0, 0, 0};
+	double vi[3], vj[3] = {0, 0, 0}, vn, ft[3], Fk[3], c[3];
 
 	F[0] = F[1] = F[2] = Ti[0] = Ti[1] = Ti[2] = 0;
 	if (wall)	/* a moving wall's velocity (0 for the walls of a compaction) */
 		memcpy(vj, d->wallv[PACK_WALL_INDEX(j)], sizeof vj);
-
+	in.m = M;
+	in.meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
+	in.dt = d->dt, in.zeta = d->zeta, in.kt_ratio = d->kt_ratio;
+	memcpy(in.n, n, sizeof in.n);
+	lp.Rs = wall ? d->r[i] : hertz_Rstar(d->r[i], d->r[j]);
+	/* the elements: their overlaps and normal velocities, and the overlap-weighted point at
+	 * which the interaction's one tangential force acts (P eqs. 3-4) */
 	for (k = 0; k < M; k++) {
 		const struct plate_element *e = &it->e[k];
-		double fk, fe, h = e->h > 0 ? e->h : 0;
+		double h = e->h > 0 ? e->h : 0;
 
 		point_velocity(d, i, xi, e->p, vi);
 		if (!wall)
 			point_velocity(d, (size_t)j, xj, e->p, vj);
-		vn = (vi[0] - vj[0]) * n[0] + (vi[1] - vj[1]) * n[1] + (vi[2] - vj[2]) * n[2];
-		fk = linear_element_force(1.0, gn, e->h, vn, &fe);
-		fel += fe, fsum += fk;
-		for (a = 0; a < 3; a++) {
-			Fk[a] = fk * n[a];
+		in.vn[k] = (vi[0] - vj[0]) * n[0] + (vi[1] - vj[1]) * n[1] + (vi[2] - vj[2]) * n[2];
+		in.h[k] = e->h;
+		for (a = 0; a < 3; a++)
 			pc[a] += h * e->p[a];
-		}
 		hsum += h;
-		apply(xi, e->p, Fk, F, Ti);
 	}
 	if (hsum <= 0)
 		memcpy(pc, it->e[0].p, sizeof pc);
@@ -226,18 +283,18 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 	if (!wall)
 		point_velocity(d, (size_t)j, xj, pc, vj);
 	for (a = 0; a < 3; a++)
-		vt[a] = vi[a] - vj[a];
-	vn = vec3_dot(vt, n);
+		in.vt[a] = vi[a] - vj[a];
+	vn = vec3_dot(in.vt, n);
 	for (a = 0; a < 3; a++)
-		vt[a] -= vn * n[a];
-	/* one tangential force at the overlap-weighted point, P eqs. 3-4: a spring that keeps its
-	 * force, not its displacement (hist = minus the force on i; when an element comes or goes,
-	 * M and so the stiffness change, and a stored displacement would make the force jump by
-	 * k_t times it at every touch of a rocking corner, a pump that kept 27 plates from rest,
-	 * unbalanced 1e-2 for 2e6 steps; increments of force do not), and P eq. 4's dashpot at the
-	 * normal's damping ratio, within the Coulomb cap */
-	linear_tangential_force(hist, n, vt, d->dt, Kt, law_damping(d->zeta, meff, Kt),
-	    law_coulomb_limit(wall ? d->wall_mu : d->mu, fsum), ft);
+		in.vt[a] -= vn * n[a];
+	/* the law's forces (law.h: dem_interaction; the linear law's is P eqs. 2-4) */
+	fsum = d->law == &contact_law_linear ? linear_dem_interaction(&lp, &in, hist, fk, ft, &fel)
+	    : d->law->dem_interaction(d->law, &lp, &in, hist, fk, ft, &fel);
+	for (k = 0; k < M; k++) {
+		for (a = 0; a < 3; a++)
+			Fk[a] = fk[k] * n[a];
+		apply(xi, it->e[k].p, Fk, F, Ti);
+	}
 	apply(xi, pc, ft, F, Ti);
 	if (!wall) {	/* on j: -F at the same points, the torque about xj */
 		double br[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
@@ -248,33 +305,16 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 			rec->Tj[a] = -(Ti[a] + c[a]);
 		}
 	}
-	gi = d->glue ? d->glue[i] : 0;
-	gj = d->glue && !wall ? d->glue[j] : 0;
-	if (!wall && gi && gj)	/* inside a wall body: applied, not counted */
-		return;
-	sums->zends += (gi ? 0 : 1) + (wall || gj ? 0 : 1);
-	if (!wall) {
-		double Fn[3], br[3];
+	{
+		double Fc[3], br[3] = {0, 0, 0};
 
 		for (a = 0; a < 3; a++) {
-			Fn[a] = fsum * n[a] + ft[a];
-			br[a] = xi[a] - xj[a];
+			Fc[a] = fsum * n[a] + ft[a];
+			if (!wall)
+				br[a] = xi[a] - xj[a];
 		}
-		sums->sig[0] += br[0] * Fn[0], sums->sig[1] += br[1] * Fn[1], sums->sig[2] += br[2] * Fn[2];
-		sums->sig[3] += 0.5 * (br[0] * Fn[1] + br[1] * Fn[0]);
-		sums->sig[4] += 0.5 * (br[0] * Fn[2] + br[2] * Fn[0]);
-		sums->sig[5] += 0.5 * (br[1] * Fn[2] + br[2] * Fn[1]);
-	} else {
-		int w = PACK_WALL_INDEX(j);
-
-		sums->wallf[w] += fel;
-		for (a = 0; a < 3; a++)
-			sums->wallF[w][a] += fsum * n[a] + ft[a];
-		sums->nwall++;
+		pdem_count(d, i, j, br, Fc, fel, M, sums);
 	}
-	sums->ninter++;
-	sums->nelem += (size_t)M;
-	sums->sum_f += sqrt(fsum * fsum + vec3_dot(ft, ft));
 }
 
 /* The interaction of record c (a pair, or a grain and a wall) at the current state, with j's
@@ -474,6 +514,47 @@ oom:
 	return -1;
 }
 
+int
+pdem_sums_fit(struct pdem *d, size_t nb)
+{
+	if (nb > d->sums_cap) {
+		struct pdem_sums *ns = realloc(d->sums, nb * sizeof *ns);
+		if (!ns) {
+			msg_seterr("out of memory");
+			return -1;
+		}
+		d->sums = ns;
+		d->sums_cap = nb;
+	}
+	return 0;
+}
+
+void
+pdem_sums_total(struct pdem *d, size_t nb)
+{
+	size_t b;
+	int w, a;
+
+	memset(d->wallf, 0, sizeof d->wallf);
+	memset(d->wallF, 0, sizeof d->wallF);
+	memset(d->sig, 0, sizeof d->sig);
+	d->ninter = d->nwall = d->nelem = d->zends = 0;
+	d->sum_f = 0;
+	for (b = 0; b < nb; b++) {
+		const struct pdem_sums *s = &d->sums[b];
+
+		for (w = 0; w < NWALLS; w++) {
+			d->wallf[w] += s->wallf[w];
+			for (a = 0; a < 3; a++)
+				d->wallF[w][a] += s->wallF[w][a];
+		}
+		for (a = 0; a < 6; a++)
+			d->sig[a] += s->sig[a];
+		d->ninter += s->ninter, d->nwall += s->nwall, d->nelem += s->nelem, d->zends += s->zends;
+		d->sum_f += s->sum_f;
+	}
+}
+
 /* Every grain's force and torque and the pass's sums, on threads with the same bytes for any
  * number (base/par.h).  Pass 1 computes the interactions of each block of rows (the pairs
  * (i, j > i) and the walls of grains i in the block, as contact_foreach orders them) into
@@ -484,24 +565,17 @@ int
 pdem_forces(struct pdem *d)
 {
 	struct contact_enum *e = &d->ce;
-	size_t n = d->n, bl = par_block(n), nb = (n + bl - 1) / bl, b;
-	int err = 0, w, a;
+	size_t n = d->n, bl = par_block(n), nb = (n + bl - 1) / bl;
+	int err = 0, a;
 
+	if (d->spheres)
+		return pdem_sphere_forces(d);
 	d->threads = par_threads() > 1 && nb > 1;
 	if (contact_enum_update(e, d->x, 0))
 		return -1;
 	refresh_rotations(d);
-	if (cache_turns(d) || records_fit(d))
+	if (cache_turns(d) || records_fit(d) || pdem_sums_fit(d, nb))
 		return -1;
-	if (nb > d->sums_cap) {
-		struct pdem_sums *ns = realloc(d->sums, nb * sizeof *ns);
-		if (!ns) {
-			msg_seterr("out of memory");
-			return -1;
-		}
-		d->sums = ns;
-		d->sums_cap = nb;
-	}
 #pragma omp parallel if (d->threads)
 	{
 		long bb;
@@ -550,24 +624,7 @@ pdem_forces(struct pdem *d)
 	}
 	if (err)
 		return -1;
-	memset(d->wallf, 0, sizeof d->wallf);
-	memset(d->wallF, 0, sizeof d->wallF);
-	memset(d->sig, 0, sizeof d->sig);
-	d->ninter = d->nwall = d->nelem = d->zends = 0;
-	d->sum_f = 0;
-	for (b = 0; b < nb; b++) {
-		const struct pdem_sums *s = &d->sums[b];
-
-		for (w = 0; w < NWALLS; w++) {
-			d->wallf[w] += s->wallf[w];
-			for (a = 0; a < 3; a++)
-				d->wallF[w][a] += s->wallF[w][a];
-		}
-		for (a = 0; a < 6; a++)
-			d->sig[a] += s->sig[a];
-		d->ninter += s->ninter, d->nwall += s->nwall, d->nelem += s->nelem, d->zends += s->zends;
-		d->sum_f += s->sum_f;
-	}
+	pdem_sums_total(d, nb);
 	return 0;
 }
 
@@ -601,10 +658,10 @@ pdem_foreach_interaction(struct pdem *d, int rebuild, pdem_interaction_fn fn, vo
 	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_interaction, &ip) < 0 ? -1 : 0;
 }
 
-static double
+static inline double
 local_damping(double f, double v, double alpha)
 {
-	return f - alpha * fabs(f) * (v > 0 ? 1 : v < 0 ? -1 : 0);
+	return f - alpha * fabs(f) * (double)((v > 0) - (v < 0));	/* branch-free: the sign of v is random */
 }
 
 /* Euler's equations in the body frame by the implicit midpoint rule: w <- w + dt J^-1
@@ -632,17 +689,66 @@ euler_midpoint(double w[3], const double J[3], const double tau[3], double dt)
 	}
 }
 
+/* Grain i's leapfrog translation: Cundall's local damping removes a fraction al of the force
+ * that drives the motion; the viscous loss 1 - keep makes free flight decay, so that no
+ * granular gas builds up whose kinetic pressure a wall servo would take for a force network. */
+static inline void
+translate(struct pdem *d, size_t i, double keep, double al)
+{
+	double am = d->mob[2 * i], dt = d->dt;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		size_t k = 3 * i + a;
+		double f = local_damping(d->f[k], d->v[k], al), v = d->v[k] * keep + f * am;
+
+		d->v[k] = v;
+		d->x[k] += v * dt;
+	}
+}
+
+/* A sphere's spin: its frame is the lab's (pdem_start) and its inertia isotropic, so Euler's
+ * equations are w' = t / J. */
+static inline void
+spin_sphere(struct pdem *d, size_t i, double keep, double al)
+{
+	double aI = d->mob[2 * i + 1];
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		size_t k = 3 * i + a;
+		d->w[k] = d->w[k] * keep + local_damping(d->t[k], d->w[k], al) * aI;
+	}
+}
+
 void
 pdem_integrate(struct pdem *d)
 {
-	double dt = d->dt, al = d->damping;
+	double dt = d->dt, al = d->damping, keep = 1 - d->viscous;
 	long ii;
 
+	/* the mobilities dt / m and dt / J once per step length (packgen changes it every 100
+	 * steps at most): two divisions per grain and step were a tenth of packgen's time */
+	if (dt != d->mob_dt) {
+#pragma omp parallel for schedule(static) if (d->threads)
+		for (ii = 0; ii < (long)d->n; ii++) {
+			d->mob[2 * ii] = dt / d->m[ii];
+			d->mob[2 * ii + 1] = dt / d->J[3 * ii];	/* a sphere's (isotropic) */
+		}
+		d->mob_dt = dt;
+	}
 	/* grain by grain, nothing shared: the same bytes on any threads */
+	if (d->spheres && !d->glue) {	/* packgen's: every grain a free sphere */
+#pragma omp parallel for schedule(static) if (d->threads)
+		for (ii = 0; ii < (long)d->n; ii++) {
+			translate(d, (size_t)ii, keep, al);
+			spin_sphere(d, (size_t)ii, keep, al);
+		}
+		return;
+	}
 #pragma omp parallel for schedule(static) if (d->threads)
 	for (ii = 0; ii < (long)d->n; ii++) {
 		size_t i = (size_t)ii;
-		const double *R = d->R + 9 * i;
 		double tb[3];
 		int a;
 
@@ -656,16 +762,19 @@ pdem_integrate(struct pdem *d)
 			}
 			continue;
 		}
-		for (a = 0; a < 3; a++) {
-			size_t k = 3 * i + a;
-			double f = al > 0 ? local_damping(d->f[k], d->v[k], al) : d->f[k];
-			d->v[k] += f / d->m[i] * dt;
-			d->x[k] += d->v[k] * dt;
+		translate(d, i, keep, al);
+		if (d->half[i] == 0) {
+			spin_sphere(d, i, keep, al);
+			continue;
 		}
-		for (a = 0; a < 3; a++) {	/* torque into the body frame: R^T t */
-			tb[a] = R[a] * d->t[3 * i] + R[3 + a] * d->t[3 * i + 1] + R[6 + a] * d->t[3 * i + 2];
-			if (al > 0)
+		{
+			const double *R = d->R + 9 * i;
+
+			for (a = 0; a < 3; a++) {	/* torque into the body frame: R^T t */
+				tb[a] = R[a] * d->t[3 * i] + R[3 + a] * d->t[3 * i + 1] + R[6 + a] * d->t[3 * i + 2];
 				tb[a] = local_damping(tb[a], d->w[3 * i + a], al);
+				d->w[3 * i + a] *= keep;
+			}
 		}
 		euler_midpoint(d->w + 3 * i, d->J + 3 * i, tb, dt);
 		quat_step_body(d->q + 4 * i, d->w + 3 * i, dt);
@@ -733,10 +842,10 @@ pdem_make_periodic(struct pdem *d, const int periodic[3])
 		d->periodic[a] = d->periodic[a] || periodic[a];
 	pdem_wrap(d);
 	contact_enum_free(&d->ce);
-	d->rec_builds = -1;	/* a new list: new entries */
+	d->rec_builds = d->x_builds = -1;	/* a new list: new entries */
 	for (i = 0; i < d->pcap; i++)
 		d->pcache[i].list = -1;
-	return contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, 3);
+	return contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, d->law->history);
 }
 
 /* The frictional history of the pack's contact lines (pack-format.md), so that a static
@@ -768,8 +877,15 @@ on_history(const struct pdem *d, size_t i, long j, const double *xj, const struc
 	} else {
 		struct pack_contact pc = {i, j, 0, {0, 0, 0}, 0};
 
-		for (k = 0; k < it->m; k++)
-			pc.P0 += fmax(it->e[k].h, 0) * d->u_force;
+		struct law_pair lp = PACK_IS_WALL(j) ? d->lp_wall : d->lp_grain;
+		double P;
+
+		lp.Rs = PACK_IS_WALL(j) ? d->r[i] : hertz_Rstar(d->r[i], d->r[j]);
+		for (k = 0; k < it->m; k++)	/* the elements' elastic forces, by the law */
+			if (it->e[k].h > 0) {
+				d->law->normal(d->law, &lp, it->e[k].h, &P, NULL);
+				pc.P0 += P * d->u_force;
+			}
 		for (a = 0; a < 3; a++)
 			pc.Q0[a] = -hist[a] * d->u_force;
 		if (pack_add_contact(hp->p, &pc))
@@ -805,7 +921,7 @@ pdem_write_back(struct pdem *d, struct pack *p)
 	for (i = 0; i < d->n; i++) {
 		for (a = 0; a < 3; a++)
 			p->x[3 * i + a] = d->x[3 * i + a] * d->u_len;
-		if (p->q)
+		if (p->q && d->half[i] > 0)	/* a sphere keeps the pack's (pdem_start) */
 			memcpy(p->q + 4 * i, d->q + 4 * i, 4 * sizeof *p->q);
 	}
 	for (a = 0; a < 3; a++) {

@@ -41,11 +41,17 @@
 #include <stddef.h>
 #include <stdio.h>
 #include "contact/contacts.h"
+#include "contact/law.h"
 #include "contact/plate.h"
 #include "pack/pack.h"
 
 struct pdem_params {
-	double kn, kt;		/* normal, tangential stiffness (N/m) */
+	const struct contact_law *law;	/* the contact law (contact/law.h's table): linear, P's, by default */
+	double kn, kt;		/* linear law: normal, tangential stiffness (N/m); kt / kn is the
+				 * tangential over normal stiffness ratio of either law */
+	double hertz_overlap;	/* Hertz law: the largest overlap / smallest spheroradius the time
+				 * step is made for */
+	double viscous;		/* fraction of the velocities lost per step (0: none) */
 	double mu, wall_mu;	/* friction grain-grain, grain-wall (during the dynamics) */
 	double restitution;	/* of a binary collision, [0.21, 1] (below exp(-pi/2): overdamped) */
 	double damping;		/* Cundall local damping, [0, 1) */
@@ -54,6 +60,7 @@ struct pdem_params {
 
 /* A pair's share for its grain j in a pass of pdem_forces: the force on i (j gets its
  * opposite) and the torque on j about its centre. */
+struct pdem_xrec;
 struct pdem_rec {
 	double F[3], Tj[3];
 };
@@ -85,7 +92,22 @@ struct pdem {
 	double lo[3], hi[3];
 	int periodic[3];
 	struct contact_enum ce;
-	double kt_ratio, mu, wall_mu, zeta, damping, dt;
+	double kt_ratio, mu, wall_mu, zeta, damping, viscous, dt;
+	/* the contact law, and its pair physics (scaled) of two grains and of a grain and a wall,
+	 * R* set per interaction: the linear law's k_n = 1; Hertz's E* = 1 between two grains */
+	const struct contact_law *law;
+	struct law_pair lp_grain, lp_wall;
+	/* the mobilities dt / m and dt / J (interleaved per grain), made for the step mob_dt */
+	double *mob, mob_dt;
+	/* every grain a sphere: the sphere pass (platedem_spheres.c), no narrow phase, and each
+	 * sphere's frame kept as the lab's (its orientation is not observable); pair_lanes: its
+	 * Hertz pairs two at a time in lanes (the same bytes) */
+	int spheres, pair_lanes;
+	/* the sphere pass on threads: block sums, and the records of the pairs that cross from one
+	 * thread's rows to a later one's, for x_team threads on the list of rebuild x_builds */
+	struct pdem_xrec *xrec;
+	size_t *xslot, *xin_first, x_team;
+	long stamp, x_builds;
 	/* the last pdem_forces: elastic normal force on each wall, interactions with at least one
 	 * element (nwall of them with a wall), elements, sum of interaction force magnitudes */
 	double wallf[NWALLS];
@@ -96,6 +118,8 @@ struct pdem {
 	 * Love-Weber stress times the volume */
 	double wallF[NWALLS][3];
 	double sig[6];
+	/* (sig is kept when stress is set: the shear's; the compactions do not read it) */
+	int stress;
 	/* ... and the interactions' ends on free grains (Z of the free grains = zends / their
 	 * number); a pair of two glued grains is part of a wall: it is in none of the sums above */
 	size_t zends;
@@ -144,6 +168,48 @@ struct pdem {
 #define PDEM_CACHE_MARGIN 0.1
 
 void pdem_params_default(struct pdem_params *pp);
+/* The arrays of an engine for n grains, zeroed, for a caller that fills them itself (x, r,
+ * half, rb, m, J, q; packgen's sphere compaction, dem.c) and then calls pdem_start.  0 or -1. */
+int pdem_alloc(struct pdem *d, size_t n);
+/* After the grains are set: the per-shape arrays, the time step's mobilities, and the contact
+ * list of the bounding radii rb with that skin (scaled), periodic along d->periodic.  The
+ * caller has set the law, its pair physics and the DEM coefficients.  0 or -1. */
+int pdem_start(struct pdem *d, double skin);
+/* An interaction into a pass's sums: grain i with grain j (branch vector br = x_i - x_j, the
+ * nearest image) or a wall (br unused), its whole force Fc on i, elastic normal force fel, m
+ * elements.  A pair of two glued grains is part of a
+ * wall: in none of the sums. */
+CONTACT_INLINE void
+pdem_count(const struct pdem *d, size_t i, long j, const double br[3], const double Fc[3], double fel, int m,
+    struct pdem_sums *sums)
+{
+	int wall = PACK_IS_WALL(j), gi = d->glue ? d->glue[i] : 0, gj = d->glue && !wall ? d->glue[j] : 0, a;
+
+	if (!wall && gi && gj)	/* inside a wall body: applied, not counted */
+		return;
+	sums->zends += (gi ? 0 : 1) + (wall || gj ? 0 : 1);
+	if (!wall && d->stress) {
+		sums->sig[0] += br[0] * Fc[0], sums->sig[1] += br[1] * Fc[1], sums->sig[2] += br[2] * Fc[2];
+		sums->sig[3] += 0.5 * (br[0] * Fc[1] + br[1] * Fc[0]);
+		sums->sig[4] += 0.5 * (br[0] * Fc[2] + br[2] * Fc[0]);
+		sums->sig[5] += 0.5 * (br[1] * Fc[2] + br[2] * Fc[1]);
+	} else if (wall) {
+		int w = PACK_WALL_INDEX(j);
+
+		sums->wallf[w] += fel;
+		for (a = 0; a < 3; a++)
+			sums->wallF[w][a] += Fc[a];
+		sums->nwall++;
+	}
+	sums->ninter++;
+	sums->nelem += (size_t)m;
+	sums->sum_f += sqrt(Fc[0] * Fc[0] + Fc[1] * Fc[1] + Fc[2] * Fc[2]);
+}
+/* Room for nb blocks' sums (0 or -1), and their total in block order into the engine's. */
+int pdem_sums_fit(struct pdem *d, size_t nb);
+void pdem_sums_total(struct pdem *d, size_t nb);
+/* The sphere pass of pdem_forces (platedem_spheres.c). */
+int pdem_sphere_forces(struct pdem *d);
 /* The engine for pack p (SI): scaled copies of its grains and box, at rest, the boundary of
  * the pack.  0 or -1 (msg_seterr). */
 int pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp);

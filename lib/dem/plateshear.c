@@ -257,6 +257,7 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 	}
 	if (pdem_init(&d, p, &sp->dyn))
 		return -1;
+	d.stress = 1;	/* the rows' Love-Weber stress */
 	if ((!d.periodic[0] || !d.periodic[2]) && pdem_make_periodic(&d, per))
 		goto out;
 	res->profile = calloc((size_t)nb, sizeof *res->profile);

@@ -324,6 +324,34 @@ test_laws(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* One contact's step input as the one-element interaction of the laws' DEM entry. */
+static void
+one_element(const struct contact_law *law, const struct law_dem_in *in, struct law_dem_elems *el)
+{
+	double vn = in->vr[0] * in->n[0] + in->vr[1] * in->n[1] + in->vr[2] * in->n[2];
+	int a;
+
+	el->m = 1;
+	el->h[0] = in->h;
+	el->vn[0] = vn;
+	for (a = 0; a < 3; a++) {
+		el->n[a] = in->n[a];
+		el->vt[a] = in->vr[a] - vn * in->n[a];
+	}
+	el->meff = in->meff, el->dt = in->dt, el->zeta = law->zeta, el->kt_ratio = law->kt_ratio;
+}
+
+static double
+law_step(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_in *in, double *hist,
+    double ft[3], double *fel)
+{
+	struct law_dem_elems el;
+	double fk[1];
+
+	one_element(law, in, &el);
+	return law->dem_interaction(law, lp, &el, hist, fk, ft, fel);
+}
+
 /* The laws' frozen tangential state and DEM force against their closed forms, for one
  * contact: Hertz-Mindlin k* = 8 a / Ct, M_max = 3 pi / 16 a mu P, DEM normal force at rest
  * 4/3 E* sqrt(R*) h^(3/2) and damping 2 zeta sqrt(m* k_n) v_n; the linear law k h, k_t =
@@ -332,7 +360,7 @@ static void
 test_law_closed_forms(void)
 {
 	const struct contact_law *hm = &contact_law_hertz_mindlin, *ln = &contact_law_linear;
-	struct law_pair lp = {5e10, 6e-5, 3e-11, 2e-11, 0.3};
+	struct law_pair lp = {5e10, 6e-5, 3e-11, 2e-11, 0.3, 1e5};
 	struct law_tangent t;
 	struct law_dem_in in = {2e-7, {0, 0, 1}, {0, 0, 0}, 3e-9, 1e-8};
 	double hist[3] = {0, 0, 0}, ft[3], fel, fn, a = sqrt(lp.Rs * in.h), P = 1.5;
@@ -342,26 +370,109 @@ test_law_closed_forms(void)
 	CHECK(unit_close(t.k, 8 * a / lp.Ct, 1e-14, 0) && unit_close(t.qmax, 0.3 * P, 1e-14, 0) &&
 	    unit_close(t.kt, 16.0 / 3 * a * a * a / lp.Ctor, 1e-14, 0) &&
 	    unit_close(t.mmax, 3 * M_PI / 16 * a * 0.3 * P, 1e-14, 0), "laws: Hertz-Mindlin's tangential state in closed form");
-	fn = hm->dem_force(hm, &lp, &in, hist, ft, &fel);
+	fn = law_step(hm, &lp, &in, hist, ft, &fel);
 	CHECK(unit_close(fn, 4.0 / 3 * lp.Es * sqrt(lp.Rs) * pow(in.h, 1.5), 1e-14, 0) && fel == fn && ft[0] == 0 &&
 	    ft[1] == 0 && ft[2] == 0, "laws: Hertz DEM force at rest is 4/3 E* sqrt(R*) h^1.5 (%.6g N)", fn);
 	in.vr[2] = -1e-3;	/* approaching: i moves towards j along -n */
-	fn = hm->dem_force(hm, &lp, &in, hist, ft, &fel);
+	fn = law_step(hm, &lp, &in, hist, ft, &fel);
 	CHECK(unit_close(fn - fel, 2 * hm->zeta * sqrt(in.meff * kn) * 1e-3, 1e-12, 0),
 	    "laws: the viscous normal damping is 2 zeta sqrt(m* k_n) v_n (%.6g N)", fn - fel);
 	in.vr[2] = 0;
 	in.vr[0] = 1e-2;	/* sliding along x: spring k_t v dt, clamped at mu fn */
 	hist[0] = hist[1] = hist[2] = 0;
-	fn = hm->dem_force(hm, &lp, &in, hist, ft, &fel);
+	fn = law_step(hm, &lp, &in, hist, ft, &fel);
 	CHECK(unit_close(-ft[0], fmin(hm->kt_ratio * kn * 1e-2 * in.dt, 0.3 * fn), 1e-12, 0),
 	    "laws: the tangential spring gives k_t v dt below the Coulomb limit (%.6g N)", -ft[0]);
 	ln->tangent(ln, &lp, in.h, P, &t);
-	CHECK(t.k == ln->kt_ratio * ln->kn && t.qmax == 0.3 * P && t.kt == 0 && t.mmax == 0,
+	CHECK(t.k == ln->kt_ratio * lp.kn && t.qmax == 0.3 * P && t.kt == 0 && t.mmax == 0,
 	    "laws: the linear law's tangential state is kt_ratio k_n, mu P, no torsion");
 	in.vr[0] = 0;
 	hist[0] = hist[1] = hist[2] = 0;
-	fn = ln->dem_force(ln, &lp, &in, hist, ft, &fel);
-	CHECK(unit_close(fn, ln->kn * in.h, 1e-14, 0), "laws: the linear DEM force at rest is k_n h (%.6g N)", fn);
+	fn = law_step(ln, &lp, &in, hist, ft, &fel);
+	CHECK(unit_close(fn, lp.kn * in.h, 1e-14, 0), "laws: the linear DEM force at rest is k_n h (%.6g N)", fn);
+}
+
+/* The laws' DEM entry on interactions of several elements (spheroplates): m elements of equal
+ * overlap and velocity carry m times one element's elastic force, with the damping of the
+ * whole interaction at ratio zeta (each element's at m* / m: the sum is sqrt(m) times one
+ * element's at m*), and a tangential spring m times as stiff; and Hertz-Mindlin's one-element
+ * case is hertz_dem_force to the bit (the sphere pass inlines that one), over random states. */
+static void
+test_law_elements(gsl_rng *rng)
+{
+	const struct contact_law *laws[2] = {&contact_law_hertz_mindlin, &contact_law_linear};
+	struct law_pair lp = {5e10, 6e-5, 3e-11, 2e-11, 0.3, 1e5};
+	int q, k, bad = 0;
+
+	for (q = 0; q < 2; q++) {
+		const struct contact_law *law = laws[q];
+		struct law_dem_in in = {2e-7, {0, 0, 1}, {0, 0, -1e-3}, 3e-9, 1e-8};
+		struct law_dem_elems one, four;
+		double h1[3] = {0, 0, 0}, h4[3] = {0, 0, 0}, ft1[3], ft4[3], fk[LAW_DEM_ELEMENTS], fel1, fel4, f1, f4;
+
+		if (q == 1)	/* the linear law's k_n: elastic and damping forces of Hertz's order, so
+				 * that f - fel is not lost to cancellation */
+			in.h = 2e-5, in.vr[2] = -100;
+		one_element(law, &in, &one);
+		four = one;
+		four.m = 4;
+		for (k = 1; k < 4; k++)
+			four.h[k] = one.h[0], four.vn[k] = one.vn[0];
+		f1 = law->dem_interaction(law, &lp, &one, h1, fk, ft1, &fel1);
+		f4 = law->dem_interaction(law, &lp, &four, h4, fk, ft4, &fel4);
+		CHECK(unit_close(fel4, 4 * fel1, 1e-14, 0) && unit_close(f4 - fel4, 2 * (f1 - fel1), 1e-12, 0),
+		    "laws: %s, 4 equal elements: 4 x the elastic force, 2 = sqrt(4) x the damping (%.6g, %.6g N)",
+		    law->name, fel4, f4 - fel4);
+		one.vn[0] = 0, one.vt[0] = 1e-4;
+		for (k = 0; k < 4; k++)
+			four.vn[k] = 0;
+		four.vt[0] = 1e-4;
+		h1[0] = h1[1] = h1[2] = h4[0] = h4[1] = h4[2] = 0;
+		law->dem_interaction(law, &lp, &one, h1, fk, ft1, &fel1);
+		law->dem_interaction(law, &lp, &four, h4, fk, ft4, &fel4);
+		/* Hertz-Mindlin's tangential force is its spring's; the linear law adds a dashpot at
+		 * the interaction's stiffness, sqrt(4) = 2 times one element's */
+		if (q == 0) {
+			CHECK(unit_close(ft4[0], 4 * ft1[0], 1e-14, 0),
+			    "laws: %s, 4 elements: the tangential spring 4 x as stiff (%.6g against %.6g N)", law->name, ft4[0],
+			    ft1[0]);
+		} else {
+			double spring = -law->kt_ratio * lp.kn * 1e-4 * in.dt, dash = -law_damping(law->zeta, in.meff,
+			    law->kt_ratio * lp.kn) * 1e-4;
+
+			CHECK(unit_close(ft1[0], spring + dash, 1e-12, 0) && unit_close(ft4[0], 4 * spring + 2 * dash, 1e-12, 0),
+			    "laws: %s, 4 elements: the tangential spring 4 x as stiff, its dashpot 2 x (%.6g against %.6g N)",
+			    law->name, ft4[0], ft1[0]);
+		}
+	}
+	for (k = 0; k < 1000; k++) {
+		struct law_dem_in in;
+		struct law_dem_elems el;
+		double ha[3], hb[3], fa[3], fb[3], ea, eb, xa, xb, fk[1];
+		int a;
+
+		in.h = 1e-7 * gsl_rng_uniform_pos(rng);
+		for (a = 0; a < 3; a++) {
+			in.n[a] = gsl_rng_uniform(rng) - 0.5;
+			in.vr[a] = 1e-3 * (gsl_rng_uniform(rng) - 0.5);
+			ha[a] = hb[a] = 1e-9 * (gsl_rng_uniform(rng) - 0.5);
+		}
+		{
+			double nn = sqrt(in.n[0] * in.n[0] + in.n[1] * in.n[1] + in.n[2] * in.n[2]);
+			for (a = 0; a < 3; a++)
+				in.n[a] /= nn;
+		}
+		in.meff = 1e-9 * (1 + gsl_rng_uniform(rng)), in.dt = 1e-8;
+		xa = hertz_dem_force(0.3, 0.9, &lp, &in, ha, fa, &ea);
+		one_element(&contact_law_hertz_mindlin, &in, &el);
+		el.zeta = 0.3, el.kt_ratio = 0.9;
+		xb = hertz_dem_interaction(&lp, &el, hb, fk, fb, &eb);
+		for (a = 0; a < 3; a++)
+			bad += fa[a] != fb[a] || ha[a] != hb[a];
+		bad += xa != xb || ea != eb;
+	}
+	CHECK(bad == 0, "laws: Hertz-Mindlin's one-element interaction is hertz_dem_force to the bit (1000 states, %d differ)",
+	    bad);
 }
 
 /* The table of the laws: found by name and by a pack's contact-law key, the first row the
@@ -715,6 +826,7 @@ main(void)
 	test_history(rng);
 	test_laws(rng);
 	test_law_closed_forms();
+	test_law_elements(rng);
 	test_steppable(rng);
 	test_nan_energy(rng);
 	test_find_in(rng);

@@ -5,6 +5,7 @@
 #include "unit.h"
 #include "dem/platedem.h"
 #include "dem/platepack.h"
+#include "contact/law.h"
 #include "base/msg.h"
 #include "base/par.h"
 #include "pack/pack.h"
@@ -236,6 +237,87 @@ test_restitution(void)
 	}
 }
 
+/* Both laws on both shapes: an elastic head-on collision (restitution 1: no damping) of two
+ * equal grains face to face along z, of platyness eta under law, closing at 1e-3 per time
+ * unit.  Returns the largest overlap 2 r - (z_1 - z_0) over the collision and the most
+ * element contacts into *m, the restitution into *e, and the reduced mass and, for Hertz,
+ * the grains' scaled E* and R* into *ms, *es, *rs. */
+static double
+impact(const struct contact_law *law, double eta, int *m, double *e, double *ms, double *es, double *rs)
+{
+	struct pack p;
+	struct pdem d;
+	struct pdem_params pp;
+	double x0[3] = {0, 0, 0}, x1[3] = {0, 0, 0}, R = 1, r = shape_spheroradius(R, eta), hmax = 0;
+	static double side[2], q[8] = {1, 0, 0, 0, 1, 0, 0, 0};
+	long s;
+
+	pack_init(&p);
+	x0[2] = -(r + 1e-4);
+	x1[2] = r + 1e-4;
+	pack_add_grain(&p, 1, x0, r, 1e9, 0.2, 1);
+	pack_add_grain(&p, 2, x1, r, 1e9, 0.2, 1);
+	side[0] = side[1] = shape_plate_side(R, eta, SHAPE_R_EDGE);
+	p.side = side, p.q = q;
+	p.box[0] = p.box[1] = p.box[2] = -40, p.box[3] = p.box[4] = p.box[5] = 40;
+	pdem_params_default(&pp);
+	pp.law = law;
+	pp.restitution = 1;
+	pp.dt_factor = law == &contact_law_linear ? 0.002 : 0.01;	/* a collision: 2000 steps or more */
+	*m = 0;
+	*e = NAN;
+	if (pdem_init(&d, &p, &pp))
+		return NAN;
+	d.v[2] = 0.5e-3;
+	d.v[5] = -0.5e-3;
+	for (s = 0; s < 4000000; s++) {
+		if (pdem_forces(&d))
+			break;
+		if (d.ninter == 0 && s > 10 && d.v[5] > d.v[2]) {
+			*e = (d.v[5] - d.v[2]) / 1e-3;
+			break;
+		}
+		pdem_integrate(&d);
+		hmax = fmax(hmax, 2 * d.r[0] - (d.x[5] - d.x[2]));
+		*m = *m > (int)d.nelem ? *m : (int)d.nelem;
+	}
+	*ms = d.m[0] / 2;
+	*es = d.lp_grain.Es;
+	*rs = d.r[0] / 2;
+	pdem_free(&d);
+	p.side = p.q = NULL;
+	pack_free(&p);
+	return hmax;
+}
+
+/* The largest overlap of an elastic head-on collision at closing speed v against the closed
+ * forms: M elements (1 for spheres, 4 face to face) of the linear law store m* v^2 / 2 =
+ * M k_n h^2 / 2, h = v sqrt(m* / (M k_n)), k_n = 1 in the engine's units; of Hertz's,
+ * M 8/15 E* sqrt(R*) h^(5/2), h = (15 m* v^2 / (16 M E* sqrt(R*)))^(2/5) (R* = r / 2 of the
+ * spheroradii, contact/hertz.h).  And the collision gives back its speed (e = 1).  The
+ * tolerance 1e-3: the leapfrog's error in the peak at 2000 or more steps a collision is below
+ * 1e-6, the overlap of the first step's gap is exact (free flight); a wrong element count
+ * changes h by 4^(2/5) = 1.7, a wrong R* by 2^(1/5) = 1.15. */
+static void
+test_laws_on_shapes(void)
+{
+	static const double etas[2] = {0, 0.5};
+	const struct contact_law *laws[2] = {&contact_law_linear, &contact_law_hertz_mindlin};
+	int l, k;
+
+	for (l = 0; l < 2; l++)
+		for (k = 0; k < 2; k++) {
+			double e, ms, es, rs, want, v = 1e-3, h;
+			int m;
+
+			h = impact(laws[l], etas[k], &m, &e, &ms, &es, &rs);
+			want = l == 0 ? v * sqrt(ms / m) : pow(15 * ms * v * v / (16 * m * es * sqrt(rs)), 0.4);
+			CHECK(m == (k == 0 ? 1 : 4) && unit_close(h, want, 1e-3, 0) && fabs(e - 1) < 1e-3,
+			    "laws on shapes: %s, %s: largest overlap %.6g, closed form %.6g (%d elements), restitution %.5f",
+			    laws[l]->name, k == 0 ? "spheres" : "plates face to face", h, want, m, e);
+		}
+}
+
 /* A plate held face-down at overlap h on the zlo wall carries 4 k_n h on its 4 corners and
  * no torque; tilted by a small angle a about x (L/2 sin a < h), its corners at depths h +- (L/2) sin a carry
  * k_n times each, and the couple is the sum of the corners' arms times their forces. */
@@ -461,6 +543,7 @@ main(void)
 	test_shape_monte_carlo();
 	test_free_rotation();
 	test_restitution();
+	test_laws_on_shapes();
 	test_pressed_plate();
 	test_pack_at_rest();
 	return unit_summary();
