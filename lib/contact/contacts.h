@@ -202,7 +202,7 @@ row_nonzero(const double *h, unsigned hs)
 /* Wall w of grain c->i (radius c->ri) at distance dist, in contact_foreach_row; hist is its
  * history slot or NULL, set the grain's hwall_set byte (bit w: the slot went to a callback
  * since it was last zeroed).  A slot apart from its wall is zeroed only when that bit is set:
- * in a CONTACT_TOUCHING walk (the sphere DEM) a grain far from the walls then costs no stores
+ * in a CONTACT_TOUCHING walk (the DEM's sphere pass) a grain far from the walls then costs no stores
  * into the walls' history, which every grain has (at 1e5 grains 14 MB a step).  A
  * CONTACT_NEAR walk (the plate DEM) hands every slot to its callback, so its slots are
  * zeroed at every visit apart, as before. */

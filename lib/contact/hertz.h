@@ -12,8 +12,9 @@
  * Stateless inline kernels, called by the law's interface (hertz.c: contact_law_hertz_mindlin,
  * and its pair setup hertz_mindlin_pair) and by every fast path: the functional's Hertz
  * evaluation, Hessian and stiffness bound (qs/functional.c), friction's limits (qs/friction.c),
- * the contact network (contacts.c), the measures (analysis/measure.c) and the sphere DEM's
- * force loop and its two-lane copy (dem/dem.c, hertz_dem_force and hertz_dem_force2).  Where a
+ * the contact network (contacts.c), the measures (analysis/measure.c) and the DEM engine
+ * (its interactions of m elements, hertz_dem_interaction; its sphere pass's inlined
+ * hertz_dem_force and two-lane hertz_dem_force2, dem/platedem_spheres.c).  Where a
  * fast path keeps a product (the pair's coefficient 4/3 E* sqrt(R*) by list entry, E* from
  * per-grain compliances), the kernels are cut there, so that every path computes the same
  * operations in the same order: the same bytes. */
@@ -215,7 +216,7 @@ hertz_dem_interaction(const struct law_pair *lp, const struct law_dem_elems *in,
 }
 
 #if LANES_OK
-/* The twins of the kernels the sphere DEM's pair loop calls, on two contacts at once, one in
+/* The twins of the kernels the engine's sphere pass calls, on two contacts at once, one in
  * each lane (lanes.h, and law.h's twins): lane by lane the same operations in the same order
  * as the scalar kernel named, so the same bytes (tests/unit/test_dem.c's test_lanes).  A
  * change to one goes to its twin. */

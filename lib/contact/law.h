@@ -20,15 +20,18 @@
  *    k*_t = 16/3 a^3 / (1/G_i + 1/G_j) and M_max = 3 pi / 16 a mu P, a = sqrt(R* h); in DEM a
  *    viscous normal damping 2 zeta sqrt(m* k_n) and a tangential spring of kt_ratio k_n with
  *    a Coulomb limit.  The functional, friction, the contact network, the measures and the
- *    sphere DEM (and its two-lane copy) call its kernels.
+ *    DEM engine (its sphere pass and two-lane copy, its plate pass) call its kernels.
  *  - contact/linear.h, contact_law_linear (contact/linear.c): a linear spring,
- *    U = k_n h^2 / 2, tangential k_t = kt_ratio k_n with a Coulomb limit, torsion none; the
- *    same DEM damping; and the spring-dashpot element force of the spheroplates' DEM (the
- *    platy-particle paper's law).  k_n (N/m) is a field of the law.
+ *    U = k_n h^2 / 2, tangential k_t = kt_ratio k_n with a Coulomb limit, torsion none; in
+ *    DEM the platy-particle paper's spring-dashpot law (per-element damped normal forces, a
+ *    tangential spring of force increments with a dashpot).  k_n (N/m) is a field of the law.
+ *
+ * Either law's DEM entry (dem_interaction) takes an interaction of m element contacts, one
+ * for spheres, so the DEM engine (dem/platedem.h) runs each law on each shape.
  *
  * Here: the interface, the kernels every law's DEM force shares (the Coulomb limit, the
  * viscous damping coefficient, the tangential spring, the damped force; each with its
- * two-lane twin for the sphere DEM's pair loop), and the table (CONTACT_LAWS), through which
+ * two-lane twin for the engine's sphere pass), and the table (CONTACT_LAWS), through which
  * a law is found by name or by a pack's contact-law key.  Adding a law: one file and one
  * row of CONTACT_LAWS (share/doc/library.md, "How to add a law").  SI units. */
 #ifndef QUSGM_LAW_H
@@ -104,7 +107,7 @@ struct contact_law {
 	double (*dem_interaction)(const struct contact_law *law, const struct law_pair *lp,
 	    const struct law_dem_elems *in, double *hist, double *fk, double ft[3], double *fel);
 	/* The value of a pack's meta key contact-law that names this law (pack_claim_hertz
-	 * writes 'hertz'; the plate engine writes 'linear'). */
+	 * writes 'hertz'; packgen's plates write 'linear'). */
 	const char *pack_key;
 };
 

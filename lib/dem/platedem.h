@@ -1,30 +1,36 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* platedem: explicit DEM of spheroplates, the platy-particle paper's engine (P §II B,
- * App. A; physics.md §12).
+/* platedem: the explicit DEM engine of every shape (the name is its history): spheres and
+ * spheroplates (pack/shape.h; a sphere is one of side 0), under any contact law of the table
+ * (contact/law.h: dem_interaction); packgen's compactions (dem/dem.h for spheres,
+ * dem/platepack.h for plates) and the shear test (dem/plateshear.h) run on it.  The
+ * platy-particle paper's engine (P §II B, App. A; physics.md §12) with its linear law; for
+ * spheres, the settling of the quasi-static papers with Hertz-Mindlin.
  *
- * Grains are spheroplates (pack/shape.h; a sphere is one of side 0).  An interaction is the
- * element contacts of contact/plate.h; each element carries a linear spring-dashpot normal
- * force k_n h + gamma_n dh/dt, never attractive (P eq. 2), at its own contact point.  The
- * interaction has one tangential spring (3 history doubles in the enumerator's slot: its
- * force), advanced by the relative sliding at the overlap-weighted centre of the elements
- * with the stiffness M k_t of its M elements (each sharing the tangential displacement, as
- * P's common tangent t implies), turned into the current tangent plane each step and carried
- * across list rebuilds, with a dashpot M-fold too, capped at mu times the interaction's
- * normal force (P eqs. 3-4).  The spring keeps its force and takes increments of M k_t times
- * the sliding, so an element coming or going changes the stiffness, not the force.  The dashpots come from a restitution coefficient e, through
- * the damping ratio zeta whose collision returns e with the never-attractive force
- * (platedem.c: Schwager and Poschel's closed form, not the classical exp(-pi zeta/...)), and
- * each of M elements gets gamma = 2 zeta sqrt(m* k_n / M), so the interaction's damping
- * ratio is zeta whether a collision meets a corner (M = 1) or a face (M = 4): a head-on
- * collision returns e either way.
+ * An interaction is the element contacts of contact/plate.h (one for a pair of spheres or a
+ * sphere and a wall), sharing its normal; the law gives each element's normal force, never
+ * attractive, at its own contact point, and the interaction's one tangential force (3 history
+ * doubles in the enumerator's slot: its spring) at the overlap-weighted centre of the
+ * elements, within mu times the summed normal force.  The linear law (P eqs. 2-4): elements
+ * k_n h + gamma_n dh/dt; a spring that keeps its force and takes increments of M k_t times
+ * the sliding (M elements each sharing the tangential displacement, as P's common tangent t
+ * implies), so an element coming or going changes the stiffness, not the force; a dashpot
+ * M-fold too.  The dashpots come from a restitution coefficient e, through the damping ratio
+ * zeta whose collision returns e with the never-attractive force (platedem.c: Schwager and
+ * Poschel's closed form, not the classical exp(-pi zeta/...)), and each of M elements gets
+ * gamma = 2 zeta sqrt(m* k_n / M), so the interaction's damping ratio is zeta whether a
+ * collision meets a corner (M = 1) or a face (M = 4): a head-on collision returns e either
+ * way.  Hertz-Mindlin (contact/hertz.h, hertz_dem_interaction): elements 2/3 k h with
+ * k = 2 E* sqrt(R* h), R* of the two spheroradii.
  *
  * Integration: leapfrog translations; rotations by Euler's equations in the principal
  * (body) frame, P eq. A2, with the angular velocity at the full step taken as the mean of
  * the two half steps (the implicit midpoint rule, solved by fixed-point iteration): P's A2
  * needs Omega_t, which a leapfrog does not have, and the midpoint keeps the kinetic energy
  * and |L| of a free body exactly.  The quaternion then turns by P's eq. A4 step
- * (quat_step_body).  Optionally Cundall's local damping (P uses none; packgen uses it to
- * reach rest sooner: it removes kinetic energy, not the equilibrium).
+ * (quat_step_body).  A sphere's orientation is not observable: its frame is kept as the
+ * lab's, and its isotropic Euler equations are w' = t / J.  Optionally Cundall's local
+ * damping and a viscous loss (P uses neither; packgen uses them to reach rest sooner: they
+ * remove kinetic energy, not the equilibrium).
  *
  * The narrow phase is kept between steps: per listed pair, the features (vertex-square, edge
  * pairs) that can be within reach while the pair's cores move against each other by less
@@ -33,8 +39,13 @@
  * blocks of rows compute their interactions, each grain gathers its column's in a fixed
  * order, so the bytes are the same for any thread count.
  *
- * Units inside: length r0 (the mean spheroradius), mass rho0 r0^3, stiffness k_n, so time
- * sqrt(rho0 r0^3 / k_n) and stress k_n / r0; the pack (SI) is converted in and out. */
+ * A pack of spheres only takes the sphere pass (platedem_spheres.c): no narrow phase, a pair's
+ * force into both grains as the walk meets it, Hertz pairs two at a time in lanes; the same
+ * integrator, sums and law entry.
+ *
+ * Units inside: length r0 (the mean spheroradius), mass rho0 r0^3, stiffness k0 (the linear
+ * law's k_n; Hertz's E* r0 of two mean grains), so time sqrt(rho0 r0^3 / k0) and stress
+ * k0 / r0; the pack (SI) is converted in and out. */
 #ifndef QUSGM_PLATEDEM_H
 #define QUSGM_PLATEDEM_H
 

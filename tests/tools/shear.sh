@@ -12,7 +12,7 @@ san=0
 [ "${BIN#*build-san}" != "$BIN" ] && san=1
 if [ $san = 0 ]; then
 	( packgen --shape spheroplate --platyness 0.5 -n 216 --seed 3 -o l.pack 2>/dev/null &&
-	  shear --strain 1.2 --inertial 1e-2 --every 0.1 --profile l.prof --profile-bins 10 -o l-out.pack l.pack >l.tsv 2>l.err
+	  shear --strain 1.8 --profile-from 0.6 --inertial 1e-2 --every 0.1 --profile l.prof --profile-bins 10 -o l-out.pack l.pack >l.tsv 2>l.err
 	  echo $? >l.rc ) &
 	heavy=$!
 fi
@@ -109,18 +109,20 @@ expect_error "shear: a snapshot over -o" 2 "^shear: -o and a snapshot \\(--snaps
 expect_error "shear: --profile - with the table" 2 "^shear: the table and --profile both go to standard output" \
     shear --strain 0.1 --profile - s.pack
 
-# A steady shear of 216 plates (eta 0.5) at I = 1e-2 to gamma 1.2, the profile over 0.6-1.2
+# A steady shear of 216 plates (eta 0.5) at I = 1e-2 to gamma 1.8, the profile over 0.6-1.8
 # in 10 bins.  Linear: over the 8 bins between the glued layers a straight line fits with
-# R^2 above 0.97 and no bin more than 0.12 v_w off it.  One realisation is noisy: packgen
-# seeds 3-7 gave R^2 0.982-0.997 and largest deviations 0.026-0.080, and 0.1.0's engine (the
-# same element forces summed in another order) 0.943-0.992 and 0.054-0.148 on the same seeds
-# (bench/plates.md); shear localised in a band, as in a crystallised pack, gives R^2
-# below 0.95, and a band across two of the 8 bins puts a bin 0.2-0.4 v_w off any line.
+# R^2 above 0.97 and no bin more than 0.12 v_w off it.  One realisation is noisy, so the
+# profile is averaged over 1.2 of strain: over 0.72-1.2 (this test before the one engine for every
+# shape), packgen seeds 3-7 gave R^2 0.952-0.995 and largest deviations 0.041-0.146, as 0.1.0's
+# engine did (0.943-0.992, 0.054-0.148), the same physics summed in another order; over
+# 0.6-1.8, R^2 0.975-0.991 and deviations 0.054-0.108 (bench/plates.md).  Shear localised in a
+# band, as in a crystallised pack, gives R^2 below 0.95, and a band across two of the 8 bins
+# puts a bin 0.2-0.4 v_w off any line.
 if [ $san = 1 ]; then
 	echo "SKIP shear: linear profile (left to the optimised build: 20 s there, minutes here)"
 else
 	wait "$heavy"
-	[ "$(cat l.rc 2>/dev/null)" = 0 ] && pass "shear 216 plates to gamma 1.2" || fail "shear 216 plates to gamma 1.2" "$(head -c 300 l.err)"
+	[ "$(cat l.rc 2>/dev/null)" = 0 ] && pass "shear 216 plates to gamma 1.8" || fail "shear 216 plates to gamma 1.8" "$(head -c 300 l.err)"
 	fit=$(rows l.prof | awk -F '\t' 'NR > 1 && NR < 10 { n++; x[n] = $1; y[n] = $2; sx += $1; sy += $2 }
 	    END { mx = sx / n; my = sy / n; for (k = 1; k <= n; k++) { sxx += (x[k] - mx)^2; sxy += (x[k] - mx) * (y[k] - my); syy += (y[k] - my)^2 }
 	      b = sxy / sxx; a = my - b * mx; for (k = 1; k <= n; k++) { e = y[k] - a - b * x[k]; if (e < 0) e = -e; if (e > m) m = e; ss += e * e }
