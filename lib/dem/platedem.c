@@ -693,31 +693,31 @@ euler_midpoint(double w[3], const double J[3], const double tau[3], double dt)
  * that drives the motion; the viscous loss 1 - keep makes free flight decay, so that no
  * granular gas builds up whose kinetic pressure a wall servo would take for a force network. */
 static inline void
-translate(struct pdem *d, size_t i, double keep, double al)
+translate(double *x, double *vel, const double *force, const double *mob, size_t i, double dt, double keep, double al)
 {
-	double am = d->mob[2 * i], dt = d->dt;
+	double am = mob[2 * i];
 	int a;
 
 	for (a = 0; a < 3; a++) {
 		size_t k = 3 * i + a;
-		double f = local_damping(d->f[k], d->v[k], al), v = d->v[k] * keep + f * am;
+		double f = local_damping(force[k], vel[k], al), v = vel[k] * keep + f * am;
 
-		d->v[k] = v;
-		d->x[k] += v * dt;
+		vel[k] = v;
+		x[k] += v * dt;
 	}
 }
 
 /* A sphere's spin: its frame is the lab's (pdem_start) and its inertia isotropic, so Euler's
  * equations are w' = t / J. */
 static inline void
-spin_sphere(struct pdem *d, size_t i, double keep, double al)
+spin_sphere(double *w, const double *torque, const double *mob, size_t i, double keep, double al)
 {
-	double aI = d->mob[2 * i + 1];
+	double aI = mob[2 * i + 1];
 	int a;
 
 	for (a = 0; a < 3; a++) {
 		size_t k = 3 * i + a;
-		d->w[k] = d->w[k] * keep + local_damping(d->t[k], d->w[k], al) * aI;
+		w[k] = w[k] * keep + local_damping(torque[k], w[k], al) * aI;
 	}
 }
 
@@ -739,10 +739,24 @@ pdem_integrate(struct pdem *d)
 	}
 	/* grain by grain, nothing shared: the same bytes on any threads */
 	if (d->spheres && !d->glue) {	/* packgen's: every grain a free sphere */
+		double *x = d->x, *v = d->v, *w = d->w;
+		const double *f = d->f, *t = d->t, *mob = d->mob;
+
 #pragma omp parallel for schedule(static) if (d->threads)
 		for (ii = 0; ii < (long)d->n; ii++) {
-			translate(d, (size_t)ii, keep, al);
-			spin_sphere(d, (size_t)ii, keep, al);
+			size_t i = (size_t)ii;
+			double am = mob[2 * i], aI = mob[2 * i + 1];
+			int a;
+
+			/* translate and spin_sphere, component by component */
+			for (a = 0; a < 3; a++) {
+				size_t k = 3 * i + a;
+				double vk = v[k] * keep + local_damping(f[k], v[k], al) * am;
+
+				w[k] = w[k] * keep + local_damping(t[k], w[k], al) * aI;
+				v[k] = vk;
+				x[k] += vk * dt;
+			}
 		}
 		return;
 	}
@@ -762,9 +776,9 @@ pdem_integrate(struct pdem *d)
 			}
 			continue;
 		}
-		translate(d, i, keep, al);
+		translate(d->x, d->v, d->f, d->mob, i, dt, keep, al);
 		if (d->half[i] == 0) {
-			spin_sphere(d, i, keep, al);
+			spin_sphere(d->w, d->t, d->mob, i, keep, al);
 			continue;
 		}
 		{

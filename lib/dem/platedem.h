@@ -129,7 +129,8 @@ struct pdem {
 	 * Love-Weber stress times the volume */
 	double wallF[NWALLS][3];
 	double sig[6];
-	/* (sig is kept when stress is set: the shear's; the compactions do not read it) */
+	/* (both kept when stress is set, the shear's; the compactions read neither: without stress
+	 * sig is 0, and so is wallF in the sphere pass of a pack without glue) */
 	int stress;
 	/* ... and the interactions' ends on free grains (Z of the free grains = zends / their
 	 * number); a pair of two glued grains is part of a wall: it is in none of the sums above */

@@ -51,7 +51,7 @@ sphere_force(const struct pdem *d, const struct contact *c, double F[3], double 
 	struct law_dem_in in;
 
 	contact_normal(c, in.n);
-	lp.Es = pp->Es, lp.mu = pp->mu, lp.kn = pp->kn;	/* what the laws' DEM entries read */
+	lp.Es = pp->Es, lp.mu = pp->mu;	/* what Hertz's DEM force reads */
 	lp.Rs = contact_Rstar(c, d->r);
 	in.h = c->h;
 	in.dt = d->dt;
@@ -78,6 +78,7 @@ sphere_force(const struct pdem *d, const struct contact *c, double F[3], double 
 		struct law_dem_elems el;
 		double fk[1], vn = vec3_dot(in.vr, in.n);
 
+		lp.kn = pp->kn;
 		el.m = 1;
 		el.h[0] = in.h;
 		el.vn[0] = vn;
@@ -101,6 +102,8 @@ struct sphere_walk {
 	struct pdem *d;
 	size_t jend;
 	struct pdem_sums s;
+	int plain;		/* no glue and no stress sums: a contact counts its force alone */
+	size_t plain_pairs, plain_walls;	/* the contacts so counted (pair_count, on_wall) */
 	int npend;
 	struct contact pend;
 };
@@ -170,13 +173,28 @@ add_to_j(struct pdem *d, size_t j, const double F[3], const double cr[3])
 	}
 }
 
+/* A pair into the block's sums: pdem_count's, or, in a plain pass (packgen's: no glue, no
+ * stress sums), its force magnitude alone, the counts it would add (an interaction, an
+ * element, two ends on free grains) made up per block in pdem_sphere_forces; a wall's there
+ * too, after its elastic force (on_wall). */
+CONTACT_INLINE void
+pair_count(struct sphere_walk *w, const struct contact *c, const double F[3])
+{
+	if (w->plain) {
+		w->plain_pairs++;
+		w->s.sum_f += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+		return;
+	}
+	pdem_count(w->d, c->i, c->j, c->dx, F, 0, 1, &w->s);
+}
+
 /* A computed pair's force into both grains and the block's sums. */
 CONTACT_INLINE void
 pair_add(struct sphere_walk *w, const struct contact *c, const double F[3], const double cr[3])
 {
 	add_to_i(w->d, c->i, F, cr);
 	add_to_j(w->d, (size_t)c->j, F, cr);
-	pdem_count(w->d, c->i, c->j, c->dx, F, 0, 1, &w->s);
+	pair_count(w, c, F);
 }
 
 /* The waiting pair alone, before anything else is added (so every grain's sum keeps the
@@ -230,7 +248,7 @@ on_pair(const struct contact *c, void *vw)
 
 		pend_flush(w);
 		add_to_i(d, c->i, x->F, x->cr);
-		pdem_count(d, c->i, c->j, c->dx, x->F, 0, 1, &w->s);
+		pair_count(w, c, x->F);
 	}
 	return 0;
 }
@@ -247,6 +265,12 @@ on_wall(const struct contact *c, void *vw)
 		return 0;	/* glued to that wall: part of it */
 	sphere_force(d, c, F, cr, &fel);
 	add_to_i(d, c->i, F, cr);
+	if (w->plain) {	/* the servo's elastic force and the force magnitude (see pair_count) */
+		w->plain_walls++;
+		w->s.wallf[PACK_WALL_INDEX(c->j)] += fel;
+		w->s.sum_f += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+		return 0;
+	}
 	pdem_count(d, c->i, c->j, NULL, F, fel, 1, &w->s);
 	return 0;
 }
@@ -376,10 +400,13 @@ pdem_sphere_forces(struct pdem *d)
 			size_t i1 = (b + 1) * bl < n ? (b + 1) * bl : n;
 
 			memset(&dw, 0, sizeof dw);
-			dw.d = d, dw.jend = g1;
+			dw.d = d, dw.jend = g1, dw.plain = !d->glue && !d->stress;
 			for (i = b * bl; i < i1; i++)
 				SPHERE_ROW(e, d->x, i, per, on_pair, on_wall, &dw, &calls);
 			pend_flush(&dw);
+			/* the counts of the plain pass's contacts (wallF is not kept: no stress sums) */
+			dw.s.ninter += dw.plain_pairs + dw.plain_walls, dw.s.nelem += dw.plain_pairs + dw.plain_walls;
+			dw.s.zends += 2 * dw.plain_pairs + dw.plain_walls, dw.s.nwall += dw.plain_walls;
 			d->sums[b] = dw.s;
 		}
 	}
