@@ -13,7 +13,8 @@
 # a long test does not start last and leave one core idle: with the old one-process-per-build
 # split the sanitizer build alone took 8 of make check's 9 minutes.  Every test's lines are
 # printed afterwards in a fixed order (build, then unit before tool tests), whatever the
-# order they ran in, with the wall seconds each took.
+# order they ran in, with the wall seconds each took and its CPU seconds (user + system,
+# itself and what it ran), and at the end the sum of the CPU seconds.
 set -u
 top=$(cd "$(dirname "$0")/.." && pwd)
 out="$top/tests/out"
@@ -34,6 +35,11 @@ if [ "${1:-}" = --one ]; then
 	fi
 	rc=$?
 	t1=$(cut -d' ' -f1 /proc/uptime 2>/dev/null || echo 0)
+	# the CPU seconds (user + system) of the test and everything it ran: this shell ran
+	# nothing else, and its children are waited for.  On a loaded machine the wall seconds
+	# grow, the CPU seconds do not: they show where make check's time really goes.
+	times >"$log.times"
+	cpu=$(awk 'NR == 2 { for (i = 1; i <= 2; i++) { split($i, a, "m"); s += a[1] * 60 + a[2] } print s }' "$log.times")
 	name="$b/$kind/$n"
 	p=$(grep -c '^PASS ' "$log")
 	f=$(grep -c '^FAIL ' "$log")
@@ -48,10 +54,10 @@ if [ "${1:-}" = --one ]; then
 			tail -n 5 "$log.err" | sed 's/^/    stderr: /'
 		fi
 		# wall seconds per test, so that a slow one shows (make check has a 10-minute budget)
-		printf '%-40s %4d passed %4d failed %6.1f s\n' "$name" "$p" "$f" \
-			"$(echo "$t0 $t1" | awk '{print $2 - $1}')"
+		printf '%-40s %4d passed %4d failed %6.1f s %6.1f s CPU\n' "$name" "$p" "$f" \
+			"$(echo "$t0 $t1" | awk '{print $2 - $1}')" "$cpu"
 	} >"$out/$b/$kind/$n.lines"
-	echo "$p $f $(echo "$t0 $t1" | awk '{print $2 - $1}') $name" >"$out/$b/$kind/$n.res"
+	echo "$p $f $(echo "$t0 $t1" | awk '{print $2 - $1}') $cpu $name" >"$out/$b/$kind/$n.res"
 	exit 0
 fi
 
@@ -61,7 +67,12 @@ mkdir -p "$out"
 # spinning threads each on two cores ran make check a third slower (tests/tools/threads.sh
 # asks for its threads with --threads)
 OMP_NUM_THREADS=${TEST_OMP_THREADS:-1}
-export OMP_NUM_THREADS
+# and the threads of the runs that ask for two (--threads 2, the unit tests' two-thread
+# cases) sleep at a barrier instead of spinning: a spinning thread takes the core from the
+# other job (the bytes do not depend on it).  The sanitizer build's test_dem took 20-30 s of
+# CPU with spinning threads, 5 s with sleeping ones.
+OMP_WAIT_POLICY=passive
+export OMP_NUM_THREADS OMP_WAIT_POLICY
 
 # The jobs in the fixed order their lines are printed in: "BUILD KIND NAME".
 for b in "$@"; do
@@ -97,6 +108,7 @@ awk -v times="$times" '
 		w = (name in t) ? t[name] : ($2 == "tools" ? 2000 : 1000) + nb * 100
 		printf "%012.3f %s %s %s\n", w, $1, $2, $3
 	}' "$out/jobs" | sort -r | cut -d' ' -f2- >"$out/queue"
+q0=$(cut -d' ' -f1 /proc/uptime 2>/dev/null || echo 0)
 xargs -P "$jobs" -L 1 sh "$top/tests/run.sh" --one <"$out/queue"
 
 passed=0
@@ -113,15 +125,20 @@ while read -r b kind n; do
 		continue
 	fi
 	cat "$out/$b/$kind/$n.lines"
-	read -r p f s name <"$out/$b/$kind/$n.res"
+	read -r p f s c name <"$out/$b/$kind/$n.res"
 	passed=$((passed + p))
 	failed=$((failed + f))
 	echo "$s $name" >>"$out/times"
+	echo "$c $name" >>"$out/cpu"
 done <"$out/jobs"
 # keep the times of builds not run this time (make check-fast runs only build/)
 if [ -d "$top/build" ] && [ -f "$out/times" ]; then
 	{ [ -f "$times" ] && awk 'NR == FNR { seen[$2] = 1; next } !($2 in seen)' "$out/times" "$times"
 	  cat "$out/times"; } >"$times.new" && mv "$times.new" "$times"
 fi
+# the sums: the CPU seconds of all tests (the measure of their cost, whatever the load) and
+# the wall seconds of the queue
+[ -f "$out/cpu" ] && awk -v wall="$(awk -v t0="$q0" '{ print $1 - t0 }' /proc/uptime 2>/dev/null)" \
+	'{ s += $1 } END { printf "tests: %.0f s CPU in all, %.0f s wall\n", s, wall }' "$out/cpu"
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -3,9 +3,17 @@
 # checked with packinfo (which finds the contacts and forces itself, so its residual and
 # stresses are an independent check), the log, determinism, the FIRE minimiser, and every
 # error the issue lists.  Small packs (300 grains): a few seconds per run.
+#
+# The sanitizer build runs every check on packs of 150 grains, as its errors (memory, undefined
+# behaviour) show on small packs as on large ones, at two thirds of the cost (its packgen of
+# the wide size distribution took 11 s of CPU at 300 grains, 2 s at 150), but for the
+# coordination floor of a jammed pack, which depends on the size (check_dense): that check is
+# the optimised build's.
 . "$TOP/tests/tools/lib.sh"
 
-expect_ok "packgen makes the loose pack" packgen -n 300 --seed 2 -o loose.pack
+san=0 N=300
+if [ "${BIN#*build-san}" != "$BIN" ]; then san=1 N=150; fi
+expect_ok "packgen makes the loose pack" packgen -n $N --seed 2 -o loose.pack
 packinfo loose.pack >loose.txt
 
 # check_dense NAME PACK TARGET: the equilibrium properties every densified pack must have.
@@ -27,8 +35,12 @@ check_dense() {
 	# Frictionless spheres jam isostatic: 3 force unknowns per contact pair balance 3
 	# equations per grain, so the mean coordination is near 6 (more under load).  Wall
 	# contacts count once and grains at the walls have fewer neighbours, which lowers a
-	# 300-grain pack's mean a little: 5.5 is a safe floor, a loose pack is near 2.4.
-	expect_num "$n: coordination of a jammed frictionless pack" "$(info_value "$pk.txt" coordination)" ">=" 5.5
+	# 300-grain pack's mean a little: 5.5 is a safe floor, a loose pack is near 2.4.  The
+	# optimised build's only: at 150 grains (the sanitizer build's packs) the walls' share
+	# is larger and lowers the mean below it (5.41 at 1 MPa).
+	if [ $san = 0 ]; then
+		expect_num "$n: coordination of a jammed frictionless pack" "$(info_value "$pk.txt" coordination)" ">=" 5.5
+	fi
 	if grep -q '^refbox ' "$pk"; then pass "$n: refbox line"; else fail "$n: refbox line" "none"; fi
 	awk '$1 == "contacts" && !on { m = $2 } /^end$/ { on = 1; next }
 	     on && NF == 7 { k++; if (!($3 > 0)) bad++ }
@@ -45,11 +57,6 @@ if [ "$rc" -eq 0 ]; then pass "densify --stress 4e6 (stdout)"; else fail "densif
 check_dense "4 MPa" d4.pack 4e6
 # Hertz overlaps grow as (sigma/E)^(2/3): about 1 % of R at 4 MPa for glass (70 GPa)
 expect_num "4 MPa: largest overlap / R small" "$(info_value d4.pack.txt overlap_max)" "<" 0.05
-# Separate runs from the loose pack may grow grains differently, so compare the same pack
-# compressed further: compaction must lower the porosity.
-densify --stress 4e6 -o d14.pack d1.pack 2>/dev/null
-packinfo d14.pack >d14.txt 2>/dev/null
-expect_num "1 MPa pack compressed to 4 MPa is denser" "$(info_value d14.txt porosity)" "<" "$(info_value d1.pack.txt porosity)"
 
 # The log: the documented header, then one row per stage: relax 0, grow (or retry) 1..k, compact 1..m,
 # eleven columns each, the last the elapsed seconds, growing; the last row is the pack written.
@@ -117,6 +124,9 @@ expect_ok "densify a dense pack further" densify --stress 4e6 --log re.tsv -o re
 if ! grep -q '^grow' re.tsv; then pass "dense pack: no growth rounds"; else fail "dense pack: no growth rounds" "$(grep -c '^grow' re.tsv) rows"; fi
 if [ "$(grep '^refbox' re.pack)" = "$(grep '^refbox' d1.pack)" ]; then pass "dense pack: reference box kept"; else fail "dense pack: reference box kept" "changed"; fi
 check_dense "1 -> 4 MPa" re.pack 4e6
+# Separate runs from the loose pack may grow grains differently, so compare the same pack
+# compressed further: compaction must lower the porosity.
+expect_num "1 MPa pack compressed to 4 MPa is denser" "$(info_value re.pack.txt porosity)" "<" "$(info_value d1.pack.txt porosity)"
 
 # FIRE reaches the same target and residual
 expect_ok "densify --method fire" densify --stress 4e6 --method fire -o fire.pack loose.pack
@@ -184,7 +194,7 @@ expect_same "checkpoint: dense pack further, resumed, is the uninterrupted one" 
 # A wide size distribution (the smallest grains grow, so the skin taken from the radii of a
 # resumed run would be larger) with a release every 10 iterations (the release's longest
 # move is a quarter of the skin): the resumed run must still be the uninterrupted one.
-expect_ok "packgen, a wide psd" packgen -n 300 --seed 3 --psd uniform:2e-5,1.5e-4 -o wide.pack
+expect_ok "packgen, a wide psd" packgen -n $N --seed 3 --psd uniform:2e-5,1.5e-4 -o wide.pack
 densify --stress 4e6 --release-after 10 --log wide.tsv -o wide.pack.d wide.pack 2>/dev/null
 resume_all ckwide wide.pack --stress 4e6 --release-after 10
 grep -v '^history densify ' wide.pack.d >wide.nohist

@@ -1,12 +1,21 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # packgen as a user runs it: a valid loose pack, same seed same bytes, the loose-pack
 # properties the issue asks for, and every usage error.
+#
+# The sanitizer build makes its loose packs of 200 grains instead of 400 (4 s of CPU each
+# there at 400), leaves the one check that needs the larger pack (the coordination of a
+# loose pack) to the optimised build, and does not repeat a command only to compare the
+# bytes (same seed, same bytes): the sanitizers see the same run the second time, and the
+# optimised build checks the determinism.  Every other check runs in both builds.
 . "$TOP/tests/tools/lib.sh"
 
-N=400
+san=0 N=400
+if [ "${BIN#*build-san}" != "$BIN" ]; then san=1 N=200; fi
 expect_ok "packgen -n $N writes a pack" packgen -n $N --seed 3 -o a.pack
-expect_ok "packgen again with the same seed" packgen -n $N --seed 3 -o b.pack
-expect_same "same seed, same bytes" a.pack b.pack
+if [ $san = 0 ]; then
+	expect_ok "packgen again with the same seed" packgen -n $N --seed 3 -o b.pack
+	expect_same "same seed, same bytes" a.pack b.pack
+fi
 packgen -n $N --seed 4 -o c.pack 2>/dev/null
 if cmp -s a.pack c.pack; then fail "another seed gives another pack" "identical"; else pass "another seed gives another pack"; fi
 packgen -n $N --seed 3 >d.pack 2>/dev/null
@@ -20,7 +29,11 @@ packinfo a.pack >info.txt
 expect_num "grains" "$(info_value info.txt grains)" == $N
 # A loose pack: grains touch (contacts exist) without significant overlap...
 expect_num "largest overlap / R below 1e-3" "$(info_value info.txt overlap_max)" "<" 1e-3
-expect_num "grains touch their neighbours (coordination)" "$(info_value info.txt coordination)" ">" 2
+# (400 grains: 2.45; the walls' share grows in a smaller box, and 200 grains of seeds 3-6
+# gave 2.07-2.34, 150 grains 1.75-2.15, so the sanitizer build's 200 leave it out)
+if [ $san = 0 ]; then
+	expect_num "grains touch their neighbours (coordination)" "$(info_value info.txt coordination)" ">" 2
+fi
 # ...and many have fewer than 4 contacts, which densify will fix.
 expect_num "many grains under 4 contacts" "$(info_value info.txt under4)" ">" $((N / 10))
 # Porosity of a loose random pack in a small box with walls: well above random close
@@ -38,7 +51,8 @@ awk '$1 == "walls" && $2 == 7e12 && $3 == 0.495 && $4 == 0.3 { ok = 1 } END { ex
 awk '/^end$/ { on = 1; next } on && NF == 8 { n++; s += $6; s2 += $6 * $6; t += $7 }
      END { m = s / n; sd = sqrt(s2 / n - m * m); print m, sd / m, t / n }' a.pack >mod.txt
 read -r Em Esd num <mod.txt
-# 150 draws: standard error of the mean 0.1/sqrt(150) = 0.8 % of E; 4 sigma = 3.3 %.
+# 150 draws: standard error of the mean 0.1/sqrt(150) = 0.8 % of E; 4 sigma = 3.3 % (at 200
+# and 400 draws, the packs here, 3.3 % is 4.7 and 6.6 standard errors).
 expect_num "mean E within 4 standard errors of 70 GPa" "$(awk -v e="$Em" 'BEGIN { print (e > 70e9 ? e - 70e9 : 70e9 - e) / 70e9 }')" "<" 0.033
 expect_num "spread of E about 10 %" "$Esd" ">" 0.07
 expect_num "spread of E about 10 % (upper)" "$Esd" "<" 0.13
@@ -107,8 +121,10 @@ if packgen --help | grep -q 'standard input'; then fail "--help: no standard inp
 
 # Spheroplates (issue 13): 27 plates of platyness 0.5, a static pack in a couple of seconds.
 expect_ok "spheroplates: packgen --shape spheroplate -n 27" packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 -o p.pack
-expect_ok "spheroplates: again with the same seed" packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 -o p2.pack
-expect_same "spheroplates: same seed, same bytes" p.pack p2.pack
+if [ $san = 0 ]; then
+	expect_ok "spheroplates: again with the same seed" packgen --shape spheroplate --platyness 0.5 -n 27 --seed 2 -o p2.pack
+	expect_same "spheroplates: same seed, same bytes" p.pack p2.pack
+fi
 packinfo p.pack >pinfo.txt 2>/dev/null
 expect_num "spheroplates: 27 plates" "$(info_value pinfo.txt plates)" == 27
 expect_num "spheroplates: platyness read back 0.5" "$(info_value pinfo.txt platyness)" == 0.5
@@ -204,8 +220,10 @@ expect_error "--periodic bad" 2 '^packgen: --periodic: expected' packgen --shape
 # alone: uniform radii have no ties); the hydrate grains are the shortest prefix whose sum of
 # r^3 reaches F of the total.  awk redoes it from the pack's own numbers.
 expect_ok "--hydrate-volume 0.15" packgen -n 300 --seed 3 --material quartz --hydrate-volume 0.15 -o hy.pack
-expect_ok "--hydrate-volume 0.15 again" packgen -n 300 --seed 3 --material quartz --hydrate-volume 0.15 -o hy2.pack
-expect_same "--hydrate-volume: same seed, same bytes" hy.pack hy2.pack
+if [ $san = 0 ]; then
+	expect_ok "--hydrate-volume 0.15 again" packgen -n 300 --seed 3 --material quartz --hydrate-volume 0.15 -o hy2.pack
+	expect_same "--hydrate-volume: same seed, same bytes" hy.pack hy2.pack
+fi
 grep -q '^columns id x y z r E nu rho phase$' hy.pack && pass "--hydrate-volume: the phase column" || fail "--hydrate-volume: the phase column" "$(grep ^columns hy.pack)"
 grep -q '^qusgm-pack 2$' hy.pack && pass "--hydrate-volume: version 2" || fail "--hydrate-volume: version 2" "$(head -n 1 hy.pack)"
 for m in 'hydrate-volume 0.15' 'hydrate-material hydrate' 'material quartz'; do

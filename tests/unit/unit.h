@@ -32,6 +32,22 @@ unit_report(int ok, const char *fmt, ...)
 
 #define CHECK(cond, ...) unit_report(!!(cond), __VA_ARGS__)
 
+/* UNIT_SANITIZED: 1 in the sanitizer build (make check's build-san, -fsanitize=address), where
+ * a test may run a smaller case of the same code (the sanitizers find memory errors and
+ * undefined behaviour on a small case as on a large one, at ten times the cost per step); the
+ * checks whose tolerance depends on the size keep the size, and each test says what it
+ * changes. */
+#if defined(__SANITIZE_ADDRESS__)
+#define UNIT_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNIT_SANITIZED 1
+#endif
+#endif
+#ifndef UNIT_SANITIZED
+#define UNIT_SANITIZED 0
+#endif
+
 /* |a - b| <= tol * max(|b|, floor): a relative tolerance with an absolute floor. */
 static int __attribute__((unused))
 unit_close(double a, double b, double tol, double floor_)
