@@ -161,6 +161,25 @@ test_free_rotation(void)
 	    a1, a2, a1 / a2);
 }
 
+/* Two equal grains of platyness eta (R = 1, rho 1), face to face along z with a gap of 2e-4
+ * (wall: one grain, 1e-4 above the zlo wall), in a box of side 80. */
+static void
+two_grains(struct pack *p, double eta, int wall)
+{
+	double x0[3] = {0, 0, 0}, x1[3] = {0, 0, 0}, R = 1, r = shape_spheroradius(R, eta);
+	static double side[2], q[8] = {1, 0, 0, 0, 1, 0, 0, 0};
+
+	pack_init(p);
+	x0[2] = wall ? -40 + r + 1e-4 : -(r + 1e-4);
+	x1[2] = r + 1e-4;
+	pack_add_grain(p, 1, x0, r, 1e9, 0.2, 1);
+	if (!wall)
+		pack_add_grain(p, 2, x1, r, 1e9, 0.2, 1);
+	side[0] = side[1] = shape_plate_side(R, eta, SHAPE_R_EDGE);
+	p->side = side, p->q = q;
+	p->box[0] = p->box[1] = p->box[2] = -40, p->box[3] = p->box[4] = p->box[5] = 40;
+}
+
 /* Two grains (or one and the zlo wall) in a big box, face to face along z, closing at 1e-3
  * r per time unit (overlaps ~1e-3 r); returns the restitution, relative normal speed after
  * over before, and the most element contacts seen into *maxh. */
@@ -170,19 +189,10 @@ collide(double eta, int wall, double e_asked, double dtf, double *maxh)
 	struct pack p;
 	struct pdem d;
 	struct pdem_params pp;
-	double x0[3] = {0, 0, 0}, x1[3] = {0, 0, 0}, R = 1, r = shape_spheroradius(R, eta), v0, v1;
-	static double side[2], q[8] = {1, 0, 0, 0, 1, 0, 0, 0};
+	double v0, v1;
 	long s;
 
-	pack_init(&p);
-	x0[2] = wall ? -40 + r + 1e-4 : -(r + 1e-4);
-	x1[2] = r + 1e-4;
-	pack_add_grain(&p, 1, x0, r, 1e9, 0.2, 1);
-	if (!wall)
-		pack_add_grain(&p, 2, x1, r, 1e9, 0.2, 1);
-	side[0] = side[1] = shape_plate_side(R, eta, SHAPE_R_EDGE);
-	p.side = side, p.q = q;
-	p.box[0] = p.box[1] = p.box[2] = -40, p.box[3] = p.box[4] = p.box[5] = 40;
+	two_grains(&p, eta, wall);
 	pdem_params_default(&pp);
 	pp.restitution = e_asked;
 	pp.dt_factor = dtf;
@@ -248,18 +258,10 @@ impact(const struct contact_law *law, double eta, int *m, double *e, double *ms,
 	struct pack p;
 	struct pdem d;
 	struct pdem_params pp;
-	double x0[3] = {0, 0, 0}, x1[3] = {0, 0, 0}, R = 1, r = shape_spheroradius(R, eta), hmax = 0;
-	static double side[2], q[8] = {1, 0, 0, 0, 1, 0, 0, 0};
+	double hmax = 0;
 	long s;
 
-	pack_init(&p);
-	x0[2] = -(r + 1e-4);
-	x1[2] = r + 1e-4;
-	pack_add_grain(&p, 1, x0, r, 1e9, 0.2, 1);
-	pack_add_grain(&p, 2, x1, r, 1e9, 0.2, 1);
-	side[0] = side[1] = shape_plate_side(R, eta, SHAPE_R_EDGE);
-	p.side = side, p.q = q;
-	p.box[0] = p.box[1] = p.box[2] = -40, p.box[3] = p.box[4] = p.box[5] = 40;
+	two_grains(&p, eta, 0);
 	pdem_params_default(&pp);
 	pp.law = law;
 	pp.restitution = 1;
