@@ -340,7 +340,8 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 
 	if (!build) {	/* what the cores' points may have moved against each other since it was made */
 		double e0 = c->dx[0] - pc->dx[0], e1 = c->dx[1] - pc->dx[1], e2 = c->dx[2] - pc->dx[2];
-		build = !(sqrt(e0 * e0 + e1 * e1 + e2 * e2) + (turns - pc->turn) < d->cache_margin);
+		double room = d->cache_margin - (turns - pc->turn);
+		build = !(room > 0 && e0 * e0 + e1 * e1 + e2 * e2 < room * room);
 	}
 	/* cores that cannot touch yet (two spheres keep no cache) */
 	if (!build && !(pc->word & PLATE_CACHE_FEATURES) && (d->half[i] > 0 || d->half[j] > 0))
@@ -366,6 +367,13 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 	return m;
 }
 
+/* Where pair c's record is: its place in the list's columns, the order the gather reads. */
+static size_t
+pair_record(const struct pdem *d, const struct contact *c)
+{
+	return d->ce.col_pos[contact_pair_index(&d->ce, c)];
+}
+
 /* One walk of a block of rows: its sums, and the force and torque the row's grain has got
  * so far from its own pairs and walls. */
 struct force_walk {
@@ -375,7 +383,7 @@ struct force_walk {
 };
 
 /* Each interaction of the row into the row's sums, and a pair's share for j into its record
- * (by list entry), flagged in ptouch (cleared for the row before its walk). */
+ * (pair_record), flagged in ptouch (which the gather clears as it reads). */
 static int
 on_contact(const struct contact *c, void *vw)
 {
@@ -400,7 +408,7 @@ on_contact(const struct contact *c, void *vw)
 		return 0;
 	}
 	if (!wall)
-		k = contact_pair_index(&d->ce, c);
+		k = pair_record(d, c);
 	interaction_force(d, c->i, c->j, wall ? NULL : xj, &it, c->hist, F, T, wall ? &jrec : &d->prec[k], &fw->s);
 	if (!wall)
 		d->ptouch[k] = 1;
@@ -533,6 +541,7 @@ records_fit(struct pdem *d)
 	}
 	if (contact_enum_columns(&d->ce))
 		return -1;
+	memset(d->ptouch, 0, np);	/* then each gather clears what it read */
 	d->rec_builds = d->ce.rebuilds;
 	return 0;
 oom:
@@ -615,7 +624,6 @@ pdem_forces(struct pdem *d)
 			memset(&fw, 0, sizeof fw);
 			fw.d = d;
 			for (i = i0; i < i1; i++) {
-				memset(d->ptouch + e->nl.first[i], 0, e->nl.first[i + 1] - e->nl.first[i]);
 				memset(fw.F, 0, sizeof fw.F);
 				memset(fw.T, 0, sizeof fw.T);
 				/* the pairs whose bounding spheres are apart are not visited (the enumerator
@@ -637,10 +645,11 @@ pdem_forces(struct pdem *d)
 			double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
 
 			for (q = e->col_first[i]; q < e->col_first[i + 1]; q++)
-				if (d->ptouch[e->col_k[q]]) {
-					const struct pdem_rec *r = &d->prec[e->col_k[q]];
+				if (d->ptouch[q]) {
+					const struct pdem_rec *r = &d->prec[q];
 					for (a = 0; a < 3; a++)
 						F[a] -= r->F[a], T[a] += r->Tj[a];
+					d->ptouch[q] = 0;	/* for the next pass */
 				}
 			for (a = 0; a < 3; a++)
 				F[a] += d->frow[6 * i + a], T[a] += d->frow[6 * i + 3 + a];

@@ -157,10 +157,11 @@ struct pdem {
 	long cache_list, cache_builds;
 	double cache_margin;
 	double *q0, *turn;
-	/* pdem_forces' records: a pair's share for j by list entry and whether it holds this
-	 * pass's interaction (ptouch), each grain's force and torque from its own row (frow,
-	 * 6n), the block sums, the lab-frame angular velocities (3n), and whether the passes
-	 * run on threads; the gather reads the enumerator's columns (contact_enum_columns) */
+	/* pdem_forces' records: a pair's share for j and whether it holds this pass's
+	 * interaction (ptouch), both by the pair's place in the enumerator's columns
+	 * (contact_enum_columns' col_pos), which the gather reads in order; each grain's force
+	 * and torque from its own row (frow, 6n), the block sums, the lab-frame angular
+	 * velocities (3n), and whether the passes run on threads */
 	struct pdem_rec *prec;
 	unsigned char *ptouch;
 	double *frow;
