@@ -332,14 +332,16 @@ contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mod
 	struct contact c;
 	size_t k;
 	long calls = 0;
+	double len[3];
 	int w;
 
+	contact_periods(e, len);
 	if ((!e->full_first || e->full_builds != e->rebuilds) && full_rows(e))
 		return -2;
 	for (k = e->full_first[i]; k < e->full_first[i + 1]; k++) {
 		size_t j = e->full_nbr[k];
 		double sum = e->r[i] + e->r[j];
-		double dd = contact_branch(e, &c, x[3 * i], x[3 * i + 1], x[3 * i + 2], x, j, e->any_periodic);
+		double dd = contact_branch_in(len, &c, x[3 * i], x[3 * i + 1], x[3 * i + 2], x, j, e->any_periodic);
 
 		if (mode == CONTACT_TOUCHING && dd >= sum * sum)
 			continue;

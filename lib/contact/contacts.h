@@ -146,16 +146,30 @@ int contact_enum_history_set(struct contact_enum *e, const double *x, size_t m, 
  * the test spares most pairs a call into libm (x86-64 has no rounding instruction before
  * SSE4.1). */
 CONTACT_INLINE void
+contact_wrap(double *dx, double L)
+{
+	if (!(2 * fabs(*dx) < L && *dx != 0))
+		*dx -= L * nearbyint(*dx / L);
+}
+
+CONTACT_INLINE void
 contact_min_image(const struct contact_enum *e, double dx[3])
 {
 	int a;
 
 	for (a = 0; a < 3; a++)
-		if (e->periodic[a]) {
-			double L = e->hi[a] - e->lo[a];
-			if (!(2 * fabs(dx[a]) < L && dx[a] != 0))
-				dx[a] -= L * nearbyint(dx[a] / L);
-		}
+		if (e->periodic[a])
+			contact_wrap(dx + a, e->hi[a] - e->lo[a]);
+}
+
+/* The periods of e's axes (0 along an axis with walls), for contact_branch. */
+CONTACT_INLINE void
+contact_periods(const struct contact_enum *e, double len[3])
+{
+	int a;
+
+	for (a = 0; a < 3; a++)
+		len[a] = e->periodic[a] ? e->hi[a] - e->lo[a] : 0;
 }
 
 /* Calls fn(c, ctx) for every contact of the pack at x (see the order above); in
@@ -165,15 +179,32 @@ contact_min_image(const struct contact_enum *e, double dx[3])
 typedef int (*contact_fn)(const struct contact *c, void *ctx);
 
 /* The branch vector from grain j (its nearest image when per) to the centre (xi0, xi1, xi2)
- * into c->dx; returns its squared length.  Every pair record starts here. */
+ * into c->dx; returns its squared length.  Every pair record starts here (contact_branch).
+ * len: the periods (contact_periods, taken once per walk rather than from e at every pair). */
+CONTACT_INLINE double
+contact_branch_in(const double len[3], struct contact *c, double xi0, double xi1, double xi2, const double *x,
+    size_t j, int per)
+{
+	c->dx[0] = xi0 - x[3 * j], c->dx[1] = xi1 - x[3 * j + 1], c->dx[2] = xi2 - x[3 * j + 2];
+	if (per) {
+		if (len[0] > 0)
+			contact_wrap(c->dx, len[0]);
+		if (len[1] > 0)
+			contact_wrap(c->dx + 1, len[1]);
+		if (len[2] > 0)
+			contact_wrap(c->dx + 2, len[2]);
+	}
+	return c->dx[0] * c->dx[0] + c->dx[1] * c->dx[1] + c->dx[2] * c->dx[2];
+}
+
 CONTACT_INLINE double
 contact_branch(const struct contact_enum *e, struct contact *c, double xi0, double xi1, double xi2, const double *x,
     size_t j, int per)
 {
-	c->dx[0] = xi0 - x[3 * j], c->dx[1] = xi1 - x[3 * j + 1], c->dx[2] = xi2 - x[3 * j + 2];
-	if (per)
-		contact_min_image(e, c->dx);
-	return c->dx[0] * c->dx[0] + c->dx[1] * c->dx[1] + c->dx[2] * c->dx[2];
+	double len[3];
+
+	contact_periods(e, len);
+	return contact_branch_in(len, c, xi0, xi1, xi2, x, j, per);
 }
 
 /* Zero hs doubles of history (a tangential spring: three stores, not a call to memset). */
@@ -254,13 +285,15 @@ contact_foreach_row(const struct contact_enum *e, const double *x, size_t i, int
 	double *hp = hs ? e->hpair[e->hcur] : NULL, *hw = hs ? e->hwall + (size_t)hs * NWALLS * i : NULL;
 	unsigned char *hset = hs ? e->hwall_set + i : NULL;
 	struct contact c;
+	double len[3];
 
 	c.i = i;
 	c.ri = ri;
 	c.hist = NULL;
+	contact_periods(e, len);
 	for (k = e->nl.first[i]; k < kend; k++) {
 		size_t j = e->nl.nbr[k];
-		double rj = r[j], sum = ri + rj, dd = contact_branch(e, &c, xi0, xi1, xi2, x, j, per);
+		double rj = r[j], sum = ri + rj, dd = contact_branch_in(len, &c, xi0, xi1, xi2, x, j, per);
 
 		if (hp)
 			c.hist = hp + (size_t)hs * k;
