@@ -177,10 +177,9 @@ struct pdem {
 
 /* The default cache margin (scaled units, r0): features within r_i + r_j + 0.03 r0 are kept;
  * a pair's cache lasts while its cores move against each other by less than that.  The
- * elements do not depend on it, the cost does: a shear at I = 1e-3 (callgrind, instructions
- * per step and plate) cost least at 0.03-0.05 (1000 plates, eta 0.8: 9250, 9060, 9030, 9220,
- * 9690, 10360 at 0.02, 0.03, 0.05, 0.1, 0.2, 0.35; 8000 plates, eta 0.5: 8030, 8530, 9500 at 0.03,
- * 0.05, 0.1): a wider one keeps more features per pair, a narrower one remakes caches more often. */
+ * elements do not depend on it, the cost does: a wider one keeps more features per pair, a
+ * narrower one remakes caches more often; a shear at I = 1e-3 cost least at 0.03-0.05
+ * (bench/plates.md). */
 #define PDEM_CACHE_MARGIN 0.03
 
 void pdem_params_default(struct pdem_params *pp);
