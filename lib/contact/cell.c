@@ -128,7 +128,7 @@ min_image(const struct cell_grid *g, double d[3])
 	int a;
 
 	for (a = 0; a < 3; a++)
-		if (g->periodic[a])
+		if (g->periodic[a] && !(2 * fabs(d[a]) < g->len[a] && d[a] != 0))	/* as contact_min_image */
 			d[a] -= g->len[a] * nearbyint(d[a] / g->len[a]);
 }
 

@@ -79,7 +79,7 @@ contact_enum_free(struct contact_enum *e)
 	nlist_free(&e->prev);
 	free(e->hpair[0]), free(e->hpair[1]), free(e->hwall), free(e->hwall_set);
 	free(e->full_first), free(e->full_nbr);
-	free(e->col_first), free(e->col_nbr), free(e->col_k);
+	free(e->col_first), free(e->col_nbr), free(e->col_k), free(e->col_pos);
 	memset(e, 0, sizeof *e);
 }
 
@@ -270,15 +270,16 @@ contact_enum_columns(struct contact_enum *e)
 
 	if (e->col_first && e->col_builds == e->rebuilds)
 		return 0;
-	free(e->col_first), free(e->col_nbr), free(e->col_k);
+	free(e->col_first), free(e->col_nbr), free(e->col_k), free(e->col_pos);
 	e->col_first = calloc(n + 1, sizeof *e->col_first);
 	e->col_nbr = malloc((nl->npairs + 1) * sizeof *e->col_nbr);
 	e->col_k = malloc((nl->npairs + 1) * sizeof *e->col_k);
+	e->col_pos = malloc((nl->npairs + 1) * sizeof *e->col_pos);
 	fill = calloc(n ? n : 1, sizeof *fill);
-	if (!e->col_first || !e->col_nbr || !e->col_k || !fill) {
+	if (!e->col_first || !e->col_nbr || !e->col_k || !e->col_pos || !fill) {
 		free(fill);
-		free(e->col_first), free(e->col_nbr), free(e->col_k);
-		e->col_first = e->col_nbr = e->col_k = NULL;
+		free(e->col_first), free(e->col_nbr), free(e->col_k), free(e->col_pos);
+		e->col_first = e->col_nbr = e->col_k = e->col_pos = NULL;
 		msg_seterr("out of memory");
 		return -1;
 	}
@@ -291,6 +292,7 @@ contact_enum_columns(struct contact_enum *e)
 			size_t j = nl->nbr[k], q = e->col_first[j] + fill[j]++;
 			e->col_nbr[q] = i;
 			e->col_k[q] = k;
+			e->col_pos[k] = q;
 		}
 	free(fill);
 	e->col_builds = e->rebuilds;
@@ -330,14 +332,16 @@ contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, int mod
 	struct contact c;
 	size_t k;
 	long calls = 0;
+	double len[3];
 	int w;
 
+	contact_periods(e, len);
 	if ((!e->full_first || e->full_builds != e->rebuilds) && full_rows(e))
 		return -2;
 	for (k = e->full_first[i]; k < e->full_first[i + 1]; k++) {
 		size_t j = e->full_nbr[k];
 		double sum = e->r[i] + e->r[j];
-		double dd = contact_branch(e, &c, x[3 * i], x[3 * i + 1], x[3 * i + 2], x, j, e->any_periodic);
+		double dd = contact_branch_in(len, &c, x[3 * i], x[3 * i + 1], x[3 * i + 2], x, j, e->any_periodic);
 
 		if (mode == CONTACT_TOUCHING && dd >= sum * sum)
 			continue;

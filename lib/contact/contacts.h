@@ -86,6 +86,7 @@ struct contact_enum {
 	size_t *full_first, *full_nbr;	/* both directions of the list, for contact_foreach_grain */
 	size_t *col_first, *col_nbr;	/* per grain j, its listed lower neighbours m < j */
 	size_t *col_k;			/* ... and the list entries of those pairs (m, j) */
+	size_t *col_pos;		/* per list entry, its place in the columns (col_k's inverse) */
 	long col_builds;		/* rebuilds when col_* were made */
 	long rebuilds;			/* lists built so far (nl and prev swap: their own counts repeat) */
 	/* contact_enum_skin_auto: the skin's ceiling (0: the skin is fixed), the updates so far
@@ -117,10 +118,11 @@ int contact_enum_update(struct contact_enum *e, const double *x, int force);
 void contact_enum_skin_auto(struct contact_enum *e, double skin_max);
 /* The radii changed (grains grew): the list is rebuilt at the next update. */
 void contact_enum_radii_changed(struct contact_enum *e);
-/* Make col_first, col_nbr and col_k current for the list: the columns of the half list, i.e.
- * for each grain j its listed neighbours m < j, ascending, which is the order in which
- * contact_foreach reaches the pairs (m, j), and those pairs' list entries (the plate DEM's
- * records).  They let a thread gather what the rows of other
+/* Make col_first, col_nbr, col_k and col_pos current for the list: the columns of the half
+ * list, i.e. for each grain j its listed neighbours m < j, ascending, which is the order in
+ * which contact_foreach reaches the pairs (m, j), those pairs' list entries, and for each
+ * entry its place in the columns (where the plate DEM keeps a pair's record, so that its
+ * gather reads them in order).  They let a thread gather what the rows of other
  * threads would have scattered into its grains, in contact_foreach's order (the
  * functional's threads).  0 or -1 (out of memory). */
 int contact_enum_columns(struct contact_enum *e);
@@ -138,17 +140,36 @@ size_t contact_enum_history_get(const struct contact_enum *e, long *ij, double *
  * memory, or ij not in the order of contact_enum_history_get: msg_seterr). */
 int contact_enum_history_set(struct contact_enum *e, const double *x, size_t m, const long *ij, const double *h);
 
-/* Nearest image of a branch vector along the periodic axes. */
+/* Nearest image of a branch vector along the periodic axes.  A component shorter than half
+ * the period is its own nearest image: dx - L nearbyint(dx / L) gives dx back to the bit
+ * (nearbyint is a signed zero, except for dx = -0, which the test leaves to the formula), and
+ * the test spares most pairs a call into libm (x86-64 has no rounding instruction before
+ * SSE4.1). */
+CONTACT_INLINE void
+contact_wrap(double *dx, double L)
+{
+	if (!(2 * fabs(*dx) < L && *dx != 0))
+		*dx -= L * nearbyint(*dx / L);
+}
+
 CONTACT_INLINE void
 contact_min_image(const struct contact_enum *e, double dx[3])
 {
 	int a;
 
 	for (a = 0; a < 3; a++)
-		if (e->periodic[a]) {
-			double L = e->hi[a] - e->lo[a];
-			dx[a] -= L * nearbyint(dx[a] / L);
-		}
+		if (e->periodic[a])
+			contact_wrap(dx + a, e->hi[a] - e->lo[a]);
+}
+
+/* The periods of e's axes (0 along an axis with walls), for contact_branch. */
+CONTACT_INLINE void
+contact_periods(const struct contact_enum *e, double len[3])
+{
+	int a;
+
+	for (a = 0; a < 3; a++)
+		len[a] = e->periodic[a] ? e->hi[a] - e->lo[a] : 0;
 }
 
 /* Calls fn(c, ctx) for every contact of the pack at x (see the order above); in
@@ -158,15 +179,32 @@ contact_min_image(const struct contact_enum *e, double dx[3])
 typedef int (*contact_fn)(const struct contact *c, void *ctx);
 
 /* The branch vector from grain j (its nearest image when per) to the centre (xi0, xi1, xi2)
- * into c->dx; returns its squared length.  Every pair record starts here. */
+ * into c->dx; returns its squared length.  Every pair record starts here (contact_branch).
+ * len: the periods (contact_periods, taken once per walk rather than from e at every pair). */
+CONTACT_INLINE double
+contact_branch_in(const double len[3], struct contact *c, double xi0, double xi1, double xi2, const double *x,
+    size_t j, int per)
+{
+	c->dx[0] = xi0 - x[3 * j], c->dx[1] = xi1 - x[3 * j + 1], c->dx[2] = xi2 - x[3 * j + 2];
+	if (per) {
+		if (len[0] > 0)
+			contact_wrap(c->dx, len[0]);
+		if (len[1] > 0)
+			contact_wrap(c->dx + 1, len[1]);
+		if (len[2] > 0)
+			contact_wrap(c->dx + 2, len[2]);
+	}
+	return c->dx[0] * c->dx[0] + c->dx[1] * c->dx[1] + c->dx[2] * c->dx[2];
+}
+
 CONTACT_INLINE double
 contact_branch(const struct contact_enum *e, struct contact *c, double xi0, double xi1, double xi2, const double *x,
     size_t j, int per)
 {
-	c->dx[0] = xi0 - x[3 * j], c->dx[1] = xi1 - x[3 * j + 1], c->dx[2] = xi2 - x[3 * j + 2];
-	if (per)
-		contact_min_image(e, c->dx);
-	return c->dx[0] * c->dx[0] + c->dx[1] * c->dx[1] + c->dx[2] * c->dx[2];
+	double len[3];
+
+	contact_periods(e, len);
+	return contact_branch_in(len, c, xi0, xi1, xi2, x, j, per);
 }
 
 /* Zero hs doubles of history (a tangential spring: three stores, not a call to memset). */
@@ -247,13 +285,15 @@ contact_foreach_row(const struct contact_enum *e, const double *x, size_t i, int
 	double *hp = hs ? e->hpair[e->hcur] : NULL, *hw = hs ? e->hwall + (size_t)hs * NWALLS * i : NULL;
 	unsigned char *hset = hs ? e->hwall_set + i : NULL;
 	struct contact c;
+	double len[3];
 
 	c.i = i;
 	c.ri = ri;
 	c.hist = NULL;
+	contact_periods(e, len);
 	for (k = e->nl.first[i]; k < kend; k++) {
 		size_t j = e->nl.nbr[k];
-		double rj = r[j], sum = ri + rj, dd = contact_branch(e, &c, xi0, xi1, xi2, x, j, per);
+		double rj = r[j], sum = ri + rj, dd = contact_branch_in(len, &c, xi0, xi1, xi2, x, j, per);
 
 		if (hp)
 			c.hist = hp + (size_t)hs * k;
@@ -327,11 +367,13 @@ long contact_foreach_grain(struct contact_enum *e, const double *x, size_t i, in
 
 /* The list entry k of a grain pair visited by contact_foreach(_row) of an enumerator with
  * history (its slot is hpair + hsize k): for callers that keep their own per-pair arrays
- * beside the history (the DEM's threads). */
+ * beside the history (the DEM's threads).  The walk's record carries it (the slot's offset
+ * over hsize was a division per pair, a tenth of a plate DEM step's walk). */
 CONTACT_INLINE size_t
 contact_pair_index(const struct contact_enum *e, const struct contact *c)
 {
-	return (size_t)(c->hist - e->hpair[e->hcur]) / e->hsize;
+	(void)e;
+	return c->k;
 }
 
 /* The unit normal on i, from j (or out of the wall) to i. */

@@ -104,6 +104,22 @@ struct pair {
 
 static const double corner_s[4] = {-1, 1, 1, -1}, corner_t[4] = {-1, -1, 1, 1};
 
+/* The index of the lowest set bit of m (m > 0): the loops over a mask's bits visit them in
+ * ascending order, as loops over every index would. */
+static int
+lowest_bit(unsigned m)
+{
+#if defined(__GNUC__)
+	return __builtin_ctz(m);
+#else
+	int b = 0;
+
+	while (!(m & 1u))
+		m >>= 1, b++;
+	return b;
+#endif
+}
+
 /* In two steps, which compilers turn into max and min without branches. */
 static double
 clampd(double x, double lo, double hi)
@@ -131,10 +147,14 @@ square_point(const struct square *q, double s, double t, double p[3])
 		p[a] = q->c[a] + s * q->u[a] + t * q->v[a];
 }
 
+/* The corners are square_point's c + s u + t v with s, t = -h or h, written out (the narrow
+ * phase makes two squares per pair and step): (-h) u is -(h u) to the bit, and c + -(h u) is
+ * c - h u, so the sums are square_point's, shared between corners. */
 static void
 square_set(struct square *q, const struct plate_body *b, const double origin[3])
 {
-	int a, k;
+	double h = b->half, hu, hv, cm, cp;
+	int a;
 
 	for (a = 0; a < 3; a++) {
 		q->c[a] = b->x[a] - origin[a];
@@ -142,12 +162,23 @@ square_set(struct square *q, const struct plate_body *b, const double origin[3])
 		q->v[a] = b->R[3 * a + 1];
 		q->w[a] = b->R[3 * a + 2];
 	}
-	q->h = b->half;
+	q->h = h;
 	q->r = b->r;
-	q->eps = PLATE_TOL * b->half;
-	q->nv = b->half > 0 ? 4 : 1;
-	for (k = 0; k < q->nv; k++)
-		square_point(q, corner_s[k] * q->h, corner_t[k] * q->h, q->V[k]);
+	q->eps = PLATE_TOL * h;
+	if (!(h > 0)) {
+		q->nv = 1;
+		square_point(q, corner_s[0] * h, corner_t[0] * h, q->V[0]);
+		return;
+	}
+	q->nv = 4;
+	for (a = 0; a < 3; a++) {
+		hu = h * q->u[a], hv = h * q->v[a];
+		cm = q->c[a] - hu, cp = q->c[a] + hu;
+		q->V[0][a] = cm - hv;	/* corner_s, corner_t = -1, -1 */
+		q->V[1][a] = cp - hv;	/* 1, -1 */
+		q->V[2][a] = cp + hv;	/* 1, 1 */
+		q->V[3][a] = cm + hv;	/* -1, 1 */
+	}
 }
 
 /* The in-plane coordinates of p on square q. */
@@ -444,7 +475,8 @@ static void
 elements_find(struct pair *g, const double n[3], double gap, unsigned feet, struct plate_interaction *out)
 {
 	double s, t;
-	int i, j, k, ta, tb;
+	unsigned left;
+	int k, ta, tb;
 
 	if (g->A.nv == 4 && g->B.nv == 4) {
 		for (k = 0; k < 4; k++)
@@ -455,10 +487,12 @@ elements_find(struct pair *g, const double n[3], double gap, unsigned feet, stru
 			if ((feet & (1u << (4 + k))) && vertex_kept(g, n, 1, k))
 				element_add(out, g, g->fb[k].q, g->B.V[k], sqrt(g->fb[k].d2),
 				    element_kind(g->fb[k].type, FEAT_VERTEX), gap);
-		for (i = 0; i < 4; i++)
-			for (j = 0; j < 4; j++)
-				if ((g->eedone & (1u << (4 * i + j))) && g->ee[i][j].interior)
-					element_add(out, g, g->ee[i][j].pa, g->ee[i][j].pb, sqrt(g->ee[i][j].d2), PLATE_EDGE_EDGE, gap);
+		for (left = g->eedone; left; left &= left - 1) {	/* by ascending 4 i + j */
+			const struct segs *ee = &g->ee[0][0] + lowest_bit(left);
+
+			if (ee->interior)
+				element_add(out, g, ee->pa, ee->pb, sqrt(ee->d2), PLATE_EDGE_EDGE, gap);
+		}
 	}
 	for (k = 0; k < out->m; k++)
 		if (g->A.r + g->B.r - out->e[k].h <= g->d + g->tol)
@@ -656,15 +690,20 @@ pair_set_cached(struct pair *g, const struct plate_body *a, const struct plate_b
 			foot_set(&g->fb[j], &g->A, g->B.V[j]);
 			pair_closest_take(g, g->fb[j].d2, g->fb[j].q, g->B.V[j]);
 		}
-	if (g->A.nv == 4 && g->B.nv == 4)
-		for (i = 0; i < 4; i++)
-			for (j = 0; j < 4; j++)
-				if (cache & (1u << (8 + 4 * i + j))) {
-					struct segs *s = &g->ee[i][j];
-					segs_set(s, g->A.V[i], g->A.V[(i + 1) % 4], g->B.V[j], g->B.V[(j + 1) % 4]);
-					g->eedone |= 1u << (4 * i + j);
-					pair_closest_take(g, s->d2, s->pa, s->pb);
-				}
+	if (g->A.nv == 4 && g->B.nv == 4) {
+		unsigned left = (cache >> 8) & 0xffffu;
+
+		while (left) {	/* the named edge pairs, by ascending 4 i + j */
+			int bit = lowest_bit(left);
+			struct segs *s = &g->ee[bit >> 2][bit & 3];
+
+			i = bit >> 2, j = bit & 3;
+			segs_set(s, g->A.V[i], g->A.V[(i + 1) & 3], g->B.V[j], g->B.V[(j + 1) & 3]);
+			pair_closest_take(g, s->d2, s->pa, s->pb);
+			left &= left - 1;
+		}
+		g->eedone = (cache >> 8) & 0xffffu;
+	}
 	g->d = sqrt(g->d);
 	if (g->d > 0 && (cache & PLATE_CACHE_CROSS) && g->A.nv == 4 && g->B.nv == 4)
 		pair_cross(g);

@@ -42,7 +42,7 @@ pdem_free(struct pdem *d)
 {
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
-	free(d->pcache), free(d->q0), free(d->turn), free(d->gen), free(d->wl);
+	free(d->pcache), free(d->q0), free(d->turn), free(d->wl);
 	free(d->prec), free(d->sums), free(d->ptouch), free(d->frow), free(d->mob);
 	free(d->xrec), free(d->xslot), free(d->xin_first);
 	contact_enum_free(&d->ce);
@@ -123,9 +123,8 @@ pdem_start(struct pdem *d, double skin)
 		}
 	if (!d->spheres) {	/* what the plate pass keeps per grain */
 		d->turn = calloc(n, sizeof *d->turn), d->q0 = calloc(4 * n, sizeof *d->q0);
-		d->gen = calloc(n, sizeof *d->gen);
 		d->frow = calloc(6 * n, sizeof *d->frow);
-		if (!d->turn || !d->q0 || !d->gen || !d->frow) {
+		if (!d->turn || !d->q0 || !d->frow) {
 			msg_seterr("out of memory for %zu grains", n);
 			return -1;
 		}
@@ -337,11 +336,12 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 	struct pdem_cache *pc = &d->pcache[k];
 	struct plate_body a, b;
 	double turns = d->turn[i] + d->turn[j];
-	int build = pc->list != d->ce.rebuilds || pc->gi != d->gen[i] || pc->gj != d->gen[j], m, q;
+	int build = pc->list != d->ce.rebuilds, m, q;
 
-	if (!build) {
+	if (!build) {	/* what the cores' points may have moved against each other since it was made */
 		double e0 = c->dx[0] - pc->dx[0], e1 = c->dx[1] - pc->dx[1], e2 = c->dx[2] - pc->dx[2];
-		build = !(sqrt(e0 * e0 + e1 * e1 + e2 * e2) + turns + pc->turn < d->cache_margin);
+		double room = d->cache_margin - (turns - pc->turn);
+		build = !(room > 0 && e0 * e0 + e1 * e1 + e2 * e2 < room * room);
 	}
 	/* cores that cannot touch yet (two spheres keep no cache) */
 	if (!build && !(pc->word & PLATE_CACHE_FEATURES) && (d->half[i] > 0 || d->half[j] > 0))
@@ -362,10 +362,16 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 		memcpy(pc->dx, c->dx, sizeof pc->dx);
 		pc->turn = turns;
 		pc->list = d->ce.rebuilds;
-		pc->gi = d->gen[i], pc->gj = d->gen[j];
 		d->cache_builds++;	/* a statistic: racy on threads, not a result */
 	}
 	return m;
+}
+
+/* Where pair c's record is: its place in the list's columns, the order the gather reads. */
+static size_t
+pair_record(const struct pdem *d, const struct contact *c)
+{
+	return d->ce.col_pos[contact_pair_index(&d->ce, c)];
 }
 
 /* One walk of a block of rows: its sums, and the force and torque the row's grain has got
@@ -377,7 +383,7 @@ struct force_walk {
 };
 
 /* Each interaction of the row into the row's sums, and a pair's share for j into its record
- * (by list entry), flagged in ptouch (cleared for the row before its walk). */
+ * (pair_record), flagged in ptouch (which the gather clears as it reads). */
 static int
 on_contact(const struct contact *c, void *vw)
 {
@@ -402,7 +408,7 @@ on_contact(const struct contact *c, void *vw)
 		return 0;
 	}
 	if (!wall)
-		k = contact_pair_index(&d->ce, c);
+		k = pair_record(d, c);
 	interaction_force(d, c->i, c->j, wall ? NULL : xj, &it, c->hist, F, T, wall ? &jrec : &d->prec[k], &fw->s);
 	if (!wall)
 		d->ptouch[k] = 1;
@@ -427,8 +433,9 @@ refresh_rotations(struct pdem *d)
 	}
 }
 
-/* What grain i's turn since its generation began can move a point of its core: |R - R0| <= 2 |q - q0|
- * (the nearer of q0 and -q0) times the core's radius half sqrt 2. */
+/* What grain i's turn since the last pass can move a point of its core: |R - R0| <= 2 |q - q0|
+ * (the nearer of q0 and -q0, q0 the orientation at the last pass) times the core's radius
+ * half sqrt 2. */
 static double
 core_turn(const struct pdem *d, size_t i)
 {
@@ -443,42 +450,69 @@ core_turn(const struct pdem *d, size_t i)
 	return 2 * sqrt(fmin(dp, dm)) * d->half[i] * M_SQRT2;
 }
 
-/* The room for the current list's caches (a new entry is of no list yet), and the grains'
- * turns: a grain's generation ends, its turn measured from now, when its turn reaches a
- * quarter of the margin, so that the turns of a cache's two grains, each at most a quarter
- * at both ends, stay within the margin with the branch vector's change.  0 or -1. */
+/* The caches of a list just built: a pair listed in the list the caches were made for (the
+ * previous one, e->prev) keeps its cache, which stays as valid as it was (its test measures
+ * the branch vector and the turns, not the list); the others are of no list yet.  A list
+ * built twice since the last pass, or caches of none, carry nothing.  0 or -1. */
+static int
+cache_carry(struct pdem *d)
+{
+	const struct contact_enum *e = &d->ce;
+	const struct nlist *old = &e->prev, *nl = &e->nl;
+	size_t i, k, np = nl->npairs, cap = np + np / 4 + 16;
+	struct pdem_cache *pc = malloc(cap * sizeof *pc);
+	int carry = d->cache_list > 0 && d->cache_list == e->rebuilds - 1 && old->first && d->pcache;
+
+	if (!pc) {
+		msg_seterr("out of memory for the contact list's caches");
+		return -1;
+	}
+	for (k = 0; k < cap; k++)
+		pc[k].list = -1;
+#pragma omp parallel for schedule(static) private(k) if (d->threads)
+	for (i = 0; i < d->n; i++) {
+		size_t o = carry ? old->first[i] : 0, oe = carry ? old->first[i + 1] : 0;
+
+		for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
+			while (o < oe && old->nbr[o] < nl->nbr[k])
+				o++;
+			if (o < oe && old->nbr[o] == nl->nbr[k] && d->pcache[o].list == d->cache_list) {
+				pc[k] = d->pcache[o];
+				pc[k].list = e->rebuilds;
+			}
+		}
+	}
+	free(d->pcache);
+	d->pcache = pc;
+	d->pcap = cap;
+	d->cache_list = e->rebuilds;
+	return 0;
+}
+
+/* The caches' room and list (cache_carry), and the grains' turns: each grain's turn is the
+ * sum over the passes of what its core's points moved by turning from one pass to the next
+ * (core_turn), so that the turns of a pair's grains since its cache was made, their sum then
+ * taken from their sum now, bound what turning moved a point of either core, whatever the
+ * path.  A run's first pass, or one after its state was read (cache_list 0), starts the
+ * turns afresh and makes every cache anew.  0 or -1. */
 static int
 cache_turns(struct pdem *d)
 {
-	size_t i, np = d->ce.nl.npairs;
-	double quarter = 0.25 * d->cache_margin;
+	size_t i;
 
 	if (d->cache_margin <= 0)
 		return 0;
-	if (np > d->pcap) {
-		size_t cap = np + np / 4 + 16;
-		struct pdem_cache *pc = realloc(d->pcache, cap * sizeof *pc);
-
-		if (!pc) {
-			msg_seterr("out of memory for the contact list's caches");
-			return -1;
-		}
-		for (i = d->pcap; i < cap; i++)
-			pc[i].list = -1;
-		d->pcache = pc;
-		d->pcap = cap;
-	}
-	if (!d->cache_list) {	/* the first pass: the turns from here */
+	if (!d->cache_list) {	/* the turns from here */
 		memcpy(d->q0, d->q, 4 * d->n * sizeof *d->q0);
-		d->cache_list = 1;
+		memset(d->turn, 0, d->n * sizeof *d->turn);
 	}
+	if (d->cache_list != d->ce.rebuilds && cache_carry(d))
+		return -1;
 #pragma omp parallel for schedule(static) if (d->threads)
-	for (i = 0; i < d->n; i++)
-		if (!((d->turn[i] = core_turn(d, i)) < quarter)) {
-			memcpy(d->q0 + 4 * i, d->q + 4 * i, sizeof *d->q0 * 4);
-			d->turn[i] = 0;
-			d->gen[i]++;
-		}
+	for (i = 0; i < d->n; i++) {
+		d->turn[i] += core_turn(d, i);
+		memcpy(d->q0 + 4 * i, d->q + 4 * i, sizeof *d->q0 * 4);
+	}
 	return 0;
 }
 
@@ -507,6 +541,7 @@ records_fit(struct pdem *d)
 	}
 	if (contact_enum_columns(&d->ce))
 		return -1;
+	memset(d->ptouch, 0, np);	/* then each gather clears what it read */
 	d->rec_builds = d->ce.rebuilds;
 	return 0;
 oom:
@@ -589,7 +624,6 @@ pdem_forces(struct pdem *d)
 			memset(&fw, 0, sizeof fw);
 			fw.d = d;
 			for (i = i0; i < i1; i++) {
-				memset(d->ptouch + e->nl.first[i], 0, e->nl.first[i + 1] - e->nl.first[i]);
 				memset(fw.F, 0, sizeof fw.F);
 				memset(fw.T, 0, sizeof fw.T);
 				/* the pairs whose bounding spheres are apart are not visited (the enumerator
@@ -611,10 +645,11 @@ pdem_forces(struct pdem *d)
 			double F[3] = {0, 0, 0}, T[3] = {0, 0, 0};
 
 			for (q = e->col_first[i]; q < e->col_first[i + 1]; q++)
-				if (d->ptouch[e->col_k[q]]) {
-					const struct pdem_rec *r = &d->prec[e->col_k[q]];
+				if (d->ptouch[q]) {
+					const struct pdem_rec *r = &d->prec[q];
 					for (a = 0; a < 3; a++)
 						F[a] -= r->F[a], T[a] += r->Tj[a];
+					d->ptouch[q] = 0;	/* for the next pass */
 				}
 			for (a = 0; a < 3; a++)
 				F[a] += d->frow[6 * i + a], T[a] += d->frow[6 * i + 3 + a];

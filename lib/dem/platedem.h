@@ -77,10 +77,10 @@ struct pdem_rec {
 };
 
 /* A pair's narrow-phase cache: the word of plate_interaction_cached, and the branch vector,
- * the two grains' turns and their turn generations when it was made, for list `list`. */
+ * the sum of the two grains' turns when it was made, for list `list` (pdem.cache_list). */
 struct pdem_cache {
 	double dx[3], turn;
-	unsigned word, gi, gj;
+	unsigned word;
 	long list;
 };
 
@@ -145,22 +145,23 @@ struct pdem {
 	/* The narrow phase kept between steps (plate_interaction_cached): per listed pair its
 	 * cache (struct pdem_cache), remade when the pair's cores may have moved against each
 	 * other by cache_margin since it was made: the change of their branch vector plus what
-	 * their turns move a corner.  A grain's turn is measured from its orientation q0 at the
-	 * start of its current turn generation (turn: 2 |q - q0| half sqrt 2, the nearer of q0
-	 * and -q0, which bounds |R - R0| times the core's radius); a generation ends when the
-	 * turn reaches cache_margin / 4, and a cache made in another generation of either grain,
-	 * or for another list, is remade.  Set cache_margin to 0 to compute every feature at
-	 * every step (the same bytes). */
+	 * their turns move a corner.  A grain's turn is the sum over the passes of what its turn
+	 * from one pass to the next (from q0, its orientation at the last pass) can move a point
+	 * of its core (2 |q - q0| half sqrt 2, the nearer of q0 and -q0, which bounds |R - R0|
+	 * times the core's radius); a cache keeps the sum of its two grains' turns when it was
+	 * made.  The caches of a pair listed again when the list is rebuilt are kept; cache_list
+	 * is the list the caches are of (0: none yet, the turns start afresh).  Set cache_margin
+	 * to 0 to compute every feature at every step (the same bytes). */
 	struct pdem_cache *pcache;
 	size_t pcap;
 	long cache_list, cache_builds;
 	double cache_margin;
 	double *q0, *turn;
-	unsigned *gen;
-	/* pdem_forces' records: a pair's share for j by list entry and whether it holds this
-	 * pass's interaction (ptouch), each grain's force and torque from its own row (frow,
-	 * 6n), the block sums, the lab-frame angular velocities (3n), and whether the passes
-	 * run on threads; the gather reads the enumerator's columns (contact_enum_columns) */
+	/* pdem_forces' records: a pair's share for j and whether it holds this pass's
+	 * interaction (ptouch), both by the pair's place in the enumerator's columns
+	 * (contact_enum_columns' col_pos), which the gather reads in order; each grain's force
+	 * and torque from its own row (frow, 6n), the block sums, the lab-frame angular
+	 * velocities (3n), and whether the passes run on threads */
 	struct pdem_rec *prec;
 	unsigned char *ptouch;
 	double *frow;
@@ -174,10 +175,12 @@ struct pdem {
 	double u_len, u_mass, u_time, u_force;
 };
 
-/* The default cache margin (scaled units, r0): features within r_i + r_j + 0.1 r0 are kept;
- * a pair's cache lasts while its cores move against each other by
- * less than that. */
-#define PDEM_CACHE_MARGIN 0.1
+/* The default cache margin (scaled units, r0): features within r_i + r_j + 0.03 r0 are kept;
+ * a pair's cache lasts while its cores move against each other by less than that.  The
+ * elements do not depend on it, the cost does: a wider one keeps more features per pair, a
+ * narrower one remakes caches more often; a shear at I = 1e-3 cost least at 0.03-0.05
+ * (bench/plates.md). */
+#define PDEM_CACHE_MARGIN 0.03
 
 void pdem_params_default(struct pdem_params *pp);
 /* The arrays of an engine for n grains, zeroed, for a caller that fills them itself (x, r,

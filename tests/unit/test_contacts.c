@@ -813,6 +813,34 @@ test_hertz_coefficients(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* contact_wrap, which skips nearbyint for a component under half the period, gives the
+ * formula's bits: random components over three periods, and the edges (half a period and its
+ * neighbours, the signed zeros, a whole period). */
+static void
+test_wrap(gsl_rng *rng)
+{
+	double L = 7.3, edge[] = {0.5 * 7.3, nextafter(0.5 * 7.3, 0), nextafter(0.5 * 7.3, 8), 0.0, -0.0, 7.3, 1e-300};
+	long k, bad = 0, n = 0;
+	int sgn;
+
+	for (k = 0; k < 200000 + 2 * (long)(sizeof edge / sizeof *edge); k++) {
+		double dx, want, got;
+
+		if (k < 200000)
+			dx = (3 * gsl_rng_uniform(rng) - 1.5) * L;
+		else {
+			sgn = k % 2 ? -1 : 1;
+			dx = sgn * edge[(k - 200000) / 2];
+		}
+		want = dx - L * nearbyint(dx / L);
+		got = dx;
+		contact_wrap(&got, L);
+		bad += memcmp(&want, &got, sizeof got) != 0;
+		n++;
+	}
+	CHECK(bad == 0, "nearest image: contact_wrap gives dx - L nearbyint(dx / L) to the bit (%ld of %ld differ)", bad, n);
+}
+
 int
 main(void)
 {
@@ -823,6 +851,7 @@ main(void)
 	test_enumerator(rng, walls, "six walls");
 	test_enumerator(rng, xz, "periodic x and z");
 	test_enumerator(rng, all, "periodic x y z");
+	test_wrap(rng);
 	test_history(rng);
 	test_laws(rng);
 	test_law_closed_forms();
