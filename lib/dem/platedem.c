@@ -742,17 +742,23 @@ translate(double *x, double *vel, const double *force, const double *mob, size_t
 	}
 }
 
-/* A sphere's spin: its frame is the lab's (pdem_start) and its inertia isotropic, so Euler's
- * equations are w' = t / J. */
+/* A sphere's step: translate's, and its spin, component by component (one pass over its
+ * numbers: packgen's hot loop).  Its frame is the lab's (pdem_start) and its inertia
+ * isotropic, so Euler's equations are w' = t / J. */
 static inline void
-spin_sphere(double *w, const double *torque, const double *mob, size_t i, double keep, double al)
+step_sphere(double *x, double *v, double *w, const double *f, const double *t, const double *mob, size_t i, double dt,
+    double keep, double al)
 {
-	double aI = mob[2 * i + 1];
+	double am = mob[2 * i], aI = mob[2 * i + 1];
 	int a;
 
 	for (a = 0; a < 3; a++) {
 		size_t k = 3 * i + a;
-		w[k] = w[k] * keep + local_damping(torque[k], w[k], al) * aI;
+		double vk = v[k] * keep + local_damping(f[k], v[k], al) * am;
+
+		w[k] = w[k] * keep + local_damping(t[k], w[k], al) * aI;
+		v[k] = vk;
+		x[k] += vk * dt;
 	}
 }
 
@@ -778,21 +784,8 @@ pdem_integrate(struct pdem *d)
 		const double *f = d->f, *t = d->t, *mob = d->mob;
 
 #pragma omp parallel for schedule(static) if (d->threads)
-		for (ii = 0; ii < (long)d->n; ii++) {
-			size_t i = (size_t)ii;
-			double am = mob[2 * i], aI = mob[2 * i + 1];
-			int a;
-
-			/* translate and spin_sphere, component by component */
-			for (a = 0; a < 3; a++) {
-				size_t k = 3 * i + a;
-				double vk = v[k] * keep + local_damping(f[k], v[k], al) * am;
-
-				w[k] = w[k] * keep + local_damping(t[k], w[k], al) * aI;
-				v[k] = vk;
-				x[k] += vk * dt;
-			}
-		}
+		for (ii = 0; ii < (long)d->n; ii++)
+			step_sphere(x, v, w, f, t, mob, (size_t)ii, dt, keep, al);
 		return;
 	}
 #pragma omp parallel for schedule(static) if (d->threads)
@@ -811,11 +804,11 @@ pdem_integrate(struct pdem *d)
 			}
 			continue;
 		}
-		translate(d->x, d->v, d->f, d->mob, i, dt, keep, al);
 		if (d->half[i] == 0) {
-			spin_sphere(d->w, d->t, d->mob, i, keep, al);
+			step_sphere(d->x, d->v, d->w, d->f, d->t, d->mob, i, dt, keep, al);
 			continue;
 		}
+		translate(d->x, d->v, d->f, d->mob, i, dt, keep, al);
 		{
 			const double *R = d->R + 9 * i;
 
