@@ -290,7 +290,10 @@ contact_foreach_row(const struct contact_enum *e, const double *x, size_t i, int
 	c.i = i;
 	c.ri = ri;
 	c.hist = NULL;
-	contact_periods(e, len);
+	if (per)	/* a walk without periodic axes reads no period (packgen's spheres: 2 % of its instructions) */
+		contact_periods(e, len);
+	else
+		len[0] = len[1] = len[2] = 0;
 	for (k = e->nl.first[i]; k < kend; k++) {
 		size_t j = e->nl.nbr[k];
 		double rj = r[j], sum = ri + rj, dd = contact_branch_in(len, &c, xi0, xi1, xi2, x, j, per);
