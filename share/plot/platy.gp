@@ -26,14 +26,12 @@ set output out
 set datafile separator "\t"
 set grid
 set key font ",8"
-# room above and below the extreme points, which autoscaling puts on the border
-set offsets 0, 0, graph 0.06, graph 0.06
 src(f, c) = "< sh ".cols." ".f." ".c
 sum(c) = src(summary, "eta ".c." ".c."_sd")
 runf(e, f, c) = src(sprintf(runpat, e, f), c)
 # the paper's column c against eta; without a paper table a row of nan, which draws nothing
 pap(c) = havepaper ? src(paper, "eta ".c) : "< printf 'nan\\tnan\\n'"
-ptitle(t) = havepaper ? "paper (text): ".t : ""
+ptitle(t) = havepaper ? "paper: ".t : ""
 known = " profile tau qp phi am Z chi an branch forces Ks angles "
 do for [p in panels] {
 	if (!strstrt(known, " ".p." ")) {
@@ -45,7 +43,9 @@ do for [p in panels] {
 	set xlabel "platyness eta"
 	set xrange [-0.05:0.85]
 	set autoscale y
-	set key top left
+	set key top left maxrows auto
+	# room above and below the extreme points, which autoscaling puts on the border
+	set offsets 0, 0, graph 0.06, graph 0.06
 	unset arrow
 	unset label
 	if (p eq "profile") {
@@ -79,7 +79,7 @@ do for [p in panels] {
 		# the paper gives no values, only where the maximum is (Sec. III B)
 		if (havepaper) {
 			set arrow 2 from first 0.3, graph 0 to first 0.3, graph 1 nohead dt 2 lc rgb "black"
-			set label 2 "paper (text): maximum near eta 0.3" at first 0.32, graph 0.92 font ",8"
+			set label 2 "paper: maximum near eta 0.3" at first 0.28, graph 0.05 rotate by 90 font ",8"
 		}
 		plot sum("phi") using 1:2:3 with yerrorlines pt 7 lc 1 title "phi"
 	}
@@ -137,7 +137,9 @@ do for [p in panels] {
 	if (p eq "angles") {
 		set title "principal directions (Figs. 11, 14, 17, 20: insets)"
 		set ylabel "degrees"
-		set key bottom left
+		# the run's directions in one column of the key, the paper's in the other, below the points
+		set key bottom left maxrows 5
+		set offsets 0, 0, graph 0.06, graph 0.5
 		plot sum("theta_m") using 1:2:3 with yerrorlines pt 7 lc 1 title "theta_m", \
 		     sum("theta_n") using 1:2:3 with yerrorlines pt 9 lc 2 title "theta_n", \
 		     sum("theta_ln") using 1:2:3 with yerrorlines pt 11 lc 3 title "theta_ln", \
