@@ -36,8 +36,9 @@
  * pairs) that can be within reach while the pair's cores move against each other by less
  * than cache_margin (contact/plate.h's plate_interaction_cached; the same elements to the
  * bit as computing them all).  The force pass runs on the library's threads (base/par.h):
- * blocks of rows compute their interactions, each grain gathers its column's in a fixed
- * order, so the bytes are the same for any thread count.
+ * blocks of rows compute their interactions (each thread a run of blocks of about equal list
+ * pairs), each grain gathers its column's in a fixed order, so the bytes are the same for any
+ * thread count.
  *
  * A pack of spheres only takes the sphere pass (platedem_spheres.c): no narrow phase, a pair's
  * force into both grains as the walk meets it, Hertz pairs two at a time in lanes; the same
