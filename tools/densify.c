@@ -2,6 +2,7 @@
 /* densify: frictionless isotropic compaction of a loose pack to a confining stress. */
 #include "base/cli.h"
 #include "base/fileio.h"
+#include "contact/hertz.h"
 #include "qs/densify.h"
 #include "qs/minopts.h"
 #include "base/msg.h"
@@ -264,24 +265,18 @@ read_pack(const char *input, struct pack *p)
 				msg_die(EXIT_DATA, "the box is thinner than grain %ld along %c", p->id[i], 'x' + a);
 }
 
-/* Hertz theory is for small strains: overlaps ~ (sigma/E)^(2/3) R reach 5 % near E/100, with
- * E the softest grain's modulus, whose contacts strain most (against the mean modulus a grain
- * of E = 1e-300 passed, and densify squeezed it by 0.47 R).  --stress is checked against it
- * here, where the pack is known. */
+/* --stress within Hertz's small strains (hertz_stress_in_range), and not too far below the
+ * moduli; checked here, where the pack is known. */
 static void
 check_stress(const struct pack *p)
 {
 	double Emean = 0;
-	size_t i, soft = 0;
+	size_t i;
 
-	for (i = 0; i < p->n; i++) {
+	for (i = 0; i < p->n; i++)
 		Emean += p->E[i] / p->n;
-		if (p->E[i] < p->E[soft])
-			soft = i;
-	}
-	if (o.dp.stress >= 0.01 * p->E[soft])
-		msg_die(EXIT_USAGE, "--stress %g Pa is beyond the small-strain range of Hertz contacts (E/100 = %g Pa, E of grain %ld, the softest)",
-		    o.dp.stress, 0.01 * p->E[soft], p->id[soft]);
+	if (hertz_stress_in_range(p, o.dp.stress))
+		msg_die(EXIT_USAGE, "--stress %s", msg_geterr());
 	/* a target this far below the moduli is no jammed pack the minimisers can resolve:
 	 * --stress 1e-300 ran 74 s before failing */
 	if (o.dp.stress < 1e-12 * Emean)

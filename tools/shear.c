@@ -1,12 +1,15 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* shear: simple shear of a pack of spheroplates (or of the plate engine's spheres) between
- * glued walls at constant normal stress, the platy-particle paper's test (dem/plateshear.h). */
+/* shear: simple shear of a pack of spheres or spheroplates between glued walls at constant
+ * normal stress, the platy-particle paper's test (dem/plateshear.h), under the pack's contact
+ * law or the one --law names (contact/law.h). */
 #include "base/cli.h"
 #include "base/msg.h"
 #include "base/numfmt.h"
 #include "base/table.h"
 #include "base/fileio.h"
 #include "base/lines.h"
+#include "contact/hertz.h"
+#include "contact/law.h"
 #include "dem/plateshear.h"
 #include "pack/pack.h"
 #include "pack/packio.h"
@@ -24,6 +27,8 @@
 static struct opts {
 	struct shear_params sp;
 	double kn, kt, restitution, mu, wall_mu, kappa;
+	const char *law;	/* --law, or NULL: the pack's */
+	double Estar, kappa_run;	/* Hertz: the mean grains' E*, and the run's kappa (the header) */
 	const char *profile, *snapshots, *prefix, *checkpoint;
 	double time_limit, checkpoint_every;
 	double snap[MAX_SNAPSHOTS];
@@ -39,7 +44,7 @@ static struct opts {
 static struct cli_opt opt_table[] = {
 	{"strain", 'g', CLI_DOUBLE, &o.sp.strain, "GAMMA", "shear strain x_w / y_w to reach", NULL},
 	{"stress", 's', CLI_DOUBLE, &o.sp.sigma_w, "PA", "normal stress on the top wall (default: the pack's meta sigma0)", "Pa"},
-	{"kappa", 0, CLI_DOUBLE, &o.kappa, "K", "... or the stiffness number k_n / (sigma_w r), r the mean spheroradius (default: --stress)", NULL},
+	{"kappa", 0, CLI_DOUBLE, &o.kappa, "K", "... or the stiffness number: linear law k_n / (sigma_w r), r the mean spheroradius; Hertz-Mindlin (E* / sigma_w)^(2/3), E* of two mean grains (default: --stress)", NULL},
 	{"inertial", 'I', CLI_DOUBLE, &o.sp.inertial, "I", "inertial number gamma_dot r sqrt(rho / sigma_w): sets the wall's velocity (default 1e-3)", NULL},
 	{"velocity", 0, CLI_DOUBLE, &o.sp.velocity, "M/S", "... or the wall's velocity v_w outright (default: set by --inertial)", "m/s"},
 	{"every", 0, CLI_DOUBLE, &o.sp.every, "DGAMMA", "a row every DGAMMA of strain, each the mean over its steps", NULL},
@@ -48,8 +53,9 @@ static struct cli_opt opt_table[] = {
 	{"profile-bins", 0, CLI_LONG, &o.bins, "N", "bins of y / y_w in the profile", NULL},
 	{"snapshots", 0, CLI_STRING, &o.snapshots, "G1,G2,...", "write the pack at these strains, to PREFIX-G.pack", NULL},
 	{"snapshot-prefix", 0, CLI_STRING, &o.prefix, "PREFIX", "file name prefix of the snapshots", NULL},
-	{"kn", 0, CLI_DOUBLE, &o.kn, "N/M", "normal stiffness of an element contact (default: the pack's meta kn)", "N/m"},
-	{"kt", 0, CLI_DOUBLE, &o.kt, "N/M", "tangential stiffness (default: the pack's meta kt, else --kn)", "N/m"},
+	{"law", 0, CLI_STRING, &o.law, "NAME", "contact law: hertz-mindlin (or hertz) or linear (default: the pack's meta contact-law; none: hertz-mindlin)", NULL},
+	{"kn", 0, CLI_DOUBLE, &o.kn, "N/M", "linear law: normal stiffness of an element contact (default: the pack's meta kn)", "N/m"},
+	{"kt", 0, CLI_DOUBLE, &o.kt, "N/M", "linear law: tangential stiffness (default: the pack's meta kt, else --kn)", "N/m"},
 	{"restitution", 0, CLI_DOUBLE, &o.restitution, "E", "restitution coefficient, [0.21, 1] (default: the pack's meta, else 0.6)", NULL},
 	{"friction", 0, CLI_DOUBLE, &o.mu, "MU", "grain-grain friction coefficient (default: the pack's)", NULL},
 	{"wall-friction", 0, CLI_DOUBLE, &o.wall_mu, "MU", "friction of free grains on the walls (default: the pack's)", NULL},
@@ -64,7 +70,7 @@ static struct cli_opt opt_table[] = {
 
 static const struct cli_tool tool = {
 	"shear", "[options] [FILE]",
-	"Simple shear of a spheroplate pack between glued walls at constant normal stress: a TSV time series of stress ratio, q/p, packing fraction, coordination.",
+	"Simple shear of a pack of spheres or spheroplates between glued walls at constant normal stress, under the pack's contact law (Hertz-Mindlin or linear): a TSV time series of stress ratio, q/p, packing fraction, coordination.",
 	opt_table, 1,
 };
 
@@ -146,6 +152,8 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--kappa: must be positive");
 	if (!isnan(o.kappa) && o.sp.sigma_w > 0)
 		cli_usage_error("--stress and --kappa: give one");
+	if (o.law && !contact_law_choose(NULL, o.law))
+		cli_usage_error("--law: %s", msg_geterr());
 	if (!(o.sp.every > 0 && o.sp.every <= o.sp.strain))
 		cli_usage_error("--every: must be in (0, --strain]");
 	if (!isnan(o.sp.profile_from) && !(o.sp.profile_from >= 0))
@@ -183,38 +191,56 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		o.sp.profile_from = 0.6 * o.sp.strain;
 }
 
-/* The contact law: options, else the pack's meta lines (packgen writes them), else P's. */
+/* The contact law: --law, else the pack's contact-law key (none: Hertz-Mindlin).  The linear
+ * law's stiffnesses: options, else the pack's meta lines (packgen writes them); Hertz's: the
+ * pack's materials (E, nu).  The rest: options, else the pack's meta lines, else P's.  The
+ * output pack and the snapshots record the law. */
 static void
 set_law(struct pack *p, const char *in)
 {
+	const struct contact_law *law = contact_law_choose(p, o.law);
 	double v;
 
-	if (isnan(o.kn) && pack_get_meta_double(p, "kn", &o.kn))
-		msg_die(EXIT_DATA, "%s: no meta kn (the normal stiffness packgen --shape spheroplate records): give --kn", in);
-	if (isnan(o.kt))
-		o.kt = pack_get_meta_double(p, "kt", &v) == 0 ? v : o.kn;
+	if (!law)
+		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
+	if (law == &contact_law_linear) {
+		if (isnan(o.kn) && pack_get_meta_double(p, "kn", &o.kn))
+			msg_die(EXIT_DATA, "%s: no meta kn (the normal stiffness packgen --shape spheroplate records): give --kn", in);
+		if (isnan(o.kt))
+			o.kt = pack_get_meta_double(p, "kt", &v) == 0 ? v : o.kn;
+		o.sp.dyn.kn = o.kn, o.sp.dyn.kt = o.kt;
+	} else if (!isnan(o.kn) || !isnan(o.kt)) {
+		msg_die(EXIT_USAGE, "%s: --kn and --kt are the linear law's; under %s the stiffness is the grains' E and nu "
+		    "(--law linear for the linear law)", in, law->name);
+	}
+	pdem_params_law(&o.sp.dyn, law);
 	if (isnan(o.restitution))
 		o.restitution = pack_get_meta_double(p, "restitution", &v) == 0 ? v : 0.6;
 	if (isnan(o.mu))
 		o.mu = p->mu;
 	if (isnan(o.wall_mu))
 		o.wall_mu = p->wall_mu;
-	if (!isnan(o.kappa)) {
-		double r = 0;
-		size_t i;
-
-		for (i = 0; i < p->n; i++)
-			r += p->r[i] / p->n;
-		o.sp.sigma_w = o.kn / (o.kappa * r);
-	}
+	if (!isnan(o.kappa))
+		o.sp.sigma_w = pdem_kappa_stress(p, &o.sp.dyn, o.kappa);
 	if (o.sp.sigma_w == 0 && pack_get_meta_double(p, "sigma0", &o.sp.sigma_w))
-		msg_die(EXIT_DATA, "%s: no meta sigma0 (the compaction stress packgen records): give --stress", in);
+		msg_die(EXIT_DATA, "%s: no meta sigma0 (the compaction stress packgen records for plates): give --stress or --kappa", in);
+	if (!(o.sp.sigma_w > 0 && isfinite(o.sp.sigma_w)))
+		msg_die(EXIT_DATA, "%s: the normal stress %g Pa: must be positive (--stress, --kappa, or meta sigma0)", in, o.sp.sigma_w);
 	if (!(o.restitution >= 0.21 && o.restitution <= 1))
 		msg_die(EXIT_DATA, "%s: meta restitution %g: must be in [0.21, 1]; give --restitution", in, o.restitution);
-	o.sp.dyn.kn = o.kn, o.sp.dyn.kt = o.kt;
 	o.sp.dyn.restitution = o.restitution;
 	o.sp.dyn.mu = o.mu, o.sp.dyn.wall_mu = o.wall_mu;
 	p->mu = o.mu, p->wall_mu = o.wall_mu;
+	if (law != &contact_law_linear) {
+		if (hertz_stress_in_range(p, o.sp.sigma_w))
+			msg_die(EXIT_USAGE, "%s: sigma_w %s", in, msg_geterr());
+		o.Estar = pdem_mean_Estar(p);
+		o.kappa_run = pdem_kappa(p, &o.sp.dyn, o.sp.sigma_w);
+		if (!(o.Estar > 0 && isfinite(o.Estar)))
+			msg_die(EXIT_DATA, "%s: the grains' mean E* %g Pa: %s needs the grains' E and nu", in, o.Estar, law->name);
+	}
+	if (contact_law_claim(p, law))
+		msg_die_err(EXIT_DATA);
 }
 
 /* The run: its table so far (also kept in a memory stream for the checkpoint, whose next
@@ -253,9 +279,15 @@ print_header(FILE *fp, double inertial)
 {
 	fprintf(fp, "## qusgm shear %s: simple shear along x, walls on y (the bottom fixed, the top at sigma_w), x and z periodic\n",
 	    QUSGM_VERSION);
-	fprintf(fp, "## sigma_w %g Pa, I %g, mu %g, wall mu %g, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
-	       "sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
-	    o.sp.sigma_w, inertial, o.mu, o.wall_mu, o.kn, o.kt, o.restitution);
+	if (o.sp.dyn.law == &contact_law_linear)
+		fprintf(fp, "## sigma_w %g Pa, I %g, mu %g, wall mu %g, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
+		       "sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
+		    o.sp.sigma_w, inertial, o.mu, o.wall_mu, o.kn, o.kt, o.restitution);
+	else
+		fprintf(fp, "## sigma_w %g Pa, I %g, mu %g, wall mu %g, %s law, E* %g Pa, kappa (E*/sigma_w)^(2/3) %g, kt/kn %g, e %g; "
+		       "each row the mean over its steps; sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
+		    o.sp.sigma_w, inertial, o.mu, o.wall_mu, o.sp.dyn.law->name, o.Estar, o.kappa_run, o.sp.dyn.kt / o.sp.dyn.kn,
+		    o.restitution);
 	table_header(fp, cols, NCOLS);
 }
 

@@ -3,6 +3,8 @@
  * hertz.h (see there and law.h). */
 #include "contact/hertz.h"
 
+#include "base/msg.h"
+
 #include <math.h>
 
 static double
@@ -69,3 +71,19 @@ const struct contact_law contact_law_hertz_mindlin = {
 	"hertz-mindlin", 3, 0, 0.888888888888889, 0.3,
 	hertz_mindlin_pair, hertz_normal, mindlin_tangent, hertz_mindlin_dem_interaction, "hertz",
 };
+
+int
+hertz_stress_in_range(const struct pack *p, double stress)
+{
+	size_t i, soft = 0;
+
+	for (i = 0; i < p->n; i++)
+		if (p->E[i] < p->E[soft])
+			soft = i;
+	if (p->n && stress >= 0.01 * p->E[soft]) {
+		msg_seterr("%g Pa is beyond the small-strain range of Hertz contacts (E/100 = %g Pa, E of grain %ld, the softest)",
+		    stress, 0.01 * p->E[soft], p->id[soft]);
+		return -1;
+	}
+	return 0;
+}

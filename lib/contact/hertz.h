@@ -28,6 +28,13 @@
 extern "C" {
 #endif
 
+/* Hertz theory is for small strains: overlaps ~ (sigma/E)^(2/3) R reach 5 % near E/100, with
+ * E the softest grain's modulus, whose contacts strain most (against the mean modulus a grain
+ * of E = 1e-300 passed, and densify squeezed it by 0.47 R).  0 when stress (Pa) on pack p
+ * is below E/100 of its softest grain, else -1 with the error slot set ("S Pa is beyond the
+ * small-strain range of Hertz contacts (...)"). */
+int hertz_stress_in_range(const struct pack *p, double stress);
+
 /* A grain's (or the walls') normal compliance (1 - nu^2) / E (1/Pa). */
 LAW_INLINE double
 hertz_compliance(double E, double nu)

@@ -129,6 +129,17 @@ const struct contact_law *contact_law_find(const char *name);
 /* The law of pack p: its meta contact-law key's (contact_law_find), the table's first
  * (Hertz-Mindlin) without the key; NULL, with the error slot set, for a key no law has. */
 const struct contact_law *contact_law_of_pack(const struct pack *p);
+/* The names of the table's laws, as "hertz-mindlin (hertz), linear": each law's name and,
+ * where it differs, its pack key, in the table's order, into buf (truncated to size). */
+void contact_law_names(char *buf, size_t size);
+/* The law a tool runs: the one named `name` (an option: contact_law_find) when name is not
+ * NULL, else pack p's (contact_law_of_pack).  NULL, with the error slot set, for a name or
+ * key no law has ("no such contact law '...': the laws are ..."). */
+const struct contact_law *contact_law_choose(const struct pack *p, const char *name);
+/* Record law as pack p's, for a tool that ran p under it: p's contact-law key set to the
+ * law's pack key, unless p's law is law already (a pack without the key, Hertz-Mindlin's,
+ * stays without it).  0 or -1 (out of memory). */
+int contact_law_claim(struct pack *p, const struct contact_law *law);
 
 /* The DEM kernels, inline so that the DEM's force loop, which uses Hertz-Mindlin by design,
  * inlines them (through the law's pointer they cost a call per contact and step: packgen

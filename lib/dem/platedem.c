@@ -132,10 +132,66 @@ pdem_start(struct pdem *d, double skin)
 	return contact_enum_init(&d->ce, n, d->rb, d->lo, d->hi, d->periodic, skin, d->law->history);
 }
 
+/* The pack's mean Young's modulus and Poisson ratio: the material of pdem_init's Hertz units. */
+static void
+mean_material(const struct pack *p, double *Em, double *num)
+{
+	size_t i, n = p->n;
+
+	*Em = *num = 0;
+	for (i = 0; i < n; i++)
+		*Em += p->E[i] / n, *num += p->nu[i] / n;
+}
+
+/* The mean spheroradius: pdem_init's length unit r0. */
+static double
+mean_radius(const struct pack *p)
+{
+	double r0 = 0;
+	size_t i, n = p->n;
+
+	for (i = 0; i < n; i++)
+		r0 += p->r[i] / n;
+	return r0;
+}
+
+void
+pdem_params_law(struct pdem_params *pp, const struct contact_law *law)
+{
+	pp->law = law;
+	if (law != &contact_law_linear)
+		pp->kn = 1, pp->kt = law->kt_ratio;
+}
+
+double
+pdem_mean_Estar(const struct pack *p)
+{
+	double Em, num;
+
+	mean_material(p, &Em, &num);
+	return hertz_Estar(Em, num, Em, num);
+}
+
+double
+pdem_kappa(const struct pack *p, const struct pdem_params *pp, double sigma)
+{
+	if (pp->law == &contact_law_linear)
+		return pp->kn / (sigma * mean_radius(p));
+	return pow(pdem_mean_Estar(p) / sigma, 2.0 / 3.0);
+}
+
+double
+pdem_kappa_stress(const struct pack *p, const struct pdem_params *pp, double kappa)
+{
+	if (pp->law == &contact_law_linear)
+		return pp->kn / (kappa * mean_radius(p));
+	return pdem_mean_Estar(p) / (kappa * sqrt(kappa));
+}
+
 int
 pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 {
-	double r0 = 0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY, rmin = INFINITY, k0, Em = 0, num = 0, Eg = 1;
+	double r0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY, rmin = INFINITY, k0, Em = 0, num = 0, Eg = 1;
 	size_t i, n = p->n;
 	int a;
 
@@ -143,16 +199,16 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	if (n == 0 || pdem_alloc(d, n))
 		return n == 0 ? (msg_seterr("no grains"), -1) : (pdem_free(d), -1);
 	d->law = pp->law;
+	r0 = mean_radius(p);
 	for (i = 0; i < n; i++)
-		r0 += p->r[i] / n, rho0 += p->rho[i] / n;
+		rho0 += p->rho[i] / n;
 	d->u_len = r0;
 	d->u_mass = rho0 * r0 * r0 * r0;
 	/* the stiffness unit: the linear law's k_n; Hertz's E* r0 between two mean grains */
 	if (d->law == &contact_law_linear) {
 		k0 = pp->kn;
 	} else {
-		for (i = 0; i < n; i++)
-			Em += p->E[i] / n, num += p->nu[i] / n;
+		mean_material(p, &Em, &num);
 		Eg = hertz_Estar(Em, num, Em, num);
 		k0 = Eg * r0;
 	}

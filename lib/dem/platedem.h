@@ -184,6 +184,31 @@ struct pdem {
 #define PDEM_CACHE_MARGIN 0.03
 
 void pdem_params_default(struct pdem_params *pp);
+/* pp set for law: the law, and for a law other than the linear one (whose kn and kt are the
+ * caller's, N/m) the law's own tangential over normal stiffness ratio (kt / kn = the law's
+ * kt_ratio, as packgen's sphere DEM takes it). */
+void pdem_params_law(struct pdem_params *pp, const struct contact_law *law);
+/* E* of two grains of pack p's mean Young's modulus and Poisson ratio (Pa): the Hertz law's
+ * stiffness unit in the engine, over r0. */
+double pdem_mean_Estar(const struct pack *p);
+/* The stiffness number kappa of a normal stress sigma (Pa) on pack p under pp's law: the
+ * mean spheroradius r0 over the typical overlap that sigma makes, up to a factor of order
+ * one, so that 1 / kappa is the contacts' strain whatever the law.  Linear law:
+ * kappa = k_n / (sigma r0) (P eq. 6).  Hertz: kappa = (E* / sigma)^(2/3), E* of
+ * pdem_mean_Estar (Agnolin and Roux's, with E* for their E / (1 - nu^2), which is 2 E*).
+ * The overlaps follow from the Love-Weber stress sigma = Z phi <F> / (4 pi r0^2) of spheres
+ * (Z about 4.5, phi about 0.6): a mean overlap of 4.7 r0 / kappa under the linear law and
+ * 2.9 r0 / kappa under Hertz (R* = r0 / 2). */
+double pdem_kappa(const struct pack *p, const struct pdem_params *pp, double sigma);
+/* Its inverse: the stress (Pa) of stiffness number kappa. */
+double pdem_kappa_stress(const struct pack *p, const struct pdem_params *pp, double kappa);
+/* The largest overlap over the smallest spheroradius likely at stiffness number kappa, what
+ * a Hertz time step is made for (hertz_overlap): PDEM_OVERLAP_KAPPA / kappa.  The mean
+ * overlap of pdem_kappa is 2.9 r0 / kappa; over the smallest radius (0.7 r0 in packgen's
+ * default radii) and at the tail of a pack's forces it is several times that: 300 spheres
+ * sheared at kappa 1e3 (tests/tools/shear.sh) had their largest at 13 / kappa.  The time
+ * step goes as the overlap^(-1/4): a factor 2 in it moves the step by 19 %. */
+#define PDEM_OVERLAP_KAPPA 20.0
 /* The arrays of an engine for n grains, zeroed, for a caller that fills them itself (x, r,
  * half, rb, m, J, q; packgen's sphere compaction, dem.c) and then calls pdem_start.  0 or -1. */
 int pdem_alloc(struct pdem *d, size_t n);

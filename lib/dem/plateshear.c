@@ -242,6 +242,7 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
     shear_checkpoint_fn ck, struct lines *from, struct shear_result *res)
 {
 	const int per[3] = {1, 0, 1};
+	struct pdem_params dyn;
 	struct pdem d;
 	struct row_sums rs;
 	struct shear_row row;
@@ -255,7 +256,12 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		msg_seterr("the gradient axis y is periodic: the shear needs its walls");
 		return -1;
 	}
-	if (pdem_init(&d, p, &sp->dyn))
+	/* the Hertz time step made for the overlaps sigma_w makes (platedem.h); the linear
+	 * law's does not depend on them */
+	dyn = sp->dyn;
+	if (dyn.law != &contact_law_linear)
+		dyn.hertz_overlap = fmax(dyn.hertz_overlap, PDEM_OVERLAP_KAPPA / pdem_kappa(p, &dyn, sp->sigma_w));
+	if (pdem_init(&d, p, &dyn))
 		return -1;
 	d.stress = 1;	/* the rows' Love-Weber stress */
 	if ((!d.periodic[0] || !d.periodic[2]) && pdem_make_periodic(&d, per))
@@ -295,7 +301,7 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 	res->inertial = ss.vw / ss.H0 / sqrt(sigma_s);
 	res->v_w = ss.vw * d.u_len / d.u_time;
 	res->gamma_dot = res->v_w / (ss.H0 * d.u_len);
-	res->kappa = 1 / sigma_s;
+	res->kappa = pdem_kappa(p, &sp->dyn, sp->sigma_w);
 	memset(&rs, 0, sizeof rs);
 	for (;;) {
 		double F[3], gamma;

@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plateshear: the platy-particle paper's simple shear test (P §II C, Fig. 4b), for packs of
- * spheroplates and of spheres made by the plate engine (dem/platedem.h).
+ * spheroplates and of spheres, under any law of the table (shear_params.dyn.law: P's linear
+ * law, or Hertz-Mindlin with the grains' moduli; dem/platedem.h).  Under Hertz the time step
+ * is made for the overlaps sigma_w makes (PDEM_OVERLAP_KAPPA / kappa, pdem_kappa).
  *
  * Shear direction x, gradient direction y, neutral direction z.  x and z are periodic (a pack
  * compacted between six walls has those walls replaced, its lengths kept as the periods; a
@@ -82,7 +84,7 @@ struct shear_result {
 	double v_w;		/* m/s */
 	double inertial;	/* I of v_w at the start */
 	double gamma_dot;	/* 1/s */
-	double kappa;		/* k_n / (sigma_w r) */
+	double kappa;		/* the stiffness number of sigma_w (platedem.h's pdem_kappa) */
 	size_t glued_bottom, glued_top;
 	long relax_steps;	/* steps of the relaxation (0: none, or going on from a checkpoint) */
 	double relax_phi, relax_z;	/* the packing fraction and Z (interactions per grain) at its end */

@@ -65,6 +65,45 @@ packgen --shape spheroplate --platyness 0 -n 216 --seed 2 -o sp.pack 2>/dev/null
 expect_ok "shear 216 spheres to gamma 0.01" shear --strain 0.01 --inertial 1e-2 --every 0.005 sp.pack
 expect_num "shear: spheres, 2 rows" "$(rows ok.out | wc -l)" == 2
 
+# Hertz-Mindlin spheres: packgen's default pack (no contact-law key: Hertz-Mindlin, the grains'
+# E and nu), sheared at kappa = (E*/sigma_w)^(2/3) = 1e3 and I = 5e-3 to gamma 0.3 (3 s)
+packgen -n 300 --seed 2 -o hz.pack 2>/dev/null
+packinfo hz.pack >hz.info 2>/dev/null
+expect_ok "shear a Hertz pack of 300 spheres to gamma 0.3" shear --kappa 1e3 --strain 0.3 --inertial 5e-3 --every 0.01 \
+	-o hz-out.pack hz.pack
+cp ok.out hz.tsv
+grep -q '^## sigma_w [0-9.e+]* Pa, I 0.005, mu 0.3, wall mu 0.3, hertz-mindlin law, E\* [0-9.e+]* Pa, kappa (E\*/sigma_w)^(2/3) 1000, kt/kn 0.888889, e 0.6;' hz.tsv &&
+	pass "shear: Hertz, the header names the law, E* and kappa" || fail "shear: Hertz, the header" "$(sed -n 2p hz.tsv)"
+grep -q '^meta contact-law' hz-out.pack && fail "shear: Hertz, the pack's law stays implicit" "$(grep contact-law hz-out.pack)" ||
+	pass "shear: Hertz, the pack's law stays implicit (no contact-law key)"
+expect_ok "shear: Hertz, again on 2 threads, to 0.05" shear --threads 2 --kappa 1e3 --strain 0.05 --inertial 5e-3 --every 0.01 hz.pack
+head -n 8 hz.tsv >hz5.tsv
+expect_same "shear: Hertz, the same rows on 1 and 2 threads" hz5.tsv ok.out
+# The balance of the steady rows (gamma above 0.1, 21 rows over 0.2 of strain).
+# (1) The top body obeys m_top dv_y/dt = push - sigma_w A: over the rows the mean push over
+# sigma_w is 1 + m_top dv_y / (sigma_w A T), the top layer's vertical velocity changing by a
+# small part of the dilatancy rate: within 1 % (measured 1e-4).
+# (2) The pair stress (P eq. 7) is the sum over the pairs of l_y F_y over the box: across any
+# plane between the walls' load-bearing grains the pairs carry the push, and no branch vector
+# reaches below those grains' centres (height r from the bottom, H - r from the top), so
+# sig_yy = push (1 - (h_b + h_t) / H), h_b and h_t the load-weighted radii of the grains on the
+# walls: 1 - 2 r_mean / H within (r_max - r_min) / H, about 0.05 (measured 0.003).
+# (3) The same holds for l_y F_x with tau_w, so -sig_xy / sig_yy is the walls' tau / sigma up
+# to the x momentum the free grains gain over the rows (the acceleration of the pack): at most
+# their mass times v_w over the rows' time, phi (H / r)^2 I^2 / (dgamma mu) of tau_w, about
+# 3 % (measured 0.5 %).
+set -- $(rows hz.tsv | awk -F '\t' -v rm="$(info_value hz.info r_mean)" -v r0="$(info_value hz.info r_min)" \
+    -v r1="$(info_value hz.info r_max)" -v s="$(sed -n 's/^## sigma_w \([0-9.e+]*\) Pa.*/\1/p' hz.tsv)" '
+	$3 > 0.1 { n++; if (n == 1) g0 = $3 - 0.01; g1 = $3; sr += $5; tau += $4; yy += $10; xy += $12; H += $18; phi += $15 }
+	END { sr /= n; tau /= n; yy /= n; xy /= n; H /= n; phi /= n
+	      d = sr - 1; if (d < 0) d = -d
+	      e = yy / (s * sr) - (1 - 2 * rm / H); if (e < 0) e = -e
+	      m = (-xy / yy) / (tau / sr) - 1; if (m < 0) m = -m
+	      printf "%.6g %.6g %.6g %.6g %.6g", d, e, (r1 - r0) / H, m, phi * (H / rm)^2 * 25e-6 / ((g1 - g0) * tau / sr) }')
+expect_num "shear: Hertz, the mean push on the top wall is sigma_w" "$1" "<" 0.01
+expect_num "shear: Hertz, sig_yy is the push over the pairs' height" "$2" "<" "$3"
+expect_num "shear: Hertz, -sig_xy/sig_yy is the walls' tau/sigma" "$4" "<" "$5"
+
 # The clean start: the pack, made periodic on x and z, relaxes at sigma_w before the strain
 # (and the top wall's onset is damped), so its coordination does not collapse when it loses
 # its lateral walls.  125 plates to gamma 0.1 at I = 1e-2: with the relaxation the rows'
@@ -90,7 +129,22 @@ fi
 
 # refusals
 packgen -n 50 --seed 1 -o hertz.pack 2>/dev/null
-expect_error "shear: a pack without meta kn" 1 '^shear: hertz.pack: no meta kn .*give --kn$' shear hertz.pack
+expect_error "shear: --law linear on a pack without meta kn" 1 '^shear: hertz.pack: no meta kn .*give --kn$' shear --law linear hertz.pack
+expect_error "shear: a Hertz pack without meta sigma0" 1 '^shear: hertz.pack: no meta sigma0 .*give --stress or --kappa$' shear hertz.pack
+expect_error "shear: --law nosuch" 2 "^shear: --law: no such contact law 'nosuch' \\(the laws: hertz-mindlin \\(hertz\\), linear\\)" \
+    shear --law nosuch hertz.pack
+expect_error "shear: --kn under Hertz" 2 "^shear: hertz.pack: --kn and --kt are the linear law's" shear --kn 1e3 --stress 1e6 hertz.pack
+expect_error "shear: Hertz beyond small strains" 2 '^shear: hertz.pack: sigma_w 1e\+10 Pa is beyond the small-strain range of Hertz contacts' \
+    shear --stress 1e10 hertz.pack
+# Hertz-Mindlin on plates: a plate pack (linear) under --law hertz, its moduli the grains' E and
+# nu, at its meta sigma0, a few steps; the final pack records the law it ran under
+expect_ok "shear: plates under --law hertz" shear --law hertz --strain 0.01 --inertial 1e-2 --every 0.005 -o sh-out.pack s.pack
+grep -q '^## sigma_w 5e+06 Pa, I 0.01, mu 0.58, wall mu 0.58, hertz-mindlin law, ' ok.out &&
+	pass "shear: plates under Hertz, the header" || fail "shear: plates under Hertz, the header" "$(sed -n 2p ok.out)"
+expect_num "shear: plates under Hertz, 2 rows" "$(rows ok.out | wc -l)" == 2
+expect_num "shear: plates under Hertz, element contacts per interaction" "$(col ok.out 2 17)" ">" 1
+grep -q '^meta contact-law hertz$' sh-out.pack && pass "shear: plates under Hertz, the pack records the law" ||
+	fail "shear: plates under Hertz, the pack records the law" "$(grep contact-law sh-out.pack)"
 expect_error "shear: too few plates for periodic x and z" 1 '^shear: t.pack: .*too short for a periodic axis' \
 	sh -c 'packgen --shape spheroplate -n 27 --seed 2 -o t.pack 2>/dev/null && shear --strain 0.01 t.pack'
 expect_error "shear: --inertial 1" 2 '^shear: --inertial' shear --inertial 1 s.pack

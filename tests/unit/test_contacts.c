@@ -505,6 +505,25 @@ test_law_table(gsl_rng *rng)
 	pack_set_meta(&p, "contact-law", "hooke");
 	CHECK(contact_law_of_pack(&p) == NULL && strstr(msg_geterr(), "hooke"), "law table: an unknown key is an error (%s)",
 	    msg_geterr());
+	{	/* a tool's choice: its option over the pack's key, and the key it writes back */
+		char names[128];
+
+		contact_law_names(names, sizeof names);
+		CHECK(!strcmp(names, "hertz-mindlin (hertz), linear"), "law table: the names for an error message (%s)", names);
+		CHECK(contact_law_choose(&p, "linear") == &contact_law_linear, "law choice: an option over the pack's key");
+		CHECK(contact_law_choose(&p, NULL) == NULL && strstr(msg_geterr(), "hooke"), "law choice: else the pack's key");
+		CHECK(contact_law_choose(&p, "nosuch") == NULL && strstr(msg_geterr(), "'nosuch'") &&
+		    strstr(msg_geterr(), "hertz-mindlin (hertz), linear"), "law choice: an unknown name lists the laws (%s)",
+		    msg_geterr());
+		CHECK(contact_law_claim(&p, &contact_law_linear) == 0 && !strcmp(pack_get_meta(&p, "contact-law"), "linear"),
+		    "law claim: a pack of another law gets the law's key");
+		CHECK(contact_law_claim(&p, &contact_law_hertz_mindlin) == 0 &&
+		    !strcmp(pack_get_meta(&p, "contact-law"), "hertz"), "law claim: Hertz-Mindlin's pack key");
+		pack_unset_meta(&p, "contact-law");
+		CHECK(contact_law_claim(&p, &contact_law_hertz_mindlin) == 0 && !pack_get_meta(&p, "contact-law"),
+		    "law claim: a pack without the key, Hertz-Mindlin's, stays without it");
+		pack_set_meta(&p, "contact-law", "hooke");
+	}
 	for (l = contact_laws; *l; l++) {
 		double Es, Rs;
 
