@@ -105,6 +105,20 @@ pdem_alloc(struct pdem *d, size_t n)
 	return 0;
 }
 
+double
+pdem_shear_cache_margin(const struct pdem *d)
+{
+	double h = 0;
+	size_t i, np = 0;
+
+	for (i = 0; i < d->n; i++)
+		if (d->half[i] > 0)
+			h += d->half[i], np++;
+	if (!np)
+		return PDEM_CACHE_MARGIN;
+	return fmin(PDEM_CACHE_MARGIN, fmax(0.005, 0.0075 * h / (double)np));
+}
+
 int
 pdem_start(struct pdem *d, double skin)
 {

@@ -179,9 +179,16 @@ struct pdem {
 /* The default cache margin (scaled units, r0): features within r_i + r_j + 0.03 r0 are kept;
  * a pair's cache lasts while its cores move against each other by less than that.  The
  * elements do not depend on it, the cost does: a wider one keeps more features per pair, a
- * narrower one remakes caches more often; a shear at I = 1e-3 cost least at 0.03-0.05
- * (bench/plates.md). */
+ * narrower one remakes caches more often; a shear at I = 1e-3 at eta 0.8 cost least at
+ * 0.03-0.05 (bench/plates.md). */
 #define PDEM_CACHE_MARGIN 0.03
+
+/* The cache margin for a slow shear of d's grains: 0.0075 times the plates' mean core
+ * half-side, within [0.005, PDEM_CACHE_MARGIN].  Small cores have their features close
+ * together, so a margin keeps more of them per pair: 8000 plates sheared at I = 1e-3 cost
+ * least near 0.005 at eta 0.14 (half-side 0.16 r0), 0.005-0.01 at eta 0.5 (1 r0) and 0.03 at
+ * eta 0.8 (4 r0) (bench/plates.md).  PDEM_CACHE_MARGIN for spheres only. */
+double pdem_shear_cache_margin(const struct pdem *d);
 
 void pdem_params_default(struct pdem_params *pp);
 /* pp set for law: the law, and for a law other than the linear one (whose kn and kt are the

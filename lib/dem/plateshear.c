@@ -263,6 +263,7 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		dyn.hertz_overlap = fmax(dyn.hertz_overlap, PDEM_OVERLAP_KAPPA / pdem_kappa(p, &dyn, sp->sigma_w));
 	if (pdem_init(&d, p, &dyn))
 		return -1;
+	d.cache_margin = pdem_shear_cache_margin(&d);	/* a slow shear's (packgen's compaction keeps the default) */
 	d.stress = 1;	/* the rows' Love-Weber stress */
 	if ((!d.periodic[0] || !d.periodic[2]) && pdem_make_periodic(&d, per))
 		goto out;
