@@ -290,6 +290,26 @@ test_kappa(void)
 	pack_free(&p);
 }
 
+/* The shear's cache margin (pdem_shear_cache_margin): 0.0075 of the plates' mean core
+ * half-side (spheres left out), within [0.005, PDEM_CACHE_MARGIN]. */
+static void
+test_shear_margin(void)
+{
+	double half[4] = {0, 1, 3, 0};
+	struct pdem d;
+
+	memset(&d, 0, sizeof d);
+	d.half = half, d.n = 4;
+	CHECK(fabs(pdem_shear_cache_margin(&d) - 0.015) < 1e-15, "shear margin: half-sides 1 and 3 (and spheres): %g, want 0.015",
+	    pdem_shear_cache_margin(&d));
+	half[1] = half[2] = 0.163;	/* eta 0.14's cores */
+	CHECK(pdem_shear_cache_margin(&d) == 0.005, "shear margin: small cores take the floor 0.005");
+	half[1] = half[2] = 4;	/* eta 0.8's */
+	CHECK(pdem_shear_cache_margin(&d) == PDEM_CACHE_MARGIN, "shear margin: large cores take the default");
+	half[1] = half[2] = 0;
+	CHECK(pdem_shear_cache_margin(&d) == PDEM_CACHE_MARGIN, "shear margin: spheres only, the default");
+}
+
 /* Both laws on both shapes: an elastic head-on collision (restitution 1: no damping) of two
  * equal grains face to face along z, of platyness eta under law, closing at 1e-3 per time
  * unit.  Returns the largest overlap 2 r - (z_1 - z_0) over the collision and the most
@@ -591,6 +611,7 @@ main(void)
 	test_free_rotation();
 	test_restitution();
 	test_kappa();
+	test_shear_margin();
 	test_laws_on_shapes();
 	test_pressed_plate();
 	test_pack_at_rest();
