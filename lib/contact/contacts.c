@@ -84,6 +84,13 @@ contact_enum_free(struct contact_enum *e)
 }
 
 void
+contact_enum_prune(struct contact_enum *e, struct contact_prune *pr)
+{
+	e->prune = pr;
+	e->stale = 1;
+}
+
+void
 contact_enum_radii_changed(struct contact_enum *e)
 {
 	size_t i;
@@ -209,7 +216,7 @@ int
 contact_enum_update(struct contact_enum *e, const double *x, int force)
 {
 	e->updates++;
-	if (!force && !e->stale && e->nl.first && !nlist_stale(&e->nl, x, e->lo, e->hi))
+	if (!force && !e->stale && e->nl.first && !nlist_stale(&e->nl, x, e->lo, e->hi, e->prune ? e->prune->extra : NULL))
 		return 0;
 	/* a list that went stale soon: the next one with twice the skin (contact_enum_skin_auto) */
 	if (!force && !e->stale && e->nl.first && e->skin < e->skin_max && e->updates - e->updates_built < CONTACT_SKIN_GROW)
@@ -220,7 +227,10 @@ contact_enum_update(struct contact_enum *e, const double *x, int force)
 		e->prev = e->nl;
 		e->nl = t;
 	}
-	if (nlist_build(&e->nl, x, e->r, e->n, e->lo, e->hi, e->rmax, e->skin, e->periodic))
+	if (e->prune && e->prune->prepare)
+		e->prune->prepare(e->prune->ctx);
+	if (nlist_build(&e->nl, x, e->r, e->n, e->lo, e->hi, e->rmax, e->skin, e->periodic, e->prune ? e->prune->keep : NULL,
+	    e->prune ? e->prune->ctx : NULL))
 		return -1;
 	e->stale = 0;
 	e->rebuilds++;

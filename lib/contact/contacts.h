@@ -94,6 +94,21 @@ struct contact_enum {
 	double skin_max;
 	long updates, updates_built;
 	long full_builds;		/* rebuilds when the full rows were made */
+	struct contact_prune *prune;	/* contact_enum_prune's, or NULL */
+};
+
+/* A shape's finer test at list time: of the pairs whose bounding spheres (the radii r) are
+ * within the skin, keep (nlist.h) lists only those whose shapes may come within range before
+ * the list goes stale; prepare (NULL: none) is called before each build, to ready what keep
+ * reads and zero extra; extra (n, the caller's) is what each grain's points may have moved
+ * beyond its centre since the last build (its turning), which the staleness test adds to the
+ * centre's displacement.  A pair left out must have its shapes farther apart than the skin:
+ * then, while the list is fresh, they are apart, and no result depends on the pruning. */
+struct contact_prune {
+	nlist_keep_fn keep;
+	void (*prepare)(void *ctx);
+	const double *extra;
+	void *ctx;
 };
 
 /* r: n radii; lo, hi: the box corners (read at every update, so the caller may move them);
@@ -116,6 +131,9 @@ int contact_enum_update(struct contact_enum *e, const double *x, int force);
  * that moves grains far grows the skin back in a few rebuilds. */
 #define CONTACT_SKIN_GROW 100
 void contact_enum_skin_auto(struct contact_enum *e, double skin_max);
+/* Prune the lists from the next build on (pr, the caller's, outlives e; NULL: no more):
+ * the list is rebuilt at the next update. */
+void contact_enum_prune(struct contact_enum *e, struct contact_prune *pr);
 /* The radii changed (grains grew): the list is rebuilt at the next update. */
 void contact_enum_radii_changed(struct contact_enum *e);
 /* Make col_first, col_nbr, col_k and col_pos current for the list: the columns of the half

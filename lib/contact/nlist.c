@@ -35,6 +35,8 @@ struct pass_ctx {
 	struct nlist *nl;
 	unsigned *cnt;		/* this thread's column of tcnt */
 	int pass;
+	nlist_keep_fn keep;
+	void *keep_ctx;
 };
 
 static int
@@ -42,8 +44,9 @@ on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
 {
 	struct pass_ctx *c = vctx;
 
-	(void)dx;
 	(void)d2;
+	if (c->keep && !c->keep(c->keep_ctx, i, j, dx))
+		return 0;
 	if (c->pass == 0)
 		c->cnt[i]++;
 	else
@@ -52,7 +55,7 @@ on_pair(size_t i, size_t j, double dx[3], double d2, void *vctx)
 }
 
 static int
-find_pairs(struct nlist *nl, const double *x, const double *r, double skin, int T)
+find_pairs(struct nlist *nl, const double *x, const double *r, double skin, int T, nlist_keep_fn keep, void *keep_ctx)
 {
 	size_t n = nl->n, i, need = (size_t)T * (n ? n : 1);
 	int fail = 0;
@@ -71,7 +74,7 @@ find_pairs(struct nlist *nl, const double *x, const double *r, double skin, int 
 	{
 		/* the team OpenMP gave, which may be smaller than asked for: its threads cover the cells */
 		size_t TT = (size_t)par_team(), t = (size_t)par_tid(), nc = nl->grid.ncells;
-		struct pass_ctx c = {nl, nl->tcnt + t * n, 0};
+		struct pass_ctx c = {nl, nl->tcnt + t * n, 0, keep, keep_ctx};
 		size_t c0 = nc * t / TT, c1 = nc * (t + 1) / TT, k;
 
 		cell_for_pairs_in(&nl->grid, c0, c1, x, r, skin, on_pair, &c);
@@ -109,7 +112,7 @@ find_pairs(struct nlist *nl, const double *x, const double *r, double skin, int 
 
 int
 nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const double lo[3], const double hi[3],
-    double rmax, double skin, const int *periodic)
+    double rmax, double skin, const int *periodic, nlist_keep_fn keep, void *keep_ctx)
 {
 	size_t i, k;
 	int threads = n >= PAR_MIN ? par_threads() : 1;
@@ -133,7 +136,7 @@ nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const 
 	if (cell_build(&nl->grid, x, n, lo, hi, 2 * rmax + skin, periodic))
 		return -1;
 	nl->first[0] = 0;
-	if (find_pairs(nl, x, r, skin, threads))
+	if (find_pairs(nl, x, r, skin, threads, keep, keep_ctx))
 		return -1;
 	/* rows sorted by j: deterministic order of summation, and merges of two lists */
 #pragma omp parallel for schedule(static) private(k) if (threads > 1)
@@ -155,9 +158,9 @@ nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const 
 }
 
 int
-nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const double hi[3])
+nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const double hi[3], const double *extra)
 {
-	double maxd2 = 0, shrink = 0, s[3];
+	double maxm = 0, shrink = 0, s[3];
 	size_t i;
 	int a;
 
@@ -165,18 +168,22 @@ nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const d
 		s[a] = (hi[a] - lo[a]) / (nl->bhi[a] - nl->blo[a]);
 		shrink = fmax(shrink, 1 - s[a]);
 	}
-	/* a largest value is exact in any order: threads (base/par.h) cannot change it */
-#pragma omp parallel for schedule(static) reduction(max : maxd2) if (nl->n >= PAR_MIN)
+	/* a largest value is exact in any order: threads (base/par.h) cannot change it.  Without
+	 * extra, the squares are compared and one root taken; with it, a root per grain. */
+#pragma omp parallel for schedule(static) reduction(max : maxm) if (nl->n >= PAR_MIN)
 	for (i = 0; i < nl->n; i++) {
-		double e2 = 0;
+		double e2 = 0, m;
 		int b;
 		for (b = 0; b < 3; b++) {
 			double ref = lo[b] + (nl->xb[3 * i + b] - nl->blo[b]) * s[b];
 			double e = x[3 * i + b] - ref;
 			e2 += e * e;
 		}
-		if (e2 > maxd2)
-			maxd2 = e2;
+		m = extra ? sqrt(e2) + extra[i] : e2;
+		if (m > maxm)
+			maxm = m;
 	}
-	return 2 * sqrt(maxd2) + shrink * (2 * nl->rmax + nl->skin) > nl->skin;
+	if (!extra)
+		maxm = sqrt(maxm);
+	return 2 * maxm + shrink * (2 * nl->rmax + nl->skin) > nl->skin;
 }

@@ -5,7 +5,12 @@
  * the last build, as rows (CSR) sorted by j.  It stays exact while no pair can have closed
  * the skin since: twice the largest non-affine displacement plus the affine shortening of
  * the longest listed pair below the skin (positions that follow a changing box affinely do
- * not count as displacement).  nlist_stale() answers that; the caller rebuilds. */
+ * not count as displacement).  nlist_stale() answers that; the caller rebuilds.
+ *
+ * A caller whose grains are not spheres may leave out, at the build, the pairs whose shapes
+ * (not just their bounding spheres) stay farther apart than the skin (a keep function), and
+ * then counts in the staleness what each grain's points may have moved beyond its centre
+ * since the build (extra: turning). */
 #ifndef QUSGM_NLIST_H
 #define QUSGM_NLIST_H
 
@@ -35,12 +40,18 @@ struct nlist {
 
 void nlist_init(struct nlist *nl);
 void nlist_free(struct nlist *nl);
+/* Whether pair i < j (dx = x_i - x_j, its nearest image), whose spheres are within the skin,
+ * is listed: called from the build's threads, twice per pair, with the same answer each time. */
+typedef int (*nlist_keep_fn)(void *ctx, size_t i, size_t j, const double dx[3]);
 /* Build for n spheres at x with radii r (largest rmax) in the box [lo, hi], periodic along
- * the axes flagged in periodic (NULL: none; see cell_build). 0 or -1. */
+ * the axes flagged in periodic (NULL: none; see cell_build); keep (NULL: every pair) leaves
+ * pairs out.  0 or -1. */
 int nlist_build(struct nlist *nl, const double *x, const double *r, size_t n, const double lo[3],
-    const double hi[3], double rmax, double skin, const int *periodic);
-/* 1 when a pair may have come within range since the build. */
-int nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const double hi[3]);
+    const double hi[3], double rmax, double skin, const int *periodic, nlist_keep_fn keep, void *keep_ctx);
+/* 1 when a pair may have come within range since the build: twice the largest of a grain's
+ * non-affine displacement plus extra[i] (NULL: 0), plus the affine shortening, over the skin. */
+int nlist_stale(const struct nlist *nl, const double *x, const double lo[3], const double hi[3],
+    const double *extra);
 
 #ifdef __cplusplus
 }

@@ -623,6 +623,12 @@ axes_separation(const struct plate_body *a, const struct plate_body *b)
 	return best;
 }
 
+double
+plate_core_gap_bound(const struct plate_body *a, const struct plate_body *b)
+{
+	return axes_separation(a, b);
+}
+
 /* The interaction of a pair_set's cores (every feature, or those of a cache; feet as in
  * elements_find), its points moved back from a's centre to the lab frame. */
 static int

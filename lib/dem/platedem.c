@@ -42,7 +42,7 @@ pdem_free(struct pdem *d)
 {
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
-	free(d->pcache), free(d->q0), free(d->turn), free(d->wl);
+	free(d->pcache), free(d->q0), free(d->turn), free(d->turn_list), free(d->wl);
 	free(d->prec), free(d->sums), free(d->ptouch), free(d->frow), free(d->mob);
 	free(d->xrec), free(d->xslot), free(d->xin_first);
 	contact_enum_free(&d->ce);
@@ -119,6 +119,58 @@ pdem_shear_cache_margin(const struct pdem *d)
 	return fmin(PDEM_CACHE_MARGIN, fmax(0.005, 0.0075 * h / (double)np));
 }
 
+static void refresh_rotations(struct pdem *d);
+
+/* The list's pair test at its build (struct pdem's prune): two spheres are their bounding
+ * spheres; otherwise the cores' gap bound against r_i + r_j + skin, the skin the list is
+ * being built with. */
+static int
+cores_may_meet(void *ctx, size_t i, size_t j, const double dx[3])
+{
+	const struct pdem *d = ctx;
+	struct plate_body a, b;
+	int q;
+
+	if (d->half[i] == 0 && d->half[j] == 0)
+		return 1;
+	for (q = 0; q < 3; q++) {
+		a.x[q] = d->x[3 * i + q];
+		b.x[q] = a.x[q] - dx[q];
+	}
+	memcpy(a.R, d->R + 9 * i, sizeof a.R);
+	memcpy(b.R, d->R + 9 * j, sizeof b.R);
+	a.half = d->half[i], a.r = d->r[i];
+	b.half = d->half[j], b.r = d->r[j];
+	return plate_core_gap_bound(&a, &b) < a.r + b.r + d->ce.skin;
+}
+
+/* Before a build: the frames cores_may_meet reads, at the orientations of the build, and the
+ * turns since it start from zero. */
+static void
+list_prepare(void *ctx)
+{
+	struct pdem *d = ctx;
+
+	refresh_rotations(d);
+	memset(d->turn_list, 0, d->n * sizeof *d->turn_list);
+}
+
+/* A new enumerator over the bounding radii, pruned at each build when there are plates. */
+static int
+list_start(struct pdem *d, double skin)
+{
+	if (contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, d->law->history))
+		return -1;
+	if (!d->spheres) {
+		d->prune.keep = cores_may_meet;
+		d->prune.prepare = list_prepare;
+		d->prune.extra = d->turn_list;
+		d->prune.ctx = d;
+		contact_enum_prune(&d->ce, &d->prune);
+	}
+	return 0;
+}
+
 int
 pdem_start(struct pdem *d, double skin)
 {
@@ -137,13 +189,14 @@ pdem_start(struct pdem *d, double skin)
 		}
 	if (!d->spheres) {	/* what the plate pass keeps per grain */
 		d->turn = calloc(n, sizeof *d->turn), d->q0 = calloc(4 * n, sizeof *d->q0);
+		d->turn_list = calloc(n, sizeof *d->turn_list);
 		d->frow = calloc(6 * n, sizeof *d->frow);
-		if (!d->turn || !d->q0 || !d->frow) {
+		if (!d->turn || !d->q0 || !d->turn_list || !d->frow) {
 			msg_seterr("out of memory for %zu grains", n);
 			return -1;
 		}
 	}
-	return contact_enum_init(&d->ce, n, d->rb, d->lo, d->hi, d->periodic, skin, d->law->history);
+	return list_start(d, skin);
 }
 
 /* The pack's mean Young's modulus and Poisson ratio: the material of pdem_init's Hertz units. */
@@ -565,33 +618,52 @@ cache_carry(struct pdem *d)
 	return 0;
 }
 
-/* The rotations (rotation_refresh), and the caches' room and list (cache_carry) and the
- * grains' turns: each grain's turn is the sum over the passes of what its core's points moved
- * by turning from one pass to the next (core_turn), so that the turns of a pair's grains since
+/* The rotations (rotation_refresh) and the grains' turns, before the list is brought up to
+ * date: each grain's turn is the sum over the passes of what its core's points moved by
+ * turning from one pass to the next (core_turn), so that the turns of a pair's grains since
  * its cache was made, their sum then taken from their sum now, bound what turning moved a
- * point of either core, whatever the path.  A run's first pass, or one after its state was
- * read (cache_list 0), starts the turns afresh and makes every cache anew.  One loop over the
- * grains for both: each parallel region costs two threads a wake-up.  0 or -1. */
-static int
+ * point of either core, whatever the path; turn_list is the same sum since the list's build
+ * (its staleness).  A run's first pass, or one after its state was read (q0_set 0), starts
+ * the turns afresh.  One loop over the grains for both: each parallel region costs two
+ * threads a wake-up.  A pack of spheres: the rotations alone. */
+static void
 rotations_and_turns(struct pdem *d)
 {
 	size_t i;
-	int turns = d->cache_margin > 0;
 
-	if (turns && !d->cache_list) {	/* the turns from here */
+	if (!d->turn) {
+		refresh_rotations(d);
+		return;
+	}
+	if (!d->q0_set) {	/* the turns from here */
 		memcpy(d->q0, d->q, 4 * d->n * sizeof *d->q0);
 		memset(d->turn, 0, d->n * sizeof *d->turn);
+		d->q0_set = 1;
 	}
-	if (turns && d->cache_list != d->ce.rebuilds && cache_carry(d))
-		return -1;
 #pragma omp parallel for schedule(static) if (d->threads)
 	for (i = 0; i < d->n; i++) {
+		double t;
+
 		rotation_refresh(d, i);
-		if (turns) {
-			d->turn[i] += core_turn(d, i);
-			memcpy(d->q0 + 4 * i, d->q + 4 * i, sizeof *d->q0 * 4);
-		}
+		t = core_turn(d, i);
+		d->turn[i] += t;
+		d->turn_list[i] += t;
+		memcpy(d->q0 + 4 * i, d->q + 4 * i, sizeof *d->q0 * 4);
 	}
+}
+
+/* The list brought up to date for the current positions and orientations (pruned at its
+ * builds, struct pdem's prune), and with the narrow phase kept, the caches' room and list
+ * (cache_carry).  A run's first pass, or one after its state was read (cache_list 0), makes
+ * every cache anew.  0 or -1. */
+static int
+list_update(struct pdem *d, int force)
+{
+	rotations_and_turns(d);
+	if (contact_enum_update(&d->ce, d->x, force))
+		return -1;
+	if (d->turn && d->cache_margin > 0 && d->cache_list != d->ce.rebuilds && cache_carry(d))
+		return -1;
 	return 0;
 }
 
@@ -707,9 +779,7 @@ pdem_forces(struct pdem *d)
 	if (d->spheres)
 		return pdem_sphere_forces(d);
 	d->threads = par_threads() > 1 && nb > 1;
-	if (contact_enum_update(e, d->x, 0))
-		return -1;
-	if (rotations_and_turns(d) || records_fit(d) || pdem_sums_fit(d, nb))
+	if (list_update(d, 0) || records_fit(d) || pdem_sums_fit(d, nb))
 		return -1;
 #pragma omp parallel if (d->threads)
 	{
@@ -793,9 +863,10 @@ pdem_foreach_interaction(struct pdem *d, int rebuild, pdem_interaction_fn fn, vo
 {
 	struct interaction_pass ip = {d, fn, ctx};
 
-	if (contact_enum_update(&d->ce, d->x, rebuild))
+	if (d->spheres ? contact_enum_update(&d->ce, d->x, rebuild) : list_update(d, rebuild))
 		return -1;
-	refresh_rotations(d);
+	if (d->spheres)
+		refresh_rotations(d);
 	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_interaction, &ip) < 0 ? -1 : 0;
 }
 
@@ -993,7 +1064,7 @@ pdem_make_periodic(struct pdem *d, const int periodic[3])
 	d->rec_builds = d->x_builds = -1;	/* a new list: new entries */
 	for (i = 0; i < d->pcap; i++)
 		d->pcache[i].list = -1;
-	return contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, d->law->history);
+	return list_start(d, skin);
 }
 
 /* The frictional history of the pack's contact lines (pack-format.md), so that a static
@@ -1226,7 +1297,7 @@ pdem_state_read(struct pdem *d, struct lines *in)
 	}
 	if (contact_enum_history_set(&d->ce, d->x, m, ij, h))
 		goto out;
-	d->cache_list = 0;	/* the turns from here */
+	d->cache_list = 0, d->q0_set = 0;	/* the turns from here */
 	status = 0;
 out:
 	free(ij), free(h);

@@ -752,6 +752,72 @@ test_find_in(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* contact_enum_prune: keep leaves pairs out of every list (here the pairs of odd i + j),
+ * prepare runs before each build, and extra makes the list stale: a grain whose points may
+ * have moved by half the skin beyond its centre does, a hair less does not. */
+struct prune_probe {
+	int prepared;
+	double *extra;
+	size_t n;
+};
+
+static int
+keep_even(void *ctx, size_t i, size_t j, const double dx[3])
+{
+	(void)ctx, (void)dx;
+	return (i + j) % 2 == 0;
+}
+
+static void
+prepare_probe(void *ctx)
+{
+	struct prune_probe *pp = ctx;
+
+	pp->prepared++;
+	memset(pp->extra, 0, pp->n * sizeof *pp->extra);
+}
+
+static void
+test_prune(gsl_rng *rng)
+{
+	struct pack p;
+	struct contact_enum e;
+	struct prune_probe probe;
+	struct contact_prune pr;
+	double skin = 0.3e-4;
+	size_t i, k, odd = 0;
+	long built;
+
+	random_pack(&p, rng, 400, 1e-4, 0.6, 0.02);
+	probe.n = p.n, probe.prepared = 0, probe.extra = calloc(p.n, sizeof *probe.extra);
+	pr.keep = keep_even, pr.prepare = prepare_probe, pr.extra = probe.extra, pr.ctx = &probe;
+	CHECK(contact_enum_init(&e, p.n, p.r, p.box, p.box + 3, p.periodic, skin, 0) == 0, "prune: enumerator made");
+	contact_enum_prune(&e, &pr);
+	contact_enum_update(&e, p.x, 0);
+	for (i = 0; i < p.n; i++)
+		for (k = e.nl.first[i]; k < e.nl.first[i + 1]; k++)
+			odd += (i + e.nl.nbr[k]) % 2;
+	CHECK(e.nl.npairs > 100 && odd == 0 && probe.prepared == 1,
+	    "prune: the list holds only the pairs kept (%zu listed, %zu odd), prepared once", e.nl.npairs, odd);
+	built = e.rebuilds;
+	probe.extra[7] = skin / 2 * (1 - 1e-9);
+	contact_enum_update(&e, p.x, 0);
+	CHECK(e.rebuilds == built, "prune: a grain's extra motion below half the skin keeps the list");
+	probe.extra[7] = skin / 2 * (1 + 1e-9);
+	contact_enum_update(&e, p.x, 0);
+	CHECK(e.rebuilds == built + 1 && probe.prepared == 2 && probe.extra[7] == 0,
+	    "prune: above half the skin the list is rebuilt (prepared again, extra zeroed)");
+	contact_enum_prune(&e, NULL);
+	contact_enum_update(&e, p.x, 0);
+	for (i = 0, odd = 0; i < p.n; i++)
+		for (k = e.nl.first[i]; k < e.nl.first[i + 1]; k++)
+			odd += (i + e.nl.nbr[k]) % 2;
+	CHECK(odd > 0 && e.rebuilds == built + 2, "prune: removed, the next list holds every pair (%zu odd)", odd);
+	contact_enum_free(&e);
+	free(probe.extra);
+	pack_free(&p);
+}
+
 /* A skin that follows the motion (contact_enum_skin_auto) finds what a fixed skin finds,
  * record for record, after every move: small moves keep the small first skin (a sixth of
  * the ceiling) and one list; moves of a few skins per update grow it to the ceiling. */
@@ -879,6 +945,7 @@ main(void)
 	test_nan_energy(rng);
 	test_find_in(rng);
 	test_skin_auto(rng);
+	test_prune(rng);
 	test_hertz_coefficients(rng);
 	test_law_table(rng);
 	test_linear_elements(rng);

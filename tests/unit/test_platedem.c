@@ -505,11 +505,12 @@ test_pack_at_rest(void)
 
 /* A box of plates (eta 0.8 and 0.14, with a few spheres among them) thrown together: random
  * orientations on a loose lattice, random velocities and spins, periodic along x and z.  Run
- * for `steps` steps from the same start with the narrow phase cached (margin as given) and
- * on `threads` threads; the state after, to compare bitwise. */
+ * for `steps` steps from the same start with the narrow phase cached (margin as given), the
+ * list pruned at its builds or not (prune), on `threads` threads; the state after, to compare
+ * bitwise, and the listed pairs summed over the steps. */
 static int
-run_box(double eta, double margin, int threads, long steps, double *state, long *cache_builds, long *lists,
-    size_t *nelem)
+run_box(double eta, double margin, int prune, int threads, long steps, double *state, long *cache_builds, long *lists,
+    size_t *nelem, size_t *listed)
 {
 	struct pack p;
 	struct pdem d;
@@ -541,18 +542,21 @@ run_box(double eta, double margin, int threads, long steps, double *state, long 
 		return -1;
 	}
 	d.cache_margin = margin;
+	if (!prune)
+		contact_enum_prune(&d.ce, NULL);
 	for (k = 0; k < 3 * n; k++) {
 		u[k % 3] = 2 * gsl_rng_uniform(rng) - 1;
 		d.v[k] = 0.02 * u[k % 3];
 		d.w[k] = 0.0002 * (2 * gsl_rng_uniform(rng) - 1);
 	}
-	*nelem = 0;
+	*nelem = *listed = 0;
 	for (s = 0; s < steps; s++) {
 		if (pdem_forces(&d)) {
 			CHECK(0, "cached DEM: pdem_forces: %s", msg_geterr());
 			return -1;
 		}
 		*nelem += d.nelem;
+		*listed += d.ce.nl.npairs;
 		pdem_integrate(&d);
 		pdem_wrap(&d);
 	}
@@ -571,15 +575,88 @@ run_box(double eta, double margin, int threads, long steps, double *state, long 
 	return (int)n;
 }
 
-/* The persistent narrow phase and the threads change no bit of the dynamics: the same box
- * run with every feature computed at every step (margin 0), with the cache, and with the
- * cache on two threads (the blocks are 16 grains, QUSGM_PAR_BLOCK), through thousands of
- * collisions, cache remakes and lists rebuilt (whose pairs listed again keep their caches). */
+/* Two plates (eta 0.8) side by side in one plane, their cores' gap wider than r_i + r_j plus
+ * the skin: the list's build leaves them out.  One spins about its normal without moving:
+ * its corners reach the other by turning alone, which only the turn in the list's staleness
+ * (turn_list) sees.  Run with the pruned list and with every bounding-sphere pair (margin 0,
+ * no pruning); the state after each step's forces into state (19 doubles per grain per
+ * step), the elements met into *nelem and the lists built into *lists. */
+static void
+run_spinning_pair(int prune, long steps, double *state, size_t *nelem, long *lists)
+{
+	struct pack p;
+	struct pdem d;
+	struct pdem_params pp;
+	double eta = 0.8, R = 1 / (1 - eta), r = shape_spheroradius(R, eta), L = shape_plate_side(R, eta, SHAPE_R_EDGE);
+	double skin = 0.1 * (r + L / 2 * M_SQRT2), x[3] = {0, 0, 0};
+	static double side[2], q[8] = {1, 0, 0, 0, 1, 0, 0, 0};
+	long s;
+
+	pack_init(&p);
+	pack_add_grain(&p, 1, x, r, 1e9, 0.2, 1);
+	x[0] = L + 2 * r + skin + 0.05 * r;	/* the cores' gap: 2 r + skin + 0.05 r */
+	pack_add_grain(&p, 2, x, r, 1e9, 0.2, 1);
+	side[0] = side[1] = L;
+	p.side = side, p.q = q;
+	p.box[0] = p.box[1] = p.box[2] = -4 * L, p.box[3] = p.box[4] = p.box[5] = 4 * L;
+	pdem_params_default(&pp);
+	*nelem = 0;
+	if (pdem_init(&d, &p, &pp)) {
+		CHECK(0, "spinning pair: pdem_init: %s", msg_geterr());
+		p.side = p.q = NULL;
+		pack_free(&p);
+		return;
+	}
+	if (!prune) {
+		contact_enum_prune(&d.ce, NULL);
+		d.cache_margin = 0;
+	}
+	d.w[2] = 0.35 / (400 * d.dt);	/* 20 degrees in 400 steps, about its normal (body axis 3) */
+	for (s = 0; s < steps; s++) {
+		if (pdem_forces(&d))
+			break;
+		*nelem += d.nelem;
+		memcpy(state + 19 * 2 * s, d.x, 6 * sizeof *state);
+		memcpy(state + 19 * 2 * s + 6, d.q, 8 * sizeof *state);
+		memcpy(state + 19 * 2 * s + 14, d.f, 6 * sizeof *state);
+		memcpy(state + 19 * 2 * s + 20, d.t, 6 * sizeof *state);
+		memcpy(state + 19 * 2 * s + 26, d.w, 6 * sizeof *state);
+		pdem_integrate(&d);
+	}
+	*lists = d.ce.rebuilds;
+	pdem_free(&d);
+	p.side = p.q = NULL;
+	pack_free(&p);
+}
+
+static void
+test_prune_turning(void)
+{
+	long steps = 800, l0, l1;
+	size_t len = (size_t)steps * 19 * 2, e0, e1;
+	double *s0 = calloc(len, sizeof *s0), *s1 = calloc(len, sizeof *s1);
+
+	run_spinning_pair(0, steps, s0, &e0, &l0);
+	run_spinning_pair(1, steps, s1, &e1, &l1);
+	CHECK(e1 > 0 && e0 == e1 && !memcmp(s0, s1, len * sizeof *s0) && l1 > 1,
+	    "pruned list: a plate that turns into a neighbour left out of the list meets it (%zu element-steps, %zu "
+	    "without pruning), step for step the same bits; %ld lists built (the turn made them stale)", e1, e0, l1);
+	free(s0), free(s1);
+}
+
+/* The persistent narrow phase, the list's pruning and the threads change no bit of the
+ * dynamics: the same box run with every feature computed at every step (margin 0) on a list
+ * of every pair whose bounding spheres are within the skin, with the cache on the pruned
+ * list, and so on two threads (the blocks are 16 grains, QUSGM_PAR_BLOCK), through thousands
+ * of collisions, cache remakes and lists rebuilt (whose pairs listed again keep their
+ * caches).  A pair left out of a list that came to touch before the next one would change the
+ * bits; the turns that make a list stale are tested by test_prune_turning (this box's grains
+ * turn too little to need them). */
 static void
 test_cache_and_threads(void)
 {
 	static const double etas[2] = {0.8, 0.14};
-	size_t len = 19 * 6 * 6 * 8, e0, e1, e2;
+	size_t len = 19 * 6 * 6 * 8, e0, e1, e2, l0, l1, l2;
 	double *s0 = malloc(len * sizeof *s0), *s1 = malloc(len * sizeof *s1), *s2 = malloc(len * sizeof *s2);
 	/* 300 steps in the sanitizer build (26 of its 36 s of CPU were these 6000 steps at 1000):
 	 * at 300 the counts below still pass their floors several times over (1000 steps made
@@ -588,14 +665,16 @@ test_cache_and_threads(void)
 	int k;
 
 	for (k = 0; k < 2; k++) {
-		if (run_box(etas[k], 0, 1, steps, s0, &b0, &p0, &e0) < 0 ||
-		    run_box(etas[k], PDEM_CACHE_MARGIN, 1, steps, s1, &b1, &p1, &e1) < 0 ||
-		    run_box(etas[k], PDEM_CACHE_MARGIN, 2, steps, s2, &b2, &p2, &e2) < 0)
+		if (run_box(etas[k], 0, 0, 1, steps, s0, &b0, &p0, &e0, &l0) < 0 ||
+		    run_box(etas[k], PDEM_CACHE_MARGIN, 1, 1, steps, s1, &b1, &p1, &e1, &l1) < 0 ||
+		    run_box(etas[k], PDEM_CACHE_MARGIN, 1, 2, steps, s2, &b2, &p2, &e2, &l2) < 0)
 			break;
 		CHECK(!memcmp(s0, s1, len * sizeof *s0) && e0 == e1 && e1 > (size_t)steps * 10 && b1 > 1000 && p1 > 10,
-		    "cached DEM eta %.2f: %ld steps with the narrow phase cached (%ld caches made, %ld lists built) end in the "
-		    "same bits as with every feature at every step, through %zu element contacts", etas[k], steps, b1, p1,
-		    e1);
+		    "cached DEM eta %.2f: %ld steps with the narrow phase cached on the pruned list (%ld caches made, %ld "
+		    "lists built, %ld without pruning) end in the same bits as with every feature at every step on every "
+		    "pair, through %zu element contacts", etas[k], steps, b1, p1, p0, e1);
+		CHECK(l1 < l0, "cached DEM eta %.2f: the pruned lists hold %.2f of the pairs (%zu against %zu pair-steps)",
+		    etas[k], (double)l1 / (double)l0, l1, l0);
 		CHECK(!memcmp(s1, s2, len * sizeof *s1) && e1 == e2,
 		    "cached DEM eta %.2f: two threads give the same bits as one", etas[k]);
 	}
@@ -607,6 +686,7 @@ main(void)
 {
 	setenv("QUSGM_PAR_BLOCK", "16", 1);	/* before any use of base/par.h */
 	test_cache_and_threads();
+	test_prune_turning();
 	test_shape_monte_carlo();
 	test_free_rotation();
 	test_restitution();
