@@ -469,11 +469,11 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 	/* cores that cannot touch yet (two spheres keep no cache) */
 	if (!build && !(pc->word & PLATE_CACHE_FEATURES) && (d->half[i] > 0 || d->half[j] > 0))
 		return 0;
-	for (q = 0; q < 3; q++) {
+	for (q = 0; q < 3; q++) {	/* xj written as it is made: a copy of b.x read back 16 bytes at
+					 * a time what was just stored 8 at a time, a stall per pair */
 		a.x[q] = d->x[3 * i + q];
-		b.x[q] = a.x[q] - c->dx[q];
+		b.x[q] = xj[q] = a.x[q] - c->dx[q];
 	}
-	memcpy(xj, b.x, sizeof b.x);
 	a.half = d->half[i], a.r = d->r[i];
 	b.half = d->half[j], b.r = d->r[j];
 	if (a.half > 0 || b.half > 0) {	/* two spheres need no frame */
@@ -883,6 +883,8 @@ static void
 euler_midpoint(double w[3], const double J[3], const double tau[3], double dt)
 {
 	double w0[3] = {w[0], w[1], w[2]}, wn[3], m[3];
+	/* out of the loop (the compiler may not: w may alias J), the same numbers */
+	const double mob[3] = {dt / J[0], dt / J[1], dt / J[2]}, dJ[3] = {J[1] - J[2], J[2] - J[0], J[0] - J[1]};
 	int it, a;
 
 	for (it = 0; it < 20; it++) {
@@ -892,7 +894,7 @@ euler_midpoint(double w[3], const double J[3], const double tau[3], double dt)
 			m[a] = 0.5 * (w0[a] + w[a]);
 		for (a = 0; a < 3; a++) {
 			int b = (a + 1) % 3, c = (a + 2) % 3;
-			wn[a] = w0[a] + dt / J[a] * (tau[a] + (J[b] - J[c]) * m[b] * m[c]);
+			wn[a] = w0[a] + mob[a] * (tau[a] + dJ[a] * m[b] * m[c]);
 			change = fmax(change, fabs(wn[a] - w[a]));
 		}
 		memcpy(w, wn, sizeof wn);
