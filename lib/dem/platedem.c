@@ -741,14 +741,10 @@ pdem_sums_total(struct pdem *d, size_t nb)
 	}
 }
 
-/* The first block of thread t's share of nb blocks of bl grains among T threads (t = T: nb):
- * runs of whole blocks of about equal work, measured by the list's pairs plus a grain's own
- * share (its walls and set-up, about two pairs' worth).  The rows of a spatially ordered half
- * list are not equal: a grain's pairs across a periodic face sit in the row of the lower
- * number, so the first rows carry the wrapped pairs.  Which thread takes a block changes no
- * byte (pdem_forces). */
-static size_t
-blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t)
+/* The rows of a spatially ordered half list are not equal: a grain's pairs across a periodic
+ * face sit in the row of the lower number, so the first rows carry the wrapped pairs. */
+size_t
+pdem_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t)
 {
 	size_t n = nl->n, b;
 	double total = (double)nl->first[n] + 2.0 * (double)n, want = total * (double)t / (double)T;
@@ -784,9 +780,9 @@ pdem_forces(struct pdem *d)
 #pragma omp parallel if (d->threads)
 	{
 		size_t team = (size_t)par_team(), tid = (size_t)par_tid();
-		size_t b0 = blocks_share(&e->nl, bl, nb, team, tid), b1 = blocks_share(&e->nl, bl, nb, team, tid + 1), bb;
+		size_t b0 = pdem_blocks_share(&e->nl, bl, nb, team, tid), b1 = pdem_blocks_share(&e->nl, bl, nb, team, tid + 1), bb;
 
-		/* each thread a run of blocks, of about equal work (blocks_share): so the records,
+		/* each thread a run of blocks, of about equal work (pdem_blocks_share): so the records,
 		 * rotations and rows it writes stay mostly in its own core's cache (blocks taken
 		 * as they come cost two threads 10 % more CPU at 8000 plates; equal runs of grains,
 		 * a third more time on the first thread than on the second) */

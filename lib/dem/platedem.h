@@ -32,6 +32,8 @@
  * damping and a viscous loss (P uses neither; packgen uses them to reach rest sooner: they
  * remove kinetic energy, not the equilibrium).
  *
+ * The list holds the pairs whose bounding spheres are within the skin and, of plates, whose
+ * cores may be (pruned at its build by a gap bound; it goes stale on turns as well as moves).
  * The narrow phase is kept between steps: per listed pair, the features (vertex-square, edge
  * pairs) that can be within reach while the pair's cores move against each other by less
  * than cache_margin (contact/plate.h's plate_interaction_cached; the same elements to the
@@ -262,6 +264,11 @@ pdem_count(const struct pdem *d, size_t i, long j, const double br[3], const dou
 	sums->nelem += (size_t)m;
 	sums->sum_f += sqrt(Fc[0] * Fc[0] + Fc[1] * Fc[1] + Fc[2] * Fc[2]);
 }
+/* The first block of thread t's share of nb blocks of bl grains among T threads (t = T: nb),
+ * for both passes: runs of whole blocks of about equal work, measured by list nl's pairs
+ * plus a grain's own share (its walls and set-up, about two pairs' worth).  Which thread
+ * takes a block changes no byte. */
+size_t pdem_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t);
 /* Room for nb blocks' sums (0 or -1), and their total in block order into the engine's. */
 int pdem_sums_fit(struct pdem *d, size_t nb);
 void pdem_sums_total(struct pdem *d, size_t nb);

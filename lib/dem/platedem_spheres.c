@@ -11,7 +11,8 @@
  * chain; the divider does two lanes in the time of one, and the two chains overlap).
  *
  * Threads with the same bytes for any number (base/par.h): each thread takes a run of whole
- * blocks of grains (par_block(n), fixed by n).  A pair's force goes into both grains; where
+ * blocks of grains (par_block(n), fixed by n) of about equal list pairs (pdem_blocks_share,
+ * as the plate pass).  A pair's force goes into both grains; where
  * j is a later thread's, the pair is computed first (pass 1, so that its tangential spring
  * advances once) and j's thread gathers it before walking its own rows.  Every grain's sum
  * then has the one-pass walk's terms in its order: the pairs (m, j) by ascending m, then j's
@@ -318,7 +319,7 @@ cross_slots(struct pdem *d, size_t T)
 	if (!d->xslot || !d->xin_first || !fill)
 		goto oom;
 	for (t = 0; t < T; t++) {
-		size_t g0 = nb * t / T * bl, g1 = nb * (t + 1) / T * bl;
+		size_t g0 = pdem_blocks_share(nl, bl, nb, T, t) * bl, g1 = pdem_blocks_share(nl, bl, nb, T, t + 1) * bl;
 		g0 = g0 < n ? g0 : n, g1 = g1 < n ? g1 : n;
 		for (i = g0; i < g1; i++)
 			for (k = nl->first[i]; k < nl->first[i + 1]; k++)
@@ -332,7 +333,7 @@ cross_slots(struct pdem *d, size_t T)
 	for (k = 0; k <= d->xin_first[n]; k++)
 		d->xrec[k].stamp = -1;
 	for (t = 0; t < T; t++) {
-		size_t g0 = nb * t / T * bl, g1 = nb * (t + 1) / T * bl;
+		size_t g0 = pdem_blocks_share(nl, bl, nb, T, t) * bl, g1 = pdem_blocks_share(nl, bl, nb, T, t + 1) * bl;
 		g0 = g0 < n ? g0 : n, g1 = g1 < n ? g1 : n;
 		for (i = g0; i < g1; i++)
 			for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
@@ -374,7 +375,7 @@ pdem_sphere_forces(struct pdem *d)
 #pragma omp parallel if (d->threads)
 	{
 		size_t T = (size_t)par_team(), t = (size_t)par_tid(), b, i, s;
-		size_t b0 = nb * t / T, b1 = nb * (t + 1) / T;
+		size_t b0 = pdem_blocks_share(&e->nl, bl, nb, T, t), b1 = pdem_blocks_share(&e->nl, bl, nb, T, t + 1);
 		size_t g0 = b0 * bl < n ? b0 * bl : n, g1 = b1 * bl < n ? b1 * bl : n;
 		long calls = 0;
 
