@@ -265,9 +265,8 @@ pdem_count(const struct pdem *d, size_t i, long j, const double br[3], const dou
 	sums->sum_f += sqrt(Fc[0] * Fc[0] + Fc[1] * Fc[1] + Fc[2] * Fc[2]);
 }
 /* The first block of thread t's share of nb blocks of bl grains among T threads (t = T: nb),
- * for both passes: runs of whole blocks of about equal work, measured by list nl's pairs
- * plus a grain's own share (its walls and set-up, about two pairs' worth).  Which thread
- * takes a block changes no byte. */
+ * for both passes: runs of whole blocks of about equal work, measured by list nl's pairs.
+ * Which thread takes a block changes no byte. */
 size_t pdem_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t);
 /* Room for nb blocks' sums (0 or -1), and their total in block order into the engine's. */
 int pdem_sums_fit(struct pdem *d, size_t nb);
