@@ -881,25 +881,27 @@ local_damping(double f, double v, double alpha)
 static void
 euler_midpoint(double w[3], const double J[3], const double tau[3], double dt)
 {
-	double w0[3] = {w[0], w[1], w[2]}, wn[3], m[3];
-	/* out of the loop (the compiler may not: w may alias J), the same numbers */
-	const double mob[3] = {dt / J[0], dt / J[1], dt / J[2]}, dJ[3] = {J[1] - J[2], J[2] - J[0], J[0] - J[1]};
-	int it, a;
+	/* written out component by component, in locals (w may alias J, so the compiler would
+	 * reload and divide at every iteration): the same operations, so the same numbers, as
+	 * the loop over a with b, c = a + 1, a + 2 (mod 3) */
+	const double w0 = w[0], w1 = w[1], w2 = w[2];
+	const double mob0 = dt / J[0], mob1 = dt / J[1], mob2 = dt / J[2];
+	const double dJ0 = J[1] - J[2], dJ1 = J[2] - J[0], dJ2 = J[0] - J[1];
+	double x0 = w0, x1 = w1, x2 = w2;
+	int it;
 
 	for (it = 0; it < 20; it++) {
-		double change = 0;
+		double m0 = 0.5 * (w0 + x0), m1 = 0.5 * (w1 + x1), m2 = 0.5 * (w2 + x2);
+		double n0 = w0 + mob0 * (tau[0] + dJ0 * m1 * m2);
+		double n1 = w1 + mob1 * (tau[1] + dJ1 * m2 * m0);
+		double n2 = w2 + mob2 * (tau[2] + dJ2 * m0 * m1);
+		double change = fmax(fmax(fmax(0, fabs(n0 - x0)), fabs(n1 - x1)), fabs(n2 - x2));
 
-		for (a = 0; a < 3; a++)
-			m[a] = 0.5 * (w0[a] + w[a]);
-		for (a = 0; a < 3; a++) {
-			int b = (a + 1) % 3, c = (a + 2) % 3;
-			wn[a] = w0[a] + mob[a] * (tau[a] + dJ[a] * m[b] * m[c]);
-			change = fmax(change, fabs(wn[a] - w[a]));
-		}
-		memcpy(w, wn, sizeof wn);
-		if (change <= 1e-15 * (fabs(wn[0]) + fabs(wn[1]) + fabs(wn[2])))
+		x0 = n0, x1 = n1, x2 = n2;
+		if (change <= 1e-15 * (fabs(n0) + fabs(n1) + fabs(n2)))
 			break;
 	}
+	w[0] = x0, w[1] = x1, w[2] = x2;
 }
 
 /* Grain i's leapfrog translation: Cundall's local damping removes a fraction al of the force
