@@ -862,10 +862,8 @@ pdem_foreach_interaction(struct pdem *d, int rebuild, pdem_interaction_fn fn, vo
 {
 	struct interaction_pass ip = {d, fn, ctx};
 
-	if (d->spheres ? contact_enum_update(&d->ce, d->x, rebuild) : list_update(d, rebuild))
+	if (list_update(d, rebuild))
 		return -1;
-	if (d->spheres)
-		refresh_rotations(d);
 	return contact_foreach(&d->ce, d->x, CONTACT_NEAR, on_interaction, &ip) < 0 ? -1 : 0;
 }
 
