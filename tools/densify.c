@@ -249,14 +249,14 @@ read_pack(const char *input, struct pack *p)
 	size_t i;
 	int a;
 
-	const char *name = input && strcmp(input, "-") != 0 ? input : "<stdin>";
+	const char *name = file_display_name(input);
 
 	if (pack_read_path(input, p))
 		msg_die_err(EXIT_DATA);
 	if (pack_require_spheres(p, "densify"))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
-	if (pack_claim_hertz(p))
-		msg_die_err(EXIT_DATA);
+	if (!contact_law_of_pack(p))	/* densify runs any law of the table (qs/functional.c) */
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	if (p->n < 5)
 		msg_die(EXIT_DATA, "%s: %zu grains: densify needs at least 5", name, p->n);
 	for (a = 0; a < 3; a++)
@@ -265,7 +265,7 @@ read_pack(const char *input, struct pack *p)
 				msg_die(EXIT_DATA, "the box is thinner than grain %ld along %c", p->id[i], 'x' + a);
 }
 
-/* --stress within Hertz's small strains (hertz_stress_in_range), and not too far below the
+/* --stress within the law's range (Hertz: small strains, hertz_stress_in_range), and not too far below the
  * moduli; checked here, where the pack is known. */
 static void
 check_stress(const struct pack *p)
@@ -275,7 +275,9 @@ check_stress(const struct pack *p)
 
 	for (i = 0; i < p->n; i++)
 		Emean += p->E[i] / p->n;
-	if (hertz_stress_in_range(p, o.dp.stress))
+	const struct contact_law *law = contact_law_of_pack(p);
+
+	if (law->stress_in_range(law, p, o.dp.stress))
 		msg_die(EXIT_USAGE, "--stress %s", msg_geterr());
 	/* a target this far below the moduli is no jammed pack the minimisers can resolve:
 	 * --stress 1e-300 ran 74 s before failing */
@@ -369,7 +371,7 @@ main(int argc, char **argv)
 	/* a resumed run's state is the checkpoint's */
 	if (resumed && (size_t)snprintf(ckname, sizeof ckname, "%s (resumed)", o.checkpoint) >= sizeof ckname)
 		strcpy(ckname, "the checkpoint");
-	check_stop(r, &logout, &last, resumed ? ckname : st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>");
+	check_stop(r, &logout, &last, resumed ? ckname : file_display_name(st.input));
 	densify_resume_clear(&p);
 	pack_unset_meta(&p, CK_CLOCK);
 	if (o.checkpoint)

@@ -8,7 +8,6 @@
 #include "base/table.h"
 #include "base/fileio.h"
 #include "base/lines.h"
-#include "contact/hertz.h"
 #include "contact/law.h"
 #include "dem/plateshear.h"
 #include "pack/pack.h"
@@ -53,7 +52,7 @@ static struct cli_opt opt_table[] = {
 	{"profile-bins", 0, CLI_LONG, &o.bins, "N", "bins of y / y_w in the profile", NULL},
 	{"snapshots", 0, CLI_STRING, &o.snapshots, "G1,G2,...", "write the pack at these strains, to PREFIX-G.pack", NULL},
 	{"snapshot-prefix", 0, CLI_STRING, &o.prefix, "PREFIX", "file name prefix of the snapshots", NULL},
-	{"law", 0, CLI_STRING, &o.law, "NAME", "contact law: hertz-mindlin (or hertz) or linear (default: the pack's meta contact-law; none: hertz-mindlin)", NULL},
+	{"law", 0, CLI_STRING, &o.law, "NAME", NULL, NULL},	/* its help from the table: parse_args */
 	{"kn", 0, CLI_DOUBLE, &o.kn, "N/M", "linear law: normal stiffness of an element contact (default: the pack's meta kn)", "N/m"},
 	{"kt", 0, CLI_DOUBLE, &o.kt, "N/M", "linear law: tangential stiffness (default: the pack's meta kt, else --kn)", "N/m"},
 	{"restitution", 0, CLI_DOUBLE, &o.restitution, "E", "restitution coefficient, [0.21, 1] (default: the pack's meta, else 0.6)", NULL},
@@ -137,6 +136,15 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	o.sp.profile_from = NAN;
 	o.sp.inertial = NAN;
 	cli_output_help("write the final pack to FILE (atomically; .gz compresses); the table always goes to stdout");
+	{
+		static char law_help[512];
+		struct cli_opt *opt;
+
+		contact_law_option_help(law_help, sizeof law_help);
+		for (opt = opt_table; opt->name; opt++)
+			if (!strcmp(opt->name, "law"))
+				opt->help = law_help;
+	}
 	cli_parse(&tool, argc, argv, st);
 	if (!(o.sp.strain > 0 && o.sp.strain <= 100))
 		cli_usage_error("--strain: must be in (0, 100]");
@@ -191,56 +199,24 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		o.sp.profile_from = 0.6 * o.sp.strain;
 }
 
-/* The contact law: --law, else the pack's contact-law key (none: Hertz-Mindlin).  The linear
- * law's stiffnesses: options, else the pack's meta lines (packgen writes them); Hertz's: the
- * pack's materials (E, nu).  The rest: options, else the pack's meta lines, else P's.  The
- * output pack and the snapshots record the law. */
+/* The contact law and its constants (plateshear_choose_law): --law, else the pack's; the
+ * output pack and the snapshots record them.  Hertz: the mean grains' E* and the run's kappa
+ * for the header. */
 static void
 set_law(struct pack *p, const char *in)
 {
-	const struct contact_law *law = contact_law_choose(p, o.law);
-	double v;
+	struct shear_law_choice ch = {o.law, o.kn, o.kt, o.restitution, o.mu, o.wall_mu, o.kappa};
+	const struct contact_law *law;
+	int r = plateshear_choose_law(p, &ch, &o.sp, &law);
 
-	if (!law)
-		msg_die(EXIT_DATA, "%s: %s", in, msg_geterr());
-	if (law == &contact_law_linear) {
-		if (isnan(o.kn) && pack_get_meta_double(p, "kn", &o.kn))
-			msg_die(EXIT_DATA, "%s: no meta kn (the normal stiffness packgen --shape spheroplate records): give --kn", in);
-		if (isnan(o.kt))
-			o.kt = pack_get_meta_double(p, "kt", &v) == 0 ? v : o.kn;
-		o.sp.dyn.kn = o.kn, o.sp.dyn.kt = o.kt;
-	} else if (!isnan(o.kn) || !isnan(o.kt)) {
-		msg_die(EXIT_USAGE, "%s: --kn and --kt are the linear law's; under %s the stiffness is the grains' E and nu "
-		    "(--law linear for the linear law)", in, law->name);
-	}
-	pdem_params_law(&o.sp.dyn, law);
-	if (isnan(o.restitution))
-		o.restitution = pack_get_meta_double(p, "restitution", &v) == 0 ? v : 0.6;
-	if (isnan(o.mu))
-		o.mu = p->mu;
-	if (isnan(o.wall_mu))
-		o.wall_mu = p->wall_mu;
-	if (!isnan(o.kappa))
-		o.sp.sigma_w = pdem_kappa_stress(p, &o.sp.dyn, o.kappa);
-	if (o.sp.sigma_w == 0 && pack_get_meta_double(p, "sigma0", &o.sp.sigma_w))
-		msg_die(EXIT_DATA, "%s: no meta sigma0 (the compaction stress packgen records for plates): give --stress or --kappa", in);
-	if (!(o.sp.sigma_w > 0 && isfinite(o.sp.sigma_w)))
-		msg_die(EXIT_DATA, "%s: the normal stress %g Pa: must be positive (--stress, --kappa, or meta sigma0)", in, o.sp.sigma_w);
-	if (!(o.restitution >= 0.21 && o.restitution <= 1))
-		msg_die(EXIT_DATA, "%s: meta restitution %g: must be in [0.21, 1]; give --restitution", in, o.restitution);
-	o.sp.dyn.restitution = o.restitution;
-	o.sp.dyn.mu = o.mu, o.sp.dyn.wall_mu = o.wall_mu;
-	p->mu = o.mu, p->wall_mu = o.wall_mu;
-	if (law != &contact_law_linear) {
-		if (hertz_stress_in_range(p, o.sp.sigma_w))
-			msg_die(EXIT_USAGE, "%s: sigma_w %s", in, msg_geterr());
+	if (r)
+		msg_die(r == -2 ? EXIT_USAGE : EXIT_DATA, "%s: %s", in, msg_geterr());
+	o.kn = o.sp.dyn.kn, o.kt = o.sp.dyn.kt, o.restitution = o.sp.dyn.restitution;
+	o.mu = o.sp.dyn.mu, o.wall_mu = o.sp.dyn.wall_mu;
+	if (law->stiffness == LAW_MODULI) {
 		o.Estar = pdem_mean_Estar(p);
 		o.kappa_run = pdem_kappa(p, &o.sp.dyn, o.sp.sigma_w);
-		if (!(o.Estar > 0 && isfinite(o.Estar)))
-			msg_die(EXIT_DATA, "%s: the grains' mean E* %g Pa: %s needs the grains' E and nu", in, o.Estar, law->name);
 	}
-	if (contact_law_claim(p, law))
-		msg_die_err(EXIT_DATA);
 }
 
 /* The run: its table so far (also kept in a memory stream for the checkpoint, whose next
@@ -279,10 +255,10 @@ print_header(FILE *fp, double inertial)
 {
 	fprintf(fp, "## qusgm shear %s: simple shear along x, walls on y (the bottom fixed, the top at sigma_w), x and z periodic\n",
 	    QUSGM_VERSION);
-	if (o.sp.dyn.law == &contact_law_linear)
-		fprintf(fp, "## sigma_w %g Pa, I %g, mu %g, wall mu %g, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
+	if (o.sp.dyn.law->stiffness == LAW_SPRING)
+		fprintf(fp, "## sigma_w %g Pa, I %g, mu %g, wall mu %g, %s law, kn %g N/m, kt %g N/m, e %g; each row the mean over its steps; "
 		       "sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
-		    o.sp.sigma_w, inertial, o.mu, o.wall_mu, o.kn, o.kt, o.restitution);
+		    o.sp.sigma_w, inertial, o.mu, o.wall_mu, o.sp.dyn.law->name, o.kn, o.kt, o.restitution);
 	else
 		fprintf(fp, "## sigma_w %g Pa, I %g, mu %g, wall mu %g, %s law, E* %g Pa, kappa (E*/sigma_w)^(2/3) %g, kt/kn %g, e %g; "
 		       "each row the mean over its steps; sig_* the pair stress of P eq. 7, q/p in the xy plane\n",
@@ -487,7 +463,7 @@ main(int argc, char **argv)
 
 	msg_init(argv[0]);
 	parse_args(argc, argv, &st);
-	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
+	in = file_display_name(st.input);
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
 	set_law(&p, in);

@@ -7,7 +7,6 @@
 #include "analysis/fabric.h"
 #include "contact/hertz.h"
 #include "contact/law.h"
-#include "contact/linear.h"
 #include "contact/plate.h"
 #include "pack/shape.h"
 
@@ -685,7 +684,7 @@ struct plate_pass {
 	const struct pack *p;
 	struct plate_grains g;
 	const long *keys;	/* the pack's history keys, or NULL */
-	double kn;		/* N/m, or NaN: no forces */
+	const struct contact_law *law;	/* the pack's, or NULL: no forces (a spring law without meta kn) */
 	unsigned *z;		/* interactions per grain */
 	size_t zends_free;	/* interactions' ends on free grains */
 	double *F;		/* net force per grain (3n) */
@@ -791,6 +790,7 @@ on_plate_record(const struct contact *c, void *v)
 	struct plate_pass *pp = v;
 	struct plate_measures *m = pp->m;
 	struct plate_interaction it;
+	struct law_pair lp;
 	const double *n = it.n, *xi = pp->p->x + 3 * c->i;
 	double F[3] = {0, 0, 0}, Q[3] = {0, 0, 0}, P = 0, hsum = 0, foot[3] = {0, 0, 0}, arm[3], xj[3], fk[3];
 	size_t i = c->i;
@@ -810,7 +810,7 @@ on_plate_record(const struct contact *c, void *v)
 		pp->z[j]++, m->contacts_gg++;
 	m->elements += (size_t)it.m;
 	m->by_elements[it.m < 3 ? it.m - 1 : 2]++;
-	if (isnan(pp->kn)) {
+	if (!pp->law) {
 		/* no forces: the geometry of the pair for the descriptors */
 		const double zero[3] = {0, 0, 0};
 
@@ -820,16 +820,19 @@ on_plate_record(const struct contact *c, void *v)
 			return -1;
 		return described ? fabric_add(pp, n, arm, zero, 0) : 0;
 	}
+	pp->law->pair(pp->law, pp->p, i, j, &lp);
 	for (k = 0; k < it.m; k++) {
-		double h = fmax(it.e[k].h, 0);
+		double h = fmax(it.e[k].h, 0), Pk = 0;
 
-		P += linear_force(pp->kn, h);
+		if (h > 0)	/* the element's elastic force, by the pack's law */
+			pp->law->normal(pp->law, &lp, h, &Pk, NULL);
+		P += Pk;
 		if (wall) {
 			/* the element's own lever: its foot on the wall plane */
 			for (a = 0; a < 3; a++) {
 				arm[a] = xi[a] - it.e[k].pj[a];
 				foot[a] += h * it.e[k].pj[a];
-				fk[a] = linear_force(pp->kn, h) * n[a];
+				fk[a] = Pk * n[a];
 			}
 			add_dyad(m->sig_lw, arm, fk);
 			hsum += h;
@@ -917,14 +920,17 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	struct contact_enum ce;
 	struct plate_pass pass;
 	double *R = malloc(9 * p->n * sizeof *R), *half = malloc(p->n * sizeof *half), *rb = malloc(p->n * sizeof *rb);
-	double V = pack_box_volume(p->box), s = 0, kn;
+	double V = pack_box_volume(p->box), s = 0;
 	size_t i, ni;
 	int a, status = -1, have_ce = 0;
 
 	memset(&pass, 0, sizeof pass);
-	pass.p = p, pass.m = m, pass.kn = NAN, pass.gf = gf, pass.keep_list = list != NULL;
-	if (pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0)
-		pass.kn = kn;
+	pass.p = p, pass.m = m, pass.gf = gf, pass.keep_list = list != NULL;
+	/* forces by the pack's law; a spring law's need the stiffness the pack records */
+	if (!(pass.law = contact_law_of_pack(p)))
+		goto out;
+	if (!law_pack_knows_stiffness(pass.law, p))
+		pass.law = NULL;
 	pass.z = calloc(p->n, sizeof *pass.z);
 	pass.F = calloc(3 * p->n, sizeof *pass.F);
 	if (!R || !half || !rb || !pass.z || !pass.F) {
@@ -960,7 +966,7 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	m->coordination_free = m->glued < p->n ? (double)pass.zends_free / (double)(p->n - m->glued) : NAN;
 	m->floating_fraction_free = m->glued < p->n ? (double)m->floating_free / (double)(p->n - m->glued) : NAN;
 	m->elements_per_interaction = ni ? (double)m->elements / (double)ni : NAN;
-	m->has_forces = !isnan(pass.kn) && ni > 0;
+	m->has_forces = pass.law && ni > 0;
 	if (!m->has_forces) {
 		for (a = 0; a < 6; a++)
 			m->sig_lw[a] = NAN;

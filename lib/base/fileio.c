@@ -101,16 +101,20 @@ hook_cleanup(void)
 	hooked = 1;
 }
 
+const char *
+file_display_name(const char *path)
+{
+	return !path || strcmp(path, "-") == 0 ? "<stdin>" : path;
+}
+
 FILE *
 file_in_open(const char *path, const char **display)
 {
 	FILE *fp;
 
-	if (!path || strcmp(path, "-") == 0) {
-		*display = "<stdin>";
+	*display = file_display_name(path);
+	if (*display != path)
 		return stdin;
-	}
-	*display = path;
 	fp = fopen(path, "rb");
 	if (!fp) {
 		msg_seterr("%s: %s", path, strerror(errno));

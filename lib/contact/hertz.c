@@ -65,11 +65,111 @@ hertz_mindlin_dem_interaction(const struct contact_law *law, const struct law_pa
 	return hertz_dem_interaction(lp, in, hist, fk, ft, fel);
 }
 
+double
+hertz_mean_Estar(const struct pack *p)
+{
+	double Em = 0, num = 0;
+	size_t i, n = p->n;
+
+	for (i = 0; i < n; i++)
+		Em += p->E[i] / n, num += p->nu[i] / n;
+	return hertz_Estar(Em, num, Em, num);
+}
+
+/* The DEM's units: k0 = E* r0 of two mean grains (hertz_mean_Estar); the walls' E* with the
+ * mean grain over it. */
+static double
+hertz_dem_units(const struct contact_law *law, const struct pack *p, double r0, double kn, struct law_pair *g,
+    struct law_pair *w)
+{
+	double Em = 0, num = 0, Eg;
+	size_t i, n = p->n;
+
+	(void)law, (void)kn;
+	for (i = 0; i < n; i++)
+		Em += p->E[i] / n, num += p->nu[i] / n;
+	Eg = hertz_Estar(Em, num, Em, num);
+	g->kn = w->kn = 1;
+	g->Es = 1;
+	w->Es = hertz_Estar_c(hertz_compliance(Em, num), p->wall_E > 0 ? hertz_compliance(p->wall_E, p->wall_nu) : 0) / Eg;
+	return Eg * r0;
+}
+
+static double
+hertz_stiffest(const struct contact_law *law, const struct law_pair *w, double r, double h)
+{
+	(void)law;
+	return hertz_stiffness_t(w->Es, r, h);
+}
+
+/* kappa = (E* / sigma)^(2/3) (Agnolin and Roux's, with E* for their E / (1 - nu^2)). */
+static double
+hertz_kappa(const struct contact_law *law, const struct pack *p, double kn, double sigma)
+{
+	(void)law, (void)kn;
+	return pow(hertz_mean_Estar(p) / sigma, 2.0 / 3.0);
+}
+
+static double
+hertz_kappa_stress(const struct contact_law *law, const struct pack *p, double kn, double kappa)
+{
+	(void)law, (void)kn;
+	return hertz_mean_Estar(p) / (kappa * sqrt(kappa));
+}
+
+/* The spring's stiffness kt_ratio times the elements' summed k_n (hertz_dem_interaction). */
+static double
+hertz_dem_kt(const struct law_pair *lp, const struct law_dem_elems *in)
+{
+	double ksum = 0;
+	int k;
+
+	for (k = 0; k < in->m; k++)
+		ksum += hertz_stiffness_t(lp->Es, lp->Rs, in->h[k] > 0 ? in->h[k] : 0);
+	return in->kt_ratio * ksum;
+}
+
+/* The history is the spring's displacement xi (law_dem_spring): its force is -k_t xi. */
+static void
+hertz_history_force(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double *hist, double Q[3])
+{
+	double kt = hertz_dem_kt(lp, in);
+	int a;
+
+	(void)law;
+	for (a = 0; a < 3; a++)
+		Q[a] = -kt * hist[a];
+}
+
+static void
+hertz_history_set(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double Q[3], double *hist)
+{
+	double kt = hertz_dem_kt(lp, in);
+	int a;
+
+	(void)law;
+	for (a = 0; a < 3; a++)
+		hist[a] = kt > 0 ? -Q[a] / kt : 0;
+}
+
+static int
+hertz_law_stress_in_range(const struct contact_law *law, const struct pack *p, double stress)
+{
+	(void)law;
+	return hertz_stress_in_range(p, stress);
+}
+
 /* kt_ratio 2(1-nu)/(2-nu) at nu = 0.2 (Mindlin stick over Hertz stiffness), zeta 0.3: the
  * DEM settling of packgen's loose packs (dem.h) */
 const struct contact_law contact_law_hertz_mindlin = {
-	"hertz-mindlin", 3, 0, 0.888888888888889, 0.3,
-	hertz_mindlin_pair, hertz_normal, mindlin_tangent, hertz_mindlin_dem_interaction, "hertz",
+	.name = "hertz-mindlin", .history = 3, .kn = 0, .kt_ratio = 0.888888888888889, .zeta = 0.3,
+	.pair = hertz_mindlin_pair, .normal = hertz_normal, .tangent = mindlin_tangent,
+	.dem_interaction = hertz_mindlin_dem_interaction, .pack_key = "hertz", .stiffness = LAW_MODULI,
+	.dem_units = hertz_dem_units, .stiffest = hertz_stiffest, .kappa = hertz_kappa, .kappa_stress = hertz_kappa_stress,
+	.history_force = hertz_history_force, .history_set = hertz_history_set,
+	.stress_in_range = hertz_law_stress_in_range,
 };
 
 int

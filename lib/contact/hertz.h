@@ -34,6 +34,9 @@ extern "C" {
  * is below E/100 of its softest grain, else -1 with the error slot set ("S Pa is beyond the
  * small-strain range of Hertz contacts (...)"). */
 int hertz_stress_in_range(const struct pack *p, double stress);
+/* E* of two grains of pack p's mean Young's modulus and Poisson ratio (Pa): the law's
+ * stiffness number and the DEM's stiffness unit E* r0. */
+double hertz_mean_Estar(const struct pack *p);
 
 /* A grain's (or the walls') normal compliance (1 - nu^2) / E (1/Pa). */
 LAW_INLINE double

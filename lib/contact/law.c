@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* law: the table of the contact laws (see law.h); each law is its own file (hertz.c,
- * linear.c). */
+/* law: the table of the contact laws (see law.h), and the policy the spring laws share; each
+ * law is its own file (hertz.c, linear.c, harmonic.c). */
 #include "contact/law.h"
+#include "contact/hertz.h"
 #include "base/msg.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -74,6 +76,30 @@ contact_law_choose(const struct pack *p, const char *name)
 	return law;
 }
 
+const struct contact_law *
+contact_law_require(const struct pack *p, const char *who, const struct contact_law *const *laws)
+{
+	const struct contact_law *law = contact_law_of_pack(p), *const *l;
+	char names[256];
+	size_t at = 0;
+
+	if (!law)
+		return NULL;
+	for (l = laws; *l; l++)
+		if (*l == law)
+			return law;
+	names[0] = 0;
+	for (l = laws; *l && at < sizeof names; l++) {
+		int k = snprintf(names + at, sizeof names - at, "%s%s", at ? ", " : "", (*l)->name);
+
+		if (k < 0)
+			break;
+		at += (size_t)k;
+	}
+	msg_seterr("the pack's contact law is %s (meta contact-law); %s runs %s", law->name, who, names);
+	return NULL;
+}
+
 int
 contact_law_claim(struct pack *p, const struct contact_law *law)
 {
@@ -82,4 +108,128 @@ contact_law_claim(struct pack *p, const struct contact_law *law)
 	if ((key ? contact_law_find(key) : contact_laws[0]) == law)
 		return 0;
 	return pack_set_meta(p, "contact-law", law->pack_key ? law->pack_key : law->name);
+}
+
+double
+law_pack_kn(const struct contact_law *law, const struct pack *p)
+{
+	double kn;
+
+	return pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0 && isfinite(kn) ? kn : law->kn;
+}
+
+int
+law_pack_knows_stiffness(const struct contact_law *law, const struct pack *p)
+{
+	double kn;
+
+	return law->stiffness == LAW_MODULI || (pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0 && isfinite(kn));
+}
+
+void
+law_spring_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp)
+{
+	hertz_mindlin_pair(law, p, i, j, lp);
+	lp->kn = law_pack_kn(law, p);
+}
+
+double
+law_mean_radius(const struct pack *p)
+{
+	double r0 = 0;
+	size_t i, n = p->n;
+
+	for (i = 0; i < n; i++)
+		r0 += p->r[i] / n;
+	return r0;
+}
+
+double
+law_spring_dem_units(const struct contact_law *law, const struct pack *p, double r0, double kn, struct law_pair *g,
+    struct law_pair *w)
+{
+	(void)law, (void)p, (void)r0;
+	g->kn = w->kn = 1;
+	g->Es = w->Es = 1;
+	return kn;
+}
+
+double
+law_spring_stiffest(const struct contact_law *law, const struct law_pair *w, double r, double h)
+{
+	(void)law, (void)r, (void)h;
+	return w->kn;
+}
+
+double
+law_spring_kappa(const struct contact_law *law, const struct pack *p, double kn, double sigma)
+{
+	(void)law;
+	return kn / (sigma * law_mean_radius(p));
+}
+
+double
+law_spring_kappa_stress(const struct contact_law *law, const struct pack *p, double kn, double kappa)
+{
+	(void)law;
+	return kn / (kappa * law_mean_radius(p));
+}
+
+int
+law_spring_stress_in_range(const struct contact_law *law, const struct pack *p, double stress)
+{
+	double kn = law_pack_kn(law, p), kappa = law_spring_kappa(law, p, kn, stress);
+
+	if (p->n && !(kappa >= LAW_SPRING_KAPPA_MIN)) {
+		msg_seterr("%g Pa is beyond the small-strain range of the %s law at k_n %g N/m (stiffness number %g, below %g)",
+		    stress, law->name, kn, kappa, LAW_SPRING_KAPPA_MIN);
+		return -1;
+	}
+	return 0;
+}
+
+void
+law_history_none(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double *hist, double Q[3])
+{
+	(void)law, (void)lp, (void)in, (void)hist;
+	Q[0] = Q[1] = Q[2] = 0;
+}
+
+void
+law_history_set_none(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double Q[3], double *hist)
+{
+	(void)law, (void)lp, (void)in, (void)Q, (void)hist;
+}
+
+void
+law_history_force_kept(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double *hist, double Q[3])
+{
+	int a;
+
+	(void)law, (void)lp, (void)in;
+	for (a = 0; a < 3; a++)
+		Q[a] = -hist[a];
+}
+
+void
+law_history_set_force_kept(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double Q[3], double *hist)
+{
+	int a;
+
+	(void)law, (void)lp, (void)in;
+	for (a = 0; a < 3; a++)
+		hist[a] = -Q[a];
+}
+
+void
+contact_law_option_help(char *buf, size_t size)
+{
+	char names[256];
+
+	contact_law_names(names, sizeof names);
+	snprintf(buf, size, "contact law: %s (default: the pack's meta contact-law; none: %s)", names, contact_laws[0]->name);
 }

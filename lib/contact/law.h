@@ -106,16 +106,80 @@ struct contact_law {
 	 * (dem/platedem.h) calls it for every shape. */
 	double (*dem_interaction)(const struct contact_law *law, const struct law_pair *lp,
 	    const struct law_dem_elems *in, double *hist, double *fk, double ft[3], double *fel);
-	/* The value of a pack's meta key contact-law that names this law (pack_claim_hertz
-	 * writes 'hertz'; packgen's plates write 'linear'). */
+	/* The value of a pack's meta key contact-law that names this law ('hertz'; packgen's
+	 * plates write 'linear'). */
 	const char *pack_key;
+	/* What the law's stiffness is made of: LAW_MODULI (the grains' E and nu, Hertz's) or
+	 * LAW_SPRING (a constant k_n in N/m, the pack's meta kn: law_pack_kn). */
+	enum law_stiffness { LAW_MODULI, LAW_SPRING } stiffness;
+	/* Its policy, the decisions a consumer would otherwise take by asking which law it is:
+	 *
+	 * The DEM's units and scaled pairs (dem/platedem.h): for pack p of mean spheroradius r0
+	 * (m) and a run's spring stiffness kn (N/m; a LAW_MODULI law ignores it), the stiffness
+	 * unit k0 (N/m) returned, and the grain-grain and grain-wall pair constants in those
+	 * units (Es, kn; R* and mu are set by the engine) into g and w. */
+	double (*dem_units)(const struct contact_law *law, const struct pack *p, double r0, double kn, struct law_pair *g,
+	    struct law_pair *w);
+	/* The normal stiffness, in the same units, of the stiffest contact a time step is made
+	 * for: a grain of radius r on a wall of pair constants w at overlap h (the run's largest
+	 * likely, PDEM_OVERLAP_KAPPA / kappa of r; a spring law's stiffness has no overlap). */
+	double (*stiffest)(const struct contact_law *law, const struct law_pair *w, double r, double h);
+	/* The stiffness number kappa of a normal stress sigma (Pa) on pack p under the law at
+	 * spring stiffness kn (platedem.h's pdem_kappa), and its inverse. */
+	double (*kappa)(const struct contact_law *law, const struct pack *p, double kn, double sigma);
+	double (*kappa_stress)(const struct contact_law *law, const struct pack *p, double kn, double kappa);
+	/* The DEM history (law->history doubles; none when 0) and the tangential force on i it
+	 * carries, both ways, for an interaction of elements in (its overlaps, kt_ratio; its
+	 * velocities unused) with pair constants lp: what a pack's Q0 lines carry
+	 * (pack-format.md), so that a pack written and read back goes on with the same spring. */
+	void (*history_force)(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+	    const double *hist, double Q[3]);
+	void (*history_set)(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+	    const double Q[3], double *hist);
+	/* 0 when a confining stress (Pa) on pack p keeps the contacts in the law's range of
+	 * validity, else -1 with the error slot set (Hertz: small strains, E/100). */
+	int (*stress_in_range)(const struct contact_law *law, const struct pack *p, double stress);
 };
+
+/* The normal stiffness k_n (N/m) of a LAW_SPRING law on pack p: the pack's meta kn (packgen
+ * and shear record the one they ran), else the law's default law->kn.  The one reader of
+ * meta kn. */
+double law_pack_kn(const struct contact_law *law, const struct pack *p);
+/* Whether pack p records what law's forces need: always for LAW_MODULI (the grains' E and
+ * nu), the pack's meta kn for a spring law (a pack without one has unknown forces). */
+int law_pack_knows_stiffness(const struct contact_law *law, const struct pack *p);
+/* The pair setup of the spring laws: hertz_mindlin_pair's E*, R*, compliances and mu, and
+ * k_n of law_pack_kn. */
+void law_spring_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
+/* The spring laws' policy (struct contact_law): units k0 = k_n, pairs of scaled k_n 1;
+ * stiffest 1 (k_n); kappa = k_n / (sigma r0), r0 the mean spheroradius (P eq. 6); a stress
+ * is in range when its stiffness number is at least LAW_SPRING_KAPPA_MIN. */
+#define LAW_SPRING_KAPPA_MIN 100.0
+double law_spring_dem_units(const struct contact_law *law, const struct pack *p, double r0, double kn, struct law_pair *g,
+    struct law_pair *w);
+double law_spring_stiffest(const struct contact_law *law, const struct law_pair *w, double r, double h);
+double law_spring_kappa(const struct contact_law *law, const struct pack *p, double kn, double sigma);
+double law_spring_kappa_stress(const struct contact_law *law, const struct pack *p, double kn, double kappa);
+int law_spring_stress_in_range(const struct contact_law *law, const struct pack *p, double stress);
+/* The mean spheroradius of pack p (m): the DEM's length unit r0. */
+double law_mean_radius(const struct pack *p);
+/* A history that carries no force (history 0, a law without tangential force): Q = 0. */
+void law_history_none(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double *hist, double Q[3]);
+void law_history_set_none(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double Q[3], double *hist);
+/* A spring that keeps its force (the linear law's): Q = -hist, hist = -Q. */
+void law_history_force_kept(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double *hist, double Q[3]);
+void law_history_set_force_kept(const struct contact_law *law, const struct law_pair *lp, const struct law_dem_elems *in,
+    const double Q[3], double *hist);
 
 /* The table of the laws, one row each: X(C name of the law's object, after contact_law_).
  * The first row is the default, the law of a pack without a contact-law key. */
 #define CONTACT_LAWS(X) \
 	X(hertz_mindlin) \
-	X(linear)
+	X(linear) \
+	X(harmonic)
 
 #define CONTACT_LAW_EXTERN(id) extern const struct contact_law contact_law_##id;
 CONTACT_LAWS(CONTACT_LAW_EXTERN)
@@ -132,10 +196,18 @@ const struct contact_law *contact_law_of_pack(const struct pack *p);
 /* The names of the table's laws, as "hertz-mindlin (hertz), linear": each law's name and,
  * where it differs, its pack key, in the table's order, into buf (truncated to size). */
 void contact_law_names(char *buf, size_t size);
+/* The help line of a tool's --law option, from the table: "contact law: hertz-mindlin
+ * (hertz), linear, ... (default: ...)". */
+void contact_law_option_help(char *buf, size_t size);
 /* The law a tool runs: the one named `name` (an option: contact_law_find) when name is not
  * NULL, else pack p's (contact_law_of_pack).  NULL, with the error slot set, for a name or
  * key no law has ("no such contact law '...': the laws are ..."). */
 const struct contact_law *contact_law_choose(const struct pack *p, const char *name);
+/* The law of pack p (contact_law_of_pack) when it is one of laws (NULL-terminated): a tool
+ * that runs only some laws (who: its name).  NULL with the error slot set for a law not
+ * among them ("the pack's contact law is linear; frictionalize runs hertz-mindlin"). */
+const struct contact_law *contact_law_require(const struct pack *p, const char *who,
+    const struct contact_law *const *laws);
 /* Record law as pack p's, for a tool that ran p under it: p's contact-law key set to the
  * law's pack key, unless p's law is law already (a pack without the key, Hertz-Mindlin's,
  * stays without it).  0 or -1 (out of memory). */
@@ -211,6 +283,18 @@ law_dem_damped(double zeta, double kt_ratio, double mu, const struct law_dem_in 
 		vt[a] = in->vr[a] - vn * in->n[a];
 	law_dem_spring(hist, in->n, vt, in->dt, kt_ratio * kn, law_coulomb_limit(mu, fn), ft);
 	return fn;
+}
+
+/* A tangential force Q scaled to magnitude qmax when it is larger. */
+LAW_INLINE void
+law_clamp_tangential(double Q[3], double qmax)
+{
+	double q = sqrt(Q[0] * Q[0] + Q[1] * Q[1] + Q[2] * Q[2]);
+	int a;
+
+	if (q > qmax && q > 0)
+		for (a = 0; a < 3; a++)
+			Q[a] *= qmax / q;
 }
 
 #if LANES_OK

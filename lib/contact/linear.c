@@ -40,8 +40,13 @@ linear_law_dem_interaction(const struct contact_law *law, const struct law_pair 
 	return linear_dem_interaction(lp, in, hist, fk, ft, fel);
 }
 
-/* the pair setup is Hertz-Mindlin's (hertz_mindlin_pair): of it the law reads mu and kn */
+/* The pair setup: Hertz-Mindlin's moduli (unused), mu, and k_n of the pack (law_pack_kn);
+ * the spring laws' policy (law.h); the history is the force the spring keeps. */
 const struct contact_law contact_law_linear = {
-	"linear", 3, 1e5, 0.888888888888889, 0.3,
-	hertz_mindlin_pair, linear_normal, linear_tangent, linear_law_dem_interaction, "linear",
+	.name = "linear", .history = 3, .kn = 1e5, .kt_ratio = 0.888888888888889, .zeta = 0.3,
+	.pair = law_spring_pair, .normal = linear_normal, .tangent = linear_tangent,
+	.dem_interaction = linear_law_dem_interaction, .pack_key = "linear", .stiffness = LAW_SPRING,
+	.dem_units = law_spring_dem_units, .stiffest = law_spring_stiffest, .kappa = law_spring_kappa,
+	.kappa_stress = law_spring_kappa_stress, .history_force = law_history_force_kept,
+	.history_set = law_history_set_force_kept, .stress_in_range = law_spring_stress_in_range,
 };

@@ -199,66 +199,36 @@ pdem_start(struct pdem *d, double skin)
 	return list_start(d, skin);
 }
 
-/* The pack's mean Young's modulus and Poisson ratio: the material of pdem_init's Hertz units. */
-static void
-mean_material(const struct pack *p, double *Em, double *num)
-{
-	size_t i, n = p->n;
-
-	*Em = *num = 0;
-	for (i = 0; i < n; i++)
-		*Em += p->E[i] / n, *num += p->nu[i] / n;
-}
-
-/* The mean spheroradius: pdem_init's length unit r0. */
-static double
-mean_radius(const struct pack *p)
-{
-	double r0 = 0;
-	size_t i, n = p->n;
-
-	for (i = 0; i < n; i++)
-		r0 += p->r[i] / n;
-	return r0;
-}
-
 void
 pdem_params_law(struct pdem_params *pp, const struct contact_law *law)
 {
 	pp->law = law;
-	if (law != &contact_law_linear)
+	if (law->stiffness == LAW_MODULI)
 		pp->kn = 1, pp->kt = law->kt_ratio;
 }
 
 double
 pdem_mean_Estar(const struct pack *p)
 {
-	double Em, num;
-
-	mean_material(p, &Em, &num);
-	return hertz_Estar(Em, num, Em, num);
+	return hertz_mean_Estar(p);
 }
 
 double
 pdem_kappa(const struct pack *p, const struct pdem_params *pp, double sigma)
 {
-	if (pp->law == &contact_law_linear)
-		return pp->kn / (sigma * mean_radius(p));
-	return pow(pdem_mean_Estar(p) / sigma, 2.0 / 3.0);
+	return pp->law->kappa(pp->law, p, pp->kn, sigma);
 }
 
 double
 pdem_kappa_stress(const struct pack *p, const struct pdem_params *pp, double kappa)
 {
-	if (pp->law == &contact_law_linear)
-		return pp->kn / (kappa * mean_radius(p));
-	return pdem_mean_Estar(p) / (kappa * sqrt(kappa));
+	return pp->law->kappa_stress(pp->law, p, pp->kn, kappa);
 }
 
 int
 pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 {
-	double r0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY, rmin = INFINITY, k0, Em = 0, num = 0, Eg = 1;
+	double r0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY, rmin = INFINITY, k0;
 	size_t i, n = p->n;
 	int a;
 
@@ -266,19 +236,14 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	if (n == 0 || pdem_alloc(d, n))
 		return n == 0 ? (msg_seterr("no grains"), -1) : (pdem_free(d), -1);
 	d->law = pp->law;
-	r0 = mean_radius(p);
+	r0 = law_mean_radius(p);
 	for (i = 0; i < n; i++)
 		rho0 += p->rho[i] / n;
 	d->u_len = r0;
 	d->u_mass = rho0 * r0 * r0 * r0;
-	/* the stiffness unit: the linear law's k_n; Hertz's E* r0 between two mean grains */
-	if (d->law == &contact_law_linear) {
-		k0 = pp->kn;
-	} else {
-		mean_material(p, &Em, &num);
-		Eg = hertz_Estar(Em, num, Em, num);
-		k0 = Eg * r0;
-	}
+	/* the stiffness unit and the pairs in it (the law's: a spring law's k_n; Hertz's E* r0
+	 * between two mean grains) */
+	k0 = d->law->dem_units(d->law, p, r0, pp->kn, &d->lp_grain, &d->lp_wall);
 	d->u_time = sqrt(d->u_mass / k0);
 	d->u_force = k0 * r0;
 	for (i = 0; i < n; i++) {
@@ -312,16 +277,10 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	d->damping = pp->damping;
 	d->viscous = pp->viscous;
 	/* the pair physics in these units (R* per interaction) */
-	d->lp_grain.kn = d->lp_wall.kn = 1;
-	d->lp_grain.Es = 1;
-	/* Hertz: the walls' E* with the mean grain, rigid walls (no modulus) as E/(1 - nu^2) */
-	d->lp_wall.Es = d->law == &contact_law_linear ? 1 :
-	    hertz_Estar_c(hertz_compliance(Em, num), p->wall_E > 0 ? hertz_compliance(p->wall_E, p->wall_nu) : 0) / Eg;
 	d->lp_grain.mu = d->mu, d->lp_wall.mu = d->wall_mu;
-	if (d->law == &contact_law_linear)
-		d->dt = pp->dt_factor * sqrt(mmin);
-	else	/* the stiffest likely contact: the smallest grain on a wall at hertz_overlap */
-		d->dt = pp->dt_factor * sqrt(mmin / hertz_stiffness_t(d->lp_wall.Es, rmin, pp->hertz_overlap * rmin));
+	/* the stiffest likely contact: the smallest grain on a wall at hertz_overlap (a spring
+	 * law's k_n = 1 at any overlap) */
+	d->dt = pp->dt_factor * sqrt(mmin / d->law->stiffest(d->law, &d->lp_wall, rmin, pp->hertz_overlap * rmin));
 	/* the skin: a tenth of the smallest bounding radius, so the list lasts many steps */
 	if (pdem_start(d, 0.1 * rbmin)) {
 		pdem_free(d);
@@ -527,7 +486,7 @@ on_contact(const struct contact *c, void *vw)
 	else
 		m = pair_interaction_cached(d, c, &it, xj);
 	if (m == 0) {
-		c->hist[0] = c->hist[1] = c->hist[2] = 0;
+		memset(c->hist, 0, d->law->history * sizeof *c->hist);
 		return 0;
 	}
 	if (!wall)
@@ -801,7 +760,7 @@ pdem_forces(struct pdem *d)
 				memset(fw.T, 0, sizeof fw.T);
 				/* the pairs whose bounding spheres are apart are not visited (the enumerator
 				 * zeroes their springs), nor the walls beyond a grain's bounding sphere */
-				if (contact_foreach_row(e, d->x, i, CONTACT_TOUCHING, e->any_periodic, 3, on_contact, on_contact,
+				if (contact_foreach_row(e, d->x, i, CONTACT_TOUCHING, e->any_periodic, e->hsize, on_contact, on_contact,
 				    &fw, &calls) < 0) {
 #pragma omp atomic write
 					err = 1;
@@ -1069,45 +1028,70 @@ pdem_make_periodic(struct pdem *d, const int periodic[3])
 }
 
 /* The frictional history of the pack's contact lines (pack-format.md), so that a static
- * pack read back is static: P0 the interaction's elastic normal force, Q0 its tangential
- * spring's force on i (what the spring keeps), M0 0 (no rolling or twisting resistance). */
+ * pack read back is static: P0 the interaction's elastic normal force, Q0 the tangential
+ * force on i its history carries (the law's history_force; what it reads back the law's
+ * history_set), M0 0 (no rolling or twisting resistance). */
 struct history_pass {
 	struct pack *p;
 	const long *keys;	/* reading: the pack's sorted history keys; writing: NULL */
 	int err;
 };
 
+/* The pair constants (R* set) and the elements' overlaps of interaction it of grain i with
+ * j, for the law's history conversions. */
+static void
+history_elems(const struct pdem *d, size_t i, long j, const struct plate_interaction *it, struct law_pair *lp,
+    struct law_dem_elems *in)
+{
+	int k;
+
+	*lp = PACK_IS_WALL(j) ? d->lp_wall : d->lp_grain;
+	lp->Rs = PACK_IS_WALL(j) ? d->r[i] : hertz_Rstar(d->r[i], d->r[j]);
+	memset(in, 0, sizeof *in);
+	in->m = it->m;
+	in->kt_ratio = d->kt_ratio, in->zeta = d->zeta, in->dt = d->dt;
+	memcpy(in->n, it->n, sizeof in->n);
+	for (k = 0; k < it->m; k++)
+		in->h[k] = it->e[k].h;
+}
+
 static int
 on_history(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist,
     void *vh)
 {
 	struct history_pass *hp = vh;
+	struct law_pair lp;
+	struct law_dem_elems in;
+	double Q[3];
 	int k, a;
 
 	(void)xj;
+	history_elems(d, i, j, it, &lp, &in);
 	if (hp->keys) {
 		long line = pack_history_lookup(hp->keys, hp->p->nc, i, j);
-		double Q[3];
 
 		if (line < 0)
 			return 0;
 		pack_contact_q0_on(&hp->p->c[line], i, Q);
 		for (a = 0; a < 3; a++)
-			hist[a] = -Q[a] / d->u_force;
+			Q[a] /= d->u_force;
+		d->law->history_set(d->law, &lp, &in, Q, hist);
 	} else {
 		struct pack_contact pc = {i, j, 0, {0, 0, 0}, 0};
-
-		struct law_pair lp = PACK_IS_WALL(j) ? d->lp_wall : d->lp_grain;
 		double P;
 
-		lp.Rs = PACK_IS_WALL(j) ? d->r[i] : hertz_Rstar(d->r[i], d->r[j]);
 		for (k = 0; k < it->m; k++)	/* the elements' elastic forces, by the law */
 			if (it->e[k].h > 0) {
 				d->law->normal(d->law, &lp, it->e[k].h, &P, NULL);
 				pc.P0 += P * d->u_force;
 			}
+		d->law->history_force(d->law, &lp, &in, hist, Q);
+		/* within the Coulomb limit of the written P0: a moving pack's spring may carry more,
+		 * by its normal damping and by the step's change of overlap (which moves a Hertz
+		 * spring's stiffness), which a state of elastic forces has not */
+		law_clamp_tangential(Q, law_coulomb_limit(lp.mu, pc.P0 / d->u_force));
 		for (a = 0; a < 3; a++)
-			pc.Q0[a] = -hist[a] * d->u_force;
+			pc.Q0[a] = Q[a] * d->u_force;
 		if (pack_add_contact(hp->p, &pc))
 			return hp->err = -1;
 	}

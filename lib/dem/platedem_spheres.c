@@ -354,10 +354,13 @@ oom:
 	return -1;
 }
 
-/* One row's walk, with the periodic branch compiled in or out (per a constant). */
+/* One row's walk, with the periodic branch compiled in or out (per a constant), and the
+ * history's size a constant for a tangential spring's 3 doubles (the laws of friction), else
+ * the law's (law->history, 0 for a law without tangential force). */
 #define SPHERE_ROW(e, x, i, per, pf, wf, ctx, calls) \
-	((per) ? contact_foreach_row(e, x, i, CONTACT_TOUCHING, 1, 3, pf, wf, ctx, calls) \
-	       : contact_foreach_row(e, x, i, CONTACT_TOUCHING, 0, 3, pf, wf, ctx, calls))
+	((e)->hsize == 3 ? ((per) ? contact_foreach_row(e, x, i, CONTACT_TOUCHING, 1, 3, pf, wf, ctx, calls) \
+	                          : contact_foreach_row(e, x, i, CONTACT_TOUCHING, 0, 3, pf, wf, ctx, calls)) \
+	                 : contact_foreach_row(e, x, i, CONTACT_TOUCHING, per, (e)->hsize, pf, wf, ctx, calls))
 
 int
 pdem_sphere_forces(struct pdem *d)

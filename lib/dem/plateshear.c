@@ -256,11 +256,10 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		msg_seterr("the gradient axis y is periodic: the shear needs its walls");
 		return -1;
 	}
-	/* the Hertz time step made for the overlaps sigma_w makes (platedem.h); the linear
-	 * law's does not depend on them */
+	/* the time step made for the overlaps sigma_w makes (platedem.h; the law's stiffest: a
+	 * spring law's does not depend on them) */
 	dyn = sp->dyn;
-	if (dyn.law != &contact_law_linear)
-		dyn.hertz_overlap = fmax(dyn.hertz_overlap, PDEM_OVERLAP_KAPPA / pdem_kappa(p, &dyn, sp->sigma_w));
+	dyn.hertz_overlap = fmax(dyn.hertz_overlap, PDEM_OVERLAP_KAPPA / pdem_kappa(p, &dyn, sp->sigma_w));
 	if (pdem_init(&d, p, &dyn))
 		return -1;
 	d.cache_margin = pdem_shear_cache_margin(&d);	/* a slow shear's (packgen's compaction keeps the default) */
@@ -373,4 +372,72 @@ out:
 		shear_result_free(res);
 	pdem_free(&d);
 	return status;
+}
+
+/* a number into a meta line, as the pack's writer prints it */
+static int
+set_meta_g(struct pack *p, const char *key, double v)
+{
+	char buf[40];
+
+	snprintf(buf, sizeof buf, "%.17g", v);
+	return pack_set_meta(p, key, buf);
+}
+
+int
+plateshear_choose_law(struct pack *p, const struct shear_law_choice *c, struct shear_params *sp,
+    const struct contact_law **lawp)
+{
+	const struct contact_law *law = contact_law_choose(p, c->law);
+	struct pdem_params *dyn = &sp->dyn;
+	double v, kn = c->kn, kt = c->kt;
+
+	if (!(*lawp = law))
+		return -1;
+	if (law->stiffness == LAW_SPRING) {
+		if (isnan(kn) && pack_get_meta_double(p, "kn", &kn)) {
+			msg_seterr("no meta kn (the normal stiffness packgen --shape spheroplate records): give --kn");
+			return -1;
+		}
+		if (isnan(kt))
+			kt = pack_get_meta_double(p, "kt", &v) == 0 ? v : kn;
+		dyn->kn = kn, dyn->kt = kt;
+		/* the pack records what the run used: packinfo measures with it (law_pack_kn) */
+		if ((!isnan(c->kn) && set_meta_g(p, "kn", kn)) || (!isnan(c->kt) && set_meta_g(p, "kt", kt)))
+			return -1;
+	} else if (!isnan(kn) || !isnan(kt)) {
+		msg_seterr("--kn and --kt are a spring law's; under %s the stiffness is the grains' E and nu", law->name);
+		return -2;
+	}
+	pdem_params_law(dyn, law);
+	dyn->restitution = !isnan(c->restitution) ? c->restitution :
+	    pack_get_meta_double(p, "restitution", &v) == 0 ? v : 0.6;
+	dyn->mu = p->mu = isnan(c->mu) ? p->mu : c->mu;
+	dyn->wall_mu = p->wall_mu = isnan(c->wall_mu) ? p->wall_mu : c->wall_mu;
+	if (!isnan(c->kappa))
+		sp->sigma_w = pdem_kappa_stress(p, dyn, c->kappa);
+	if (sp->sigma_w == 0 && pack_get_meta_double(p, "sigma0", &sp->sigma_w)) {
+		msg_seterr("no meta sigma0 (the compaction stress packgen records for plates): give --stress or --kappa");
+		return -1;
+	}
+	if (!(sp->sigma_w > 0 && isfinite(sp->sigma_w))) {
+		msg_seterr("the normal stress %g Pa: must be positive (--stress, --kappa, or meta sigma0)", sp->sigma_w);
+		return -1;
+	}
+	if (!(dyn->restitution >= 0.21 && dyn->restitution <= 1)) {
+		msg_seterr("meta restitution %g: must be in [0.21, 1]; give --restitution", dyn->restitution);
+		return -1;
+	}
+	if (law->stiffness == LAW_MODULI && !(pdem_mean_Estar(p) > 0 && isfinite(pdem_mean_Estar(p)))) {
+		msg_seterr("the grains' mean E* %g Pa: %s needs the grains' E and nu", pdem_mean_Estar(p), law->name);
+		return -1;
+	}
+	if (law->stress_in_range(law, p, sp->sigma_w)) {
+		char why[512];
+
+		snprintf(why, sizeof why, "sigma_w %s", msg_geterr());
+		msg_seterr("%s", why);
+		return -2;
+	}
+	return contact_law_claim(p, law);
 }

@@ -96,6 +96,23 @@ struct shear_result {
  * 0.01, the profile from gamma 1.5 in 20 bins, at most 1e8 steps; the relaxation to 1e-3
  * with damping 0.3 (packgen's), at most 2e6 steps, the top body damped up to gamma 0.05. */
 void shear_params_default(struct shear_params *sp);
+
+/* What a user chose for a shear's law (shear's options; NaN or NULL: not given). */
+struct shear_law_choice {
+	const char *law;	/* a law's name, or NULL: the pack's (contact_law_choose) */
+	double kn, kt;		/* a spring law's stiffnesses (N/m) */
+	double restitution, mu, wall_mu;
+	double kappa;		/* the stiffness number, or NaN: sp->sigma_w as set */
+};
+/* The run's law and its constants into sp->dyn (and sp->sigma_w from a kappa), each from the
+ * choice, else pack p's meta lines (kn, kt, restitution, sigma0; its mu and wall mu), else
+ * the law's or P's defaults, checked against the law's range (law->stress_in_range); p
+ * records the law and, under a spring law, the k_n and k_t the run uses (so that packinfo
+ * measures the output with them).  The contact law into *law.  0; -1 with the error slot set
+ * on a pack that lacks what the law needs; -2 on a choice the law does not take (--kn under
+ * a law of the grains' moduli). */
+int plateshear_choose_law(struct pack *p, const struct shear_law_choice *c, struct shear_params *sp,
+    const struct contact_law **law);
 /* Shear pack p (walls on y; see above) to sp->strain; p receives the final state.  0, or -1
  * with msg_seterr.  res->profile and res->profile_n are allocated (free them with
  * shear_result_free). */

@@ -182,16 +182,6 @@ pack_require_spheres(const struct pack *p, const char *who)
 	return -1;
 }
 
-int
-pack_claim_hertz(struct pack *p)
-{
-	const char *law = pack_get_meta(p, "contact-law");
-
-	if (!law || strcmp(law, "hertz") == 0)
-		return 0;
-	return pack_set_meta(p, "contact-law", "hertz");
-}
-
 size_t
 pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, double nu, double rho)
 {

@@ -178,11 +178,6 @@ size_t pack_first_plate(const struct pack *p);
  * otherwise -1 with "grain ID is a spheroplate (side > 0); WHO handles spheres only" in the
  * slot, for the tool to prefix with its input's name.  WHO names the tool (or its mode). */
 int pack_require_spheres(const struct pack *p, const char *who);
-/* A Hertz tool (densify, frictionalize, loadtest) takes the pack over: a meta contact-law
- * naming another law (packgen's plate engine writes 'linear', also for spheres at platyness
- * 0) becomes 'hertz', so that packinfo computes its forces by the law that made them; a pack
- * without the line keeps none (Hertz is the default).  0 or -1 (out of memory). */
-int pack_claim_hertz(struct pack *p);
 int pack_add_contact(struct pack *p, const struct pack_contact *c);
 /* dst (uninitialised) becomes a deep copy of src: grains, columns, box, contacts, history,
  * meta.  For a tool that tries something on a pack and keeps the original (dissociate's

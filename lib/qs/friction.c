@@ -15,6 +15,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+
+const struct contact_law *const friction_laws[] = {&contact_law_hertz_mindlin, NULL};
+
 /* doubles per grain in f->gs: x - x0 (3), w = R Omega (3) */
 #define FR_GS 6
 
@@ -773,7 +776,7 @@ own_blocks(struct qs_hessian *H, double *cpl, size_t n, size_t g, const double K
  * minimiser has just evaluated) each contact's force, couple and trial force are the last
  * evaluation's, not evaluated again: the same bytes (test_hessian).
  * (Closed forms of the diagonal blocks, C^T K C = a^2 k* T sticking and a^2 sc (T - p p^T),
- * p = qh x n, sliding, were tried on 2026-12-04: a fifth of the cost, but rounding in the
+ * p = qh x n, sliding, were tried: a fifth of the cost, but rounding in the
  * preconditioner moves every path, and s-fig4's frictionless G5036 probe at 2 MPa then
  * collapsed to 1 MPa in a rearrangement; bench/kernels.md.) */
 static int

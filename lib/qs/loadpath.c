@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* loadpath: parsing and walking loading paths (see loadpath.h). */
 #include "qs/loadpath.h"
+#include "qs/friction.h"
 #include "analysis/measure.h"
 #include "base/msg.h"
 #include "pack/packio.h"
@@ -315,8 +316,8 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 		return -1;
 	if (pack_require_spheres(p, who))
 		return 1;
-	if (pack_claim_hertz(p))
-		return -1;
+	if (!contact_law_require(p, who, friction_laws))
+		return 1;
 	if (p->n < 5) {
 		msg_seterr("%zu grains: %s needs at least 5", p->n, who);
 		return 1;
