@@ -253,7 +253,7 @@ main(int argc, char **argv)
 
 	msg_init(argv[0]);
 	parse_args(argc, argv, &st, &path);
-	in = st.input && strcmp(st.input, "-") ? st.input : "<stdin>";
+	in = file_display_name(st.input);
 	/* a fault of the pack is named by the input; a read error names its place itself */
 	if ((r = path_read_pack(st.input, tool.name, &p, &stale)))
 		msg_die(EXIT_DATA, "%s%s%s", r > 0 ? in : "", r > 0 ? ": " : "", msg_geterr());

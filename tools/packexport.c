@@ -217,7 +217,7 @@ main(int argc, char **argv)
 	}
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
-	name = st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>";
+	name = file_display_name(st.input);
 	plates = pack_first_plate(&p) != (size_t)-1;
 	/* what cannot hold a plate: atom_style sphere, YADE's x y z r, and the contacts table
 	 * (the .vtm's contacts file of plates is their interactions, export_vtp_plate_contacts) */

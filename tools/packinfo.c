@@ -106,7 +106,7 @@ fill_row(const struct pack *p, const struct pack_measures *m, struct row *r)
 	add(r, "residual_strict", NULL, m->has_forces ? m->residual_strict : NAN);
 	add(r, "residual_median", NULL, m->has_forces ? m->residual_median : NAN);
 	{
-		/* the increment that wrote the pack recorded its own count (lib/loading.c); the
+		/* the increment that wrote the pack recorded its own count (lib/qs/loading.c); the
 		 * lines only bound it from below */
 		double rec;
 		add(r, "sliding_ratio", NULL, pack_get_meta_double(p, "sliding_ratio", &rec) == 0 ? rec : m->sliding_ratio);

@@ -101,7 +101,7 @@ main(int argc, char **argv)
 
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
-	name = st.input && strcmp(st.input, "-") != 0 ? st.input : "<stdin>";
+	name = file_display_name(st.input);
 	if (measure_grain_forces(&p, &g))
 		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
 	/* the page in memory first: nothing half-written reaches stdout either */

@@ -37,7 +37,7 @@ struct dem {
  * geometry only, so the step is as long as the integration stays stable with margin:
  * at 2740 grains (seed 1) 1.2 was stable and 1.6 was not; half of the largest stable
  * value is taken.  The step count it saves is the creep after unloading, which runs in
- * physical time: 0.2 (until 2026-12) took 101300 steps at 2740 grains and 123200 at 1e4,
+ * physical time: 0.2 took 101300 steps at 2740 grains and 123200 at 1e4,
  * 0.6 takes 39400 and 54700, with the same porosity, coordination and grains under 4 to
  * within the scatter between seeds (bench/packgen-scaling.md).  Masses scaled so that every
  * size has the same m/k (m ~ sqrt(r)) would save 2.4x in steps at 0.9, but diverge at 1.0:

@@ -27,14 +27,14 @@ densify_params_default(struct densify_params *dp)
 	dp->strain_step = 2e-3;
 	dp->max_growth = 0.05;
 	dp->grow_tol = 1e-2;
-	/* 5000, not 20000 (until 2026-12-03): the rounds that reach the limit are the ones
+	/* 5000, not 20000: the rounds that reach the limit are the ones
 	 * just above jamming, whose residual stays near 1 however long they run (0.35 after
 	 * 20000 iterations in the jamming round of a 1e4 pack); a round only picks the grains
 	 * that grow next, and the last one goes on to the full tolerance anyway.  The 1e4
 	 * seed-1 pack: 55266 iterations and 120 s against 93966 and 207 s; 2740 grains, seeds
 	 * 1-3: 18.3, 16.7, 17.6 s against 24.0, 26.4, 21.3 s, porosity within 0.0022 and
 	 * coordination within 0.04 (the scatter between seeds), bench/results.md.
-	 * 2500, not 5000 (until 2026-12-06), since phase (a) ends at the onset and every
+	 * 2500, not 5000, since phase (a) ends at the onset and every
 	 * compaction step grows the grains under min_coord: a capped stage only picks the
 	 * grains to grow, and picking them twice as often seats them sooner.  Iterations to
 	 * 4 MPa against 5000: 2740 grains, seeds 1-6, 16717 14047 21408 18976 17625 22648
@@ -523,8 +523,8 @@ checkpoint(struct densify_state *d, densify_checkpoint_fn ck, void *ctx, int pha
 }
 
 /* The compaction's end: the target stress, no grain under min_coord, a full equilibrium.
- * (Until 2026-12-05 it waited for no grain under 4 whatever min_coord was, so --min-coord 0,
- * growth off, never ended while a grain had fewer than 4 contacts.) */
+ * (Waiting for no grain under 4 whatever min_coord is would never end --min-coord 0, growth
+ * off, while a grain has fewer than 4 contacts.) */
 static int
 compaction_done(const struct densify_state *d)
 {
@@ -634,7 +634,7 @@ out:
 #define CK_REFBOX "densify-refbox"
 #define CK_ROW "densify-log-"
 #define CK_RUN "densify-run"
-/* 3 since phase (a) ends at the onset (2026-12-05): a checkpoint of version 2 would go on under
+/* 3 since phase (a) ends at the onset: a checkpoint of version 2 would go on under
  * another rule, and the run would be neither version's */
 #define CK_VERSION 3
 

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* test_friction: lib/friction.c, the Mindlin-Deresiewicz tangential force and torsion of
+/* test_friction: lib/qs/friction.c, the Mindlin-Deresiewicz tangential force and torsion of
  * physics.md §3-6, against closed forms, the papers' Fig. 2 loop and finite differences.
  *
  *  1. Fig. 2 of the frictional paper: one grain-grain contact (grain 0 orbiting grain 1 at

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* test_functional: lib/functional.c (Hertz energy, gradient, wall forces) and the neighbour
+/* test_functional: lib/qs/functional.c (Hertz energy, gradient, wall forces) and the neighbour
  * list behind it, against closed forms, finite differences and O(N^2) searches.
  *
  *  - one grain-grain and one grain-wall contact on exactly representable geometry: U, P, the

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_hooke: the moduli chain of the moduli tool (physics.md §8, §13) on data whose answers
- * are known exactly: lib/hooke.c (least-squares Hooke fit), lib/curve.c (per-interval fits of
- * a loadtest table), lib/table.c (the TSV reader) and lib/emt.c (effective-medium moduli).
+ * are known exactly: lib/analysis/hooke.c (least-squares Hooke fit), lib/analysis/curve.c (per-interval fits of
+ * a loadtest table), lib/base/table.c (the TSV reader) and lib/analysis/emt.c (effective-medium moduli).
  *
  * Stress increments come from an isotropic linear material of chosen K and G,
  *     dsigma_ll = lambda tr(de) + 2 G de_ll,   lambda = K - 2G/3,

@@ -26,7 +26,7 @@
  * 4 diagonal contacts pushing it into the wall (need P_w = 2 sqrt2 P_gg), an edge grain 3, and
  * affinity gives h_w = h/2 for every wall contact, so the equilibrium is non-affine and has no
  * closed form.  The reference is Newton's method with the exact Hessian of an O(N^2) Hertz
- * energy written in unit_lattice.h (independent of lib/functional.c and lib/minimize.c), converged to
+ * energy written in unit_lattice.h (independent of lib/qs/functional.c and lib/qs/minimize.c), converged to
  * rounding; the same solver reproduces the SC closed form, which validates it.  Checks that
  * need no reference: sig_xx = sig_yy = sig_zz under isotropic strain (cubic symmetry), and the
  * force on a wall equals the force carried across every plane between two layers (balance of

@@ -3,8 +3,8 @@
  * (2 (1 - nu^2)) between two grains, R* = R/2), frictionless unless said otherwise, against
  * moduli derived here.  Strains are compression positive and measured against the touching
  * lattice: a box length L = L_ref (1 - eps); a strain increment de changes sigma by dsigma,
- * C_ab = dsigma_a / deps_b.  The loader (lib/loading.h, as loadtest uses it) applies the
- * increments and measures the wall stresses; lib/hooke.c fits K and G to each increment.
+ * C_ab = dsigma_a / deps_b.  The loader (lib/qs/loading.h, as loadtest uses it) applies the
+ * increments and measures the wall stresses; lib/analysis/hooke.c fits K and G to each increment.
  *
  * Comparisons.  A step de = 1e-4 from eps0 = 1e-3 is not small (r = de/eps = 0.1), so the
  * measured secant dsigma/de is compared with the secant of the exact Hertz stress at the two

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* test_measure: lib/measure.c and lib/contacts.c on configurations whose answers are known in
- * closed form, and the Hertz closed forms of lib/hertz.h against their own derivatives.
+/* test_measure: lib/analysis/measure.c and lib/contact/contacts.c on configurations whose answers are known in
+ * closed form, and the Hertz closed forms of lib/contact/hertz.h against their own derivatives.
  *
  * The main configuration is a simple-cubic lattice of n^3 identical spheres of radius R at
  * spacing 2R - delta, between six walls that overlap the outer grains by the same delta.  The

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* test_minimize: lib/minimize.c on a random dense polydisperse pack.
+/* test_minimize: lib/qs/minimize.c on a random dense polydisperse pack.
  *
  * The pack (200 grains, radii 0.07-0.13 mm, glass-like moduli with a 10 % spread, walls
  * 100 x stiffer) is made by random placement and pairwise separation, brought to equilibrium

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* unit_hertz: the contact geometry of the O(N^2) Hertz references, written independently of
- * lib/functional.c, and the Hertz part of the central-difference tolerances, shared by
+ * lib/qs/functional.c, and the Hertz part of the central-difference tolerances, shared by
  * test_functional, test_friction, test_lattice and test_lattice_moduli. */
 #ifndef QUSGM_UNIT_HERTZ_H
 #define QUSGM_UNIT_HERTZ_H

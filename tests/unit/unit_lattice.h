@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* unit_lattice: blocks of identical spheres on a simple cubic or face-centred cubic lattice
  * between walls, and the Newton reference that brings them to equilibrium (the exact Hessian of
- * an O(N^2) Hertz energy written here, independent of lib/functional.c and lib/minimize.c),
+ * an O(N^2) Hertz energy written here, independent of lib/qs/functional.c and lib/qs/minimize.c),
  * shared by test_lattice and test_lattice_moduli. */
 #ifndef QUSGM_UNIT_LATTICE_H
 #define QUSGM_UNIT_LATTICE_H
