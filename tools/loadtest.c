@@ -140,7 +140,7 @@ print_header(const struct pack *p, const struct load_path *path)
 		printf(" or eps1 %g", o.lp.min.eps1);
 	if (o.lp.min.eps2 > 0)
 		printf(" or eps2 %g", o.lp.min.eps2);
-	printf("; method %s; max-iter %ld\n", qs_method_name(o.lp.min.method), o.lp.min.max_iter);
+	printf("; method %s; max-iter %ld\n", o.lp.min.method->name, o.lp.min.max_iter);
 	if (o.lp.friction)
 		printf("## friction: mu %g, wall_mu %g, rule %s\n", p->mu, p->wall_mu, fr_rule_name(o.lp.rule));
 	else

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* minopts: validation of the shared minimiser options (see minopts.h). */
 #include "qs/minopts.h"
+#include "base/msg.h"
 
 #include <math.h>
 
@@ -9,8 +10,12 @@ const char *qs_method_arg = "lbfgs";
 void
 qs_min_opts_check(struct qs_min_params *mp)
 {
-	if (qs_method_parse(qs_method_arg, &mp->method))
-		cli_usage_error("--method: '%s' is not cg, fire or lbfgs", qs_method_arg);
+	const struct qs_method_type *t = qs_method_find(qs_method_arg);
+
+	if (t)
+		mp->method = t;
+	else
+		cli_usage_error("--method: %s", msg_geterr());
 	if (!(mp->tol > 0 && mp->tol < 1))
 		cli_usage_error("--tol: must be in (0, 1)");
 	if (!(mp->tol_floor >= 0 && mp->tol_floor <= 1))

@@ -26,7 +26,8 @@ extern const char *qs_method_arg;
 	{"lbfgs-m", 0, CLI_LONG, &(mp).lbfgs_m, "M", "lbfgs: number of stored steps (0: 4 in frictional increments, 8 otherwise)", NULL},                      \
 	{"precond", 0, CLI_DOUBLE, &(mp).precond_shift, "S", "lbfgs, fire: scale each grain's step by its stiffness block, shifted by S x the mean (0: off)", NULL}
 
-/* Validate the values and resolve --method; reports through cli_usage_error. */
+/* Validate the values and resolve --method (an unknown name lists the methods); reports
+ * through cli_usage_error. */
 void qs_min_opts_check(struct qs_min_params *mp);
 /* The options of a loading (loadtest, frictionalize, dissociate) inside a cli_opt table: lp a
  * struct load_params, rule a const char *, nsub a long; qs_load_opts_check after cli_parse. */

@@ -305,7 +305,7 @@ expect_fail "a soft grain: --stress beyond its E/100" 2 "^densify: --stress 4e\\
 expect_fail "--stress 1e-300 (below 1e-12 E)" 2 "^densify: --stress 1e-300 Pa is below 1e-12 E of the grains \\(1e-12 E = [0-9.e+-]+ Pa\\)$" --stress 1e-300 loose.pack
 expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --onset 1e4 --stress 5e3 loose.pack
 expect_fail "--tol 2" 2 '^densify: --tol' --tol 2 loose.pack
-expect_fail "--method bfgs" 2 "^densify: --method: 'bfgs'" --method bfgs loose.pack
+expect_fail "--method bfgs" 2 "^densify: --method: no such method 'bfgs' \\(the methods: [a-z0-9]+(, [a-z0-9]+)*\\) \\(try 'densify --help'\\)$" --method bfgs loose.pack
 expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
 expect_fail "--release-after -1" 2 '^densify: --release-after' --release-after -1 loose.pack
 expect_fail "--time-limit without --checkpoint" 2 '^densify: --time-limit needs --checkpoint' --time-limit 60 loose.pack

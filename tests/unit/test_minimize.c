@@ -193,8 +193,8 @@ main(void)
 	    rep.energy);
 
 	/* both methods from the same start */
-	Ec = energy_from(&p, x0, QS_CG, 200000, tol, 0, xc, &rc, cc);
-	Ef = energy_from(&p, x0, QS_FIRE, 200000, tol, 0, xf, &rf, cf);
+	Ec = energy_from(&p, x0, &qs_method_cg, 200000, tol, 0, xc, &rc, cc);
+	Ef = energy_from(&p, x0, &qs_method_fire, 200000, tol, 0, xf, &rf, cf);
 	CHECK(rc.status == 0 && rc.res_max <= tol && strcmp(rc.stopped_by, "residual") == 0,
 	    "cg converges (status %d, %ld iterations, %ld evaluations, residual %.3g <= %g)", rc.status, rc.iter, rc.evals,
 	    rc.res_max, tol);
@@ -215,10 +215,10 @@ main(void)
 		double cap = 2e-5, eprev, rise = 0, mv = 0, mvmax = 0;
 		int allmax = 1;
 		long kk, K = 40;
-		eprev = energy_from(&p, x0, QS_CG, 0, 1e-30, cap, xa, &rep, NULL);
+		eprev = energy_from(&p, x0, &qs_method_cg, 0, 1e-30, cap, xa, &rep, NULL);
 		allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == 0;
 		for (kk = 1; kk <= K; kk++) {
-			double e = energy_from(&p, x0, QS_CG, kk, 1e-30, cap, xb, &rep, NULL);
+			double e = energy_from(&p, x0, &qs_method_cg, kk, 1e-30, cap, xb, &rep, NULL);
 			allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == kk;
 			/* rounding: the energy is a sum of a few thousand terms, so 1e-13 relative */
 			rise = fmax(rise, (e - eprev) / fabs(eprev));
@@ -236,11 +236,11 @@ main(void)
 	}
 	{
 		double cap = 1e-4, mv;
-		energy_from(&p, x0, QS_CG, 1, 1e-30, cap, xa, &rep, NULL);
+		energy_from(&p, x0, &qs_method_cg, 1, 1e-30, cap, xa, &rep, NULL);
 		mv = maxmove(&p, x0, xa);
 		CHECK(mv <= cap + move_slack(&p, x0) && mv >= 0.999 * cap, "cg, max_iter = 1, cap %g: largest move %.8g R", cap, mv);
 		CHECK(rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0, "cg, max_iter = 1: status 1, max_iter");
-		energy_from(&p, x0, QS_FIRE, 1, 1e-30, cap, xa, &rep, NULL);
+		energy_from(&p, x0, &qs_method_fire, 1, 1e-30, cap, xa, &rep, NULL);
 		mv = maxmove(&p, x0, xa);
 		CHECK(mv <= cap + move_slack(&p, x0) && mv > 0, "fire, max_iter = 1, cap %g: largest move %.8g R", cap, mv);
 		CHECK(rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0, "fire, max_iter = 1: status 1, max_iter");
@@ -250,9 +250,9 @@ main(void)
 		 * so the cap is smaller */
 		double cap = 1e-6, mvmax = 0;
 		long kk;
-		energy_from(&p, x0, QS_FIRE, 0, 1e-30, cap, xa, &rep, NULL);
+		energy_from(&p, x0, &qs_method_fire, 0, 1e-30, cap, xa, &rep, NULL);
 		for (kk = 1; kk <= 60; kk++) {
-			energy_from(&p, x0, QS_FIRE, kk, 1e-30, cap, xb, &rep, NULL);
+			energy_from(&p, x0, &qs_method_fire, kk, 1e-30, cap, xb, &rep, NULL);
 			mvmax = fmax(mvmax, maxmove(&p, xa, xb));
 			memcpy(xa, xb, n3 * sizeof *xa);
 		}
@@ -260,7 +260,7 @@ main(void)
 		    cap, mvmax);
 	}
 	/* an equilibrium is recognised at once */
-	energy_from(&p, xc, QS_CG, 10, tol, 0, xa, &rep, NULL);
+	energy_from(&p, xc, &qs_method_cg, 10, tol, 0, xa, &rep, NULL);
 	CHECK(rep.status == 0 && rep.iter == 0 && maxmove(&p, xa, xc) == 0,
 	    "cg from its own equilibrium: status 0 after 0 iterations, nothing moves");
 	free(x0), free(xc), free(xf), free(xa), free(xb), free(cc), free(cf);
