@@ -156,6 +156,7 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 {
 	load_params_default(&o.lp);
 	cli_output_help("write the final pack to FILE (atomically; .gz compresses); the table always goes to stdout");
+	qs_min_opts_init();
 	cli_parse(&tool, argc, argv, st);
 	qs_min_opts_check(&o.lp.min);
 	if (path_parse_axis(o.axis, &o.def.axis))

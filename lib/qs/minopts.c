@@ -4,8 +4,26 @@
 #include "base/msg.h"
 
 #include <math.h>
+#include <stdio.h>
 
 const char *qs_method_arg = "lbfgs";
+/* room for a few more methods than the table has; a longer line is cut, not overrun */
+char qs_method_help[512] = "minimiser";
+
+void
+qs_min_opts_init(void)
+{
+	const struct qs_method_type *const *t;
+	size_t at = 0, size = sizeof qs_method_help;
+	int k = snprintf(qs_method_help, size, "minimiser:");
+
+	for (t = qs_methods; *t && k >= 0 && (at += (size_t)k) < size; t++) {
+		/* "a (...)", "a (...) or b (...)", "a (...), b (...) or c (...)" */
+		const char *sep = t == qs_methods ? "" : t[1] ? "," : " or";
+
+		k = snprintf(qs_method_help + at, size - at, "%s %s (%s)", sep, (*t)->name, (*t)->description);
+	}
+}
 
 void
 qs_min_opts_check(struct qs_min_params *mp)
