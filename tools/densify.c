@@ -192,6 +192,7 @@ static void
 parse_args(int argc, char **argv, struct cli_state *st)
 {
 	densify_params_default(&o.dp);
+	qs_min_opts_init();
 	cli_parse(&tool, argc, argv, st);
 	qs_min_opts_check(&o.dp.min);
 	if (!(o.dp.stress > 0))

@@ -51,6 +51,7 @@ static void
 parse_args(int argc, char **argv, struct cli_state *st)
 {
 	load_params_default(&o.lp);
+	qs_min_opts_init();
 	cli_parse(&tool, argc, argv, st);
 	qs_min_opts_check(&o.lp.min);
 	if (!(o.d.dS <= 0))

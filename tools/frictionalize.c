@@ -79,6 +79,7 @@ static void
 parse_args(int argc, char **argv, struct cli_state *st)
 {
 	fric_params_default(&o.fp);
+	qs_min_opts_init();
 	cli_parse(&tool, argc, argv, st);
 	qs_min_opts_check(&o.fp.lp.min);
 	qs_load_opts_check(&o.fp.lp, o.rule, o.nsub, o.mu, o.wall_mu);

@@ -140,7 +140,7 @@ print_header(const struct pack *p, const struct load_path *path)
 		printf(" or eps1 %g", o.lp.min.eps1);
 	if (o.lp.min.eps2 > 0)
 		printf(" or eps2 %g", o.lp.min.eps2);
-	printf("; method %s; max-iter %ld\n", qs_method_name(o.lp.min.method), o.lp.min.max_iter);
+	printf("; method %s; max-iter %ld\n", o.lp.min.method->name, o.lp.min.max_iter);
 	if (o.lp.friction)
 		printf("## friction: mu %g, wall_mu %g, rule %s\n", p->mu, p->wall_mu, fr_rule_name(o.lp.rule));
 	else
@@ -156,6 +156,7 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 {
 	load_params_default(&o.lp);
 	cli_output_help("write the final pack to FILE (atomically; .gz compresses); the table always goes to stdout");
+	qs_min_opts_init();
 	cli_parse(&tool, argc, argv, st);
 	qs_min_opts_check(&o.lp.min);
 	if (path_parse_axis(o.axis, &o.def.axis))

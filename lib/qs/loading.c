@@ -106,9 +106,9 @@ loader_open(struct loader *L, struct pack *p, const struct load_params *lp)
 		msg_seterr("the pack has no reference box (run densify first)");
 		return -1;
 	}
-	if (lp->friction && lp->min.method == QS_NEWTON && lp->rule != FR_RETURN_MAP) {
-		msg_seterr("newton needs the return map's Hessian (the paper's rule has no potential): "
-		    "--rule return-map, or another --method");
+	if (lp->friction && lp->min.method->needs_hessian && lp->rule != FR_RETURN_MAP) {
+		msg_seterr("%s needs the return map's Hessian (the paper's rule has no potential): "
+		    "--rule return-map, or another --method", lp->min.method->name);
 		return -1;
 	}
 	if (qs_init(&L->s, p, lp->skin))

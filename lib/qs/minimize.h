@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* minimize: finding the equilibrium of a pack by minimising Pi (physics.md §7).
  *
- * Methods:
+ * Methods (each in its own file, min_NAME.c, and a row of QS_METHODS below):
  *  - cg: the papers' modified conjugate gradient: Fletcher-Reeves beta, a steepest-descent
  *    restart every k_sd iterations, and a one-dimensional minimisation along the direction
  *    capped so that no grain moves more than cap times its radius.  The 1-D minimisation
@@ -38,12 +38,65 @@
 
 #include "qs/functional.h"
 
-enum qs_method { QS_CG, QS_FIRE, QS_LBFGS, QS_NEWTON };
+/* A method, in the shape of GSL's gsl_multimin_fdfminimizer_type: a const object in the
+ * method's own file (min_cg.c, min_fire.c, min_lbfgs.c, min_newton.c), which the minimiser
+ * calls through; what they share (the line search, the step cap, the convergence tests, the
+ * evaluation, the grains' preconditioner) is minimize.c's (minimize_priv.h).  Each hook takes
+ * the minimiser, whose state (struct qs_minimizer) the method's file sees through
+ * qs/minimize_priv.h, its own part behind m->state. */
+struct qs_minimizer;
+struct qs_method_type {
+	const char *name;		/* --method's NAME */
+	const char *description;	/* one line, for --method's help */
+	size_t size;			/* the method's state (m->state, zeroed) */
+	/* Its vectors, for the minimiser's system and parameters: 0, or -1 (out of memory;
+	 * free then releases what was allocated).  NULL: none, the state is all. */
+	int (*alloc)(struct qs_minimizer *m);
+	void (*free)(struct qs_minimizer *m);
+	/* A start at the minimiser's x, just evaluated (qs_minimizer_set; with keep
+	 * qs_minimizer_resume, which keeps what the method can keep of the last minimisation).
+	 * 0 or -1. */
+	int (*start)(struct qs_minimizer *m, int keep);
+	/* One iteration: 0 or -1 (msg_seterr). */
+	int (*iterate)(struct qs_minimizer *m);
+	/* The caller moved x, just evaluated there (qs_minimizer_moved): what of the method's
+	 * memory still holds.  NULL: all of it. */
+	void (*moved)(struct qs_minimizer *m);
+	/* Nonzero when the method has nothing to move along (CG's zero gradient): the test
+	 * stops there, converged.  NULL: never. */
+	int (*stuck)(const struct qs_minimizer *m);
+	/* Needs every term's second derivatives (qs_hessian), so not the friction term under
+	 * the paper's rule, which has none (loader_open refuses the pair). */
+	int needs_hessian;
+};
+
+/* The table of the methods, one row each: X(C name of the method's object, after
+ * qs_method_).  Adding a method: its file and its row (share/doc/library.md, "How to add a
+ * minimiser"). */
+#define QS_METHODS(X) \
+	X(cg) \
+	X(fire) \
+	X(lbfgs) \
+	X(newton)
+
+#define QS_METHOD_EXTERN(id) extern const struct qs_method_type qs_method_##id;
+QS_METHODS(QS_METHOD_EXTERN)
+#undef QS_METHOD_EXTERN
+
+/* The methods of the table, in its order, NULL-terminated. */
+extern const struct qs_method_type *const qs_methods[];
+/* The method named name; NULL, with the error slot set ("no such method 'foo' (the methods:
+ * cg, fire, lbfgs, newton)"), for a name no method has. */
+const struct qs_method_type *qs_method_find(const char *name);
+/* The names of the table's methods, as "cg, fire, lbfgs, newton", into buf (truncated to
+ * size). */
+void qs_method_names(char *buf, size_t size);
+
 /* L-BFGS's stored steps by default (qs_min_params_default), and where lbfgs_m is 0. */
 #define QS_LBFGS_M 8
 
 struct qs_min_params {
-	enum qs_method method;
+	const struct qs_method_type *method;	/* default qs_method_lbfgs */
 	long max_iter;
 	double tol;		/* target largest per-grain force ratio */
 	double tol_floor;	/* floor of a grain's largest force / mean contact force */
@@ -67,9 +120,6 @@ struct qs_min_report {
 };
 
 void qs_min_params_default(struct qs_min_params *mp);
-/* Parse "cg" / "fire" / "lbfgs"; 0 or -1. */
-int qs_method_parse(const char *name, enum qs_method *m);
-const char *qs_method_name(enum qs_method m);
 
 /* Minimise from x (3n, updated in place).  Returns the report's status.  It is the loop
  * below: alloc, set, then test and iterate until the test says stop. */
@@ -77,7 +127,6 @@ int qs_minimize(struct qs_system *s, double *x, const struct qs_min_params *mp, 
 /* qs_minimize with a minimiser the caller keeps (qs_minimizer_alloc on the same system, with
  * the same method, lbfgs_m and preconditioning as mp: qs_minimizer_params), so that a run of
  * minimisations (a frictional increment and its settle passes) allocates its memory once. */
-struct qs_minimizer;
 int qs_minimize_in(struct qs_minimizer *m, double *x, const struct qs_min_params *mp, struct qs_min_report *rep);
 
 /* The steppable minimiser, in the shape of GSL's multimin: INITIALIZE (alloc, set),

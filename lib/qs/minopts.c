@@ -1,16 +1,39 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* minopts: validation of the shared minimiser options (see minopts.h). */
 #include "qs/minopts.h"
+#include "base/msg.h"
 
 #include <math.h>
+#include <stdio.h>
 
 const char *qs_method_arg = "lbfgs";
+/* room for a few more methods than the table has; a longer line is cut, not overrun */
+char qs_method_help[512] = "minimiser";
+
+void
+qs_min_opts_init(void)
+{
+	const struct qs_method_type *const *t;
+	size_t at = 0, size = sizeof qs_method_help;
+	int k = snprintf(qs_method_help, size, "minimiser:");
+
+	for (t = qs_methods; *t && k >= 0 && (at += (size_t)k) < size; t++) {
+		/* "a (...)", "a (...) or b (...)", "a (...), b (...) or c (...)" */
+		const char *sep = t == qs_methods ? "" : t[1] ? "," : " or";
+
+		k = snprintf(qs_method_help + at, size - at, "%s %s (%s)", sep, (*t)->name, (*t)->description);
+	}
+}
 
 void
 qs_min_opts_check(struct qs_min_params *mp)
 {
-	if (qs_method_parse(qs_method_arg, &mp->method))
-		cli_usage_error("--method: '%s' is not cg, fire or lbfgs", qs_method_arg);
+	const struct qs_method_type *t = qs_method_find(qs_method_arg);
+
+	if (t)
+		mp->method = t;
+	else
+		cli_usage_error("--method: %s", msg_geterr());
 	if (!(mp->tol > 0 && mp->tol < 1))
 		cli_usage_error("--tol: must be in (0, 1)");
 	if (!(mp->tol_floor >= 0 && mp->tol_floor <= 1))

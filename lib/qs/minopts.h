@@ -11,9 +11,12 @@
 #include "qs/loading.h"
 
 extern const char *qs_method_arg;
+/* --method's help line, made from the table of the methods (QS_METHODS) by
+ * qs_min_opts_init. */
+extern char qs_method_help[];
 
 #define QS_MIN_OPTS(mp)                                                                                      \
-	{"method", 0, CLI_STRING, &qs_method_arg, "NAME", "minimiser: cg (the papers' modified CG), fire, lbfgs or newton (Newton-Krylov, exact Hessian)", NULL}, \
+	{"method", 0, CLI_STRING, &qs_method_arg, "NAME", qs_method_help, NULL},                               \
 	{"tol", 0, CLI_DOUBLE, &(mp).tol, "RATIO", "equilibrium: largest per-grain |F_i| / largest contact force on i", NULL}, \
 	{"tol-floor", 0, CLI_DOUBLE, &(mp).tol_floor, "RATIO", "--tol judges a grain against at least RATIO x the mean contact force", NULL}, \
 	{"max-iter", 0, CLI_LONG, &(mp).max_iter, "N", "iteration limit of one minimisation", NULL},                 \
@@ -26,7 +29,12 @@ extern const char *qs_method_arg;
 	{"lbfgs-m", 0, CLI_LONG, &(mp).lbfgs_m, "M", "lbfgs: number of stored steps (0: 4 in frictional increments, 8 otherwise)", NULL},                      \
 	{"precond", 0, CLI_DOUBLE, &(mp).precond_shift, "S", "lbfgs, fire: scale each grain's step by its stiffness block, shifted by S x the mean (0: off)", NULL}
 
-/* Validate the values and resolve --method; reports through cli_usage_error. */
+/* Before cli_parse: --method's help line from the table of the methods, "minimiser: cg (the
+ * papers' modified CG), fire (FIRE 2.0), ... or newton (...)", each name and its
+ * description. */
+void qs_min_opts_init(void);
+/* Validate the values and resolve --method (an unknown name lists the methods); reports
+ * through cli_usage_error. */
 void qs_min_opts_check(struct qs_min_params *mp);
 /* The options of a loading (loadtest, frictionalize, dissociate) inside a cli_opt table: lp a
  * struct load_params, rule a const char *, nsub a long; qs_load_opts_check after cli_parse. */

@@ -28,11 +28,12 @@
 int
 main(int argc, char **argv)
 {
-	static const enum qs_method methods[] = {QS_LBFGS, QS_FIRE, QS_CG, QS_NEWTON};
+	static const struct qs_method_type *const methods[] = {&qs_method_lbfgs, &qs_method_fire, &qs_method_cg,
+	    &qs_method_newton};
 	struct pack p0;
 	double strain = 1e-4;
 	long steps = 5;
-	enum qs_method only = QS_LBFGS;
+	const struct qs_method_type *only = &qs_method_lbfgs;
 	size_t m;
 	int fr, bad = 0;
 	const char *only_case = getenv("FINCREMENT_CASE");
@@ -45,8 +46,8 @@ main(int argc, char **argv)
 		msg_die(EXIT_USAGE, "STEPS: '%s' is not a count in [1, 10000]", argv[2]);
 	if (argc >= 4 && !((strain = atof(argv[3])) > 0 && strain < 0.01))
 		msg_die(EXIT_USAGE, "STRAIN: '%s' is not in (0, 0.01)", argv[3]);
-	if (argc == 5 && qs_method_parse(argv[4], &only))
-		msg_die(EXIT_USAGE, "METHOD: '%s' is not lbfgs, fire, cg or newton", argv[4]);
+	if (argc == 5 && !(only = qs_method_find(argv[4])))
+		msg_die(EXIT_USAGE, "METHOD: %s", msg_geterr());
 	if (pack_read_path(argv[1], &p0))
 		msg_die_err(EXIT_DATA);
 	if (!p0.has_refbox)
@@ -96,13 +97,13 @@ main(int argc, char **argv)
 			c1 = bench_cpu();
 			nc = p.nc;
 			printf("%s\t%s\t%zu\t%zu\t%ld\t%.1f\t%.1f\t%.4f\t%.1f\t%.3g\t%.4f\t%.6g\t%.1f\n", fr ? "mu" : "none",
-			    qs_method_name(methods[m]), p.n, nc, k, (double)iters / k, (double)evals / k, (t1 - t0) / k,
+			    methods[m]->name, p.n, nc, k, (double)iters / k, (double)evals / k, (t1 - t0) / k,
 			    nc && evals ? 1e9 * (t1 - t0) / evals / nc : 0.0, resmax, row.sliding_ratio, row.sigma_c,
 			    nc && evals ? 1e9 * (c1 - c0) / evals / nc : 0.0);
 			fflush(stdout);
 			if (st == 1) {
 				fprintf(stderr, "fincrement: %s %s: iteration limit\n", fr ? "friction" : "frictionless",
-				    qs_method_name(methods[m]));
+				    methods[m]->name);
 				bad = 1;
 			}
 			loader_close(&L);

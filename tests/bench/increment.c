@@ -23,7 +23,6 @@
 int
 main(int argc, char **argv)
 {
-	static const enum qs_method methods[] = {QS_CG, QS_FIRE, QS_LBFGS, QS_NEWTON};
 	struct pack p;
 	double box0[6], *x, strain = 1e-4;
 	size_t m;
@@ -46,7 +45,7 @@ main(int argc, char **argv)
 	if (!x)
 		msg_die(EXIT_DATA, "out of memory");
 	printf("# method\tgrains\tcontacts\titerations\tevaluations\twall_s\tns_per_eval_contact\tresidual\tresidual_mean\tsigma_c[Pa]\n");
-	for (m = 0; m < sizeof methods / sizeof methods[0]; m++) {
+	for (m = 0; qs_methods[m]; m++) {
 		struct qs_system s;
 		struct qs_min_params mp;
 		struct qs_min_report rep;
@@ -56,7 +55,7 @@ main(int argc, char **argv)
 		memcpy(p.box, box0, sizeof box0);
 		memcpy(x, p.x, 3 * p.n * sizeof *x);
 		qs_min_params_default(&mp);
-		mp.method = methods[m];
+		mp.method = qs_methods[m];
 		t0 = bench_now();
 		if (qs_init(&s, &p, 0.3))
 			msg_die_err(EXIT_DATA);
@@ -65,12 +64,12 @@ main(int argc, char **argv)
 		if (st < 0)
 			msg_die_err(EXIT_DATA);
 		qs_wall_stress(&s, sig);
-		printf("%s\t%zu\t%zu\t%ld\t%ld\t%.4f\t%.1f\t%.3g\t%.3g\t%.6g\n", qs_method_name(mp.method), p.n,
+		printf("%s\t%zu\t%zu\t%ld\t%ld\t%.4f\t%.1f\t%.3g\t%.3g\t%.6g\n", mp.method->name, p.n,
 		    s.ncontacts, rep.iter, rep.evals, t1 - t0,
 		    s.ncontacts && rep.evals ? 1e9 * (t1 - t0) / rep.evals / s.ncontacts : 0.0, rep.res_max,
 		    rep.res_mean, (sig[0] + sig[1] + sig[2]) / 3);
 		if (st == 1) {
-			msg_warn("%s stopped at its iteration limit", qs_method_name(mp.method));
+			msg_warn("%s stopped at its iteration limit", mp.method->name);
 			bad = 1;
 		}
 		qs_free(&s);

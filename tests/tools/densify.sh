@@ -305,7 +305,20 @@ expect_fail "a soft grain: --stress beyond its E/100" 2 "^densify: --stress 4e\\
 expect_fail "--stress 1e-300 (below 1e-12 E)" 2 "^densify: --stress 1e-300 Pa is below 1e-12 E of the grains \\(1e-12 E = [0-9.e+-]+ Pa\\)$" --stress 1e-300 loose.pack
 expect_fail "--stress below --onset" 2 '^densify: --stress .*--onset' --onset 1e4 --stress 5e3 loose.pack
 expect_fail "--tol 2" 2 '^densify: --tol' --tol 2 loose.pack
-expect_fail "--method bfgs" 2 "^densify: --method: 'bfgs'" --method bfgs loose.pack
+expect_fail "--method bfgs" 2 "^densify: --method: no such method 'bfgs' \\(the methods: [a-z0-9]+(, [a-z0-9]+)*\\) \\(try 'densify --help'\\)$" --method bfgs loose.pack
+# the message's list is the method table (lib/qs/minimize.h, QS_METHODS), as --method's help
+# line is: every method it lists is in the help line and is accepted, and the list is no
+# shorter than the four methods there were when it was written
+methods=$(sed -n "s/.*(the methods: \([^)]*\)).*/\1/p" err.err | tr -d ,)
+densify --help | grep -- '--method NAME' >mhelp.txt
+bad="" count=0
+for m in $methods; do
+	count=$((count + 1))
+	grep -q -- " $m (" mhelp.txt || bad="$bad $m:not-in-help"
+	# --tol 2 stops the run at the usage check, which reports every bad option
+	densify --method "$m" --tol 2 -o nothing.pack loose.pack 2>&1 | grep -q -- '--method' && bad="$bad $m:refused"
+done
+if [ "$count" -ge 4 ] && [ -z "$bad" ]; then pass "--method: the unknown name's list ($methods) is --help's and each is accepted"; else fail "--method: the unknown name's list is --help's and each is accepted" "'$methods' ($count):$bad"; fi
 expect_fail "--cap 0" 2 '^densify: --cap' --cap 0 loose.pack
 expect_fail "--release-after -1" 2 '^densify: --release-after' --release-after -1 loose.pack
 expect_fail "--time-limit without --checkpoint" 2 '^densify: --time-limit needs --checkpoint' --time-limit 60 loose.pack

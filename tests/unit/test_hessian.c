@@ -219,8 +219,8 @@ friction_fd(gsl_rng *rng)
  * preconditioned as precond_shift says, 0: plain) to tol; the wall
  * stresses, each grain's contacts and each reference contact's |Q| / Q_max at the end. */
 static void
-friction_min(struct qs_system *s, struct qs_friction *f, const double *x0, enum qs_method m, double precond, double tol,
-    double *x, struct qs_min_report *rep, double sig[3], unsigned *cnt, double *ratio)
+friction_min(struct qs_system *s, struct qs_friction *f, const double *x0, const struct qs_method_type *m,
+    double precond, double tol, double *x, struct qs_min_report *rep, double sig[3], unsigned *cnt, double *ratio)
 {
 	struct qs_min_params mp;
 	size_t k;
@@ -271,11 +271,11 @@ friction_newton(struct pack *p, const double *xeq)
 		const char *who = pass ? "preconditioned lbfgs" : "newton";
 		struct qs_min_params dflt;
 		qs_min_params_default(&dflt);
-		friction_min(&s, &f, x0, QS_LBFGS, 0, 1e-9, xl, &rl, sl, cl, ql);
+		friction_min(&s, &f, x0, &qs_method_lbfgs, 0, 1e-9, xl, &rl, sl, cl, ql);
 		if (pass)
-			friction_min(&s, &f, x0, QS_LBFGS, dflt.precond_shift, 1e-9, xn, &rn, sn, cn, qn);
+			friction_min(&s, &f, x0, &qs_method_lbfgs, dflt.precond_shift, 1e-9, xn, &rn, sn, cn, qn);
 		else
-			friction_min(&s, &f, x0, QS_NEWTON, 0, 1e-9, xn, &rn, sn, cn, qn);
+			friction_min(&s, &f, x0, &qs_method_newton, 0, 1e-9, xn, &rn, sn, cn, qn);
 		CHECK(rn.status == 0 && rn.res_max <= 1e-9 && rl.status == 0,
 		    "friction: %s converges (%ld iterations, residual %.3g; plain lbfgs %ld iterations, residual %.3g)", who,
 		    rn.iter, rn.res_max, rl.iter, rl.res_max);
@@ -359,8 +359,8 @@ main(void)
 	k = strained_start(&p, rng, x0, xeq, &rep, cl);
 	CHECK(rep.status == 0 && k >= 8 * n / 10, "setup: jammed (%zu of %zu grains with >= 4 contacts, Pi = %.3g J)", k, n,
 	    rep.energy);
-	El = energy_from(&p, x0, QS_LBFGS, 200000, tol, 0, xl, &rl, cl);
-	En = energy_from(&p, x0, QS_NEWTON, 200000, tol, 0, xn, &rn, cn);
+	El = energy_from(&p, x0, &qs_method_lbfgs, 200000, tol, 0, xl, &rl, cl);
+	En = energy_from(&p, x0, &qs_method_newton, 200000, tol, 0, xn, &rn, cn);
 	CHECK(rn.status == 0 && rn.res_max <= tol && strcmp(rn.stopped_by, "residual") == 0,
 	    "newton converges (status %d, %ld iterations, %ld evaluations, residual %.3g <= %g; lbfgs %ld iterations)",
 	    rn.status, rn.iter, rn.evals, rn.res_max, tol, rl.iter);

@@ -12,7 +12,11 @@
  *    energies are the energies of successive iterations; each such run also reports status 1
  *    and stopped_by "max_iter";
  *  - the displacement cap: between successive iterations no grain moves more than cap R, and
- *    the cap is reached (so the check is not vacuous); FIRE likewise for its first step. */
+ *    the cap is reached (so the check is not vacuous); FIRE likewise for its first step;
+ *  - the table of the methods (QS_METHODS), row by row, so that a new method is tested
+ *    without an edit here: its name finds it, it has a one-line description, and it reaches
+ *    CG's equilibrium from the common start; an unknown name lists every method. */
+#include "base/msg.h"
 #include "base/par.h"
 #include "qs/functional.h"
 #include "qs/loading.h"
@@ -164,6 +168,81 @@ test_dot_blocks(gsl_rng *rng)
 	}
 }
 
+/* CG iteration by iteration: max_iter = k from the same start x0 on a fresh system (xa, xb:
+ * work space). */
+static void
+test_cg_steps(struct pack *p, const double *x0, double *xa, double *xb)
+{
+	struct qs_min_report rep;
+	size_t n3 = 3 * p->n;
+	/* the start is 1e-4 strain from equilibrium, so a cap of 2e-5 R binds */
+	double cap = 2e-5, eprev, rise = 0, mv = 0, mvmax = 0;
+	int allmax = 1;
+	long kk, K = 40;
+
+	eprev = energy_from(p, x0, &qs_method_cg, 0, 1e-30, cap, xa, &rep, NULL);
+	allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == 0;
+	for (kk = 1; kk <= K; kk++) {
+		double e = energy_from(p, x0, &qs_method_cg, kk, 1e-30, cap, xb, &rep, NULL);
+		allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == kk;
+		/* rounding: the energy is a sum of a few thousand terms, so 1e-13 relative */
+		rise = fmax(rise, (e - eprev) / fabs(eprev));
+		mv = maxmove(p, xa, xb);
+		mvmax = fmax(mvmax, mv);
+		eprev = e;
+		memcpy(xa, xb, n3 * sizeof *xa);
+	}
+	CHECK(rise <= 1e-13, "cg: the energy never rises over %ld iterations (largest relative rise %.3g)", K, rise);
+	CHECK(allmax, "cg: max_iter too small gives status 1, stopped_by \"max_iter\" and iter = max_iter");
+	/* the line search may stop at alpha_max, where one grain moves exactly cap R: allow the
+	 * rounding of measuring the move (move_slack) above it */
+	CHECK(mvmax <= cap + move_slack(p, x0) && mvmax >= 0.5 * cap,
+	    "cg: no grain moves more than cap R = %g R in one iteration (largest %.17g R)", cap, mvmax);
+}
+
+/* Every row of the method table: found by its name, described in one line, and from the
+ * common start x0 at the equilibrium CG reached (energy Ec, positions xc, contacts cc) to tol,
+ * as test_hessian compares newton and lbfgs; an unknown name lists the rows' names. */
+static void
+test_method_table(struct pack *p, const double *x0, double Ec, const double *xc, const unsigned *cc, double tol)
+{
+	const struct qs_method_type *const *t;
+	double *x = malloc(3 * p->n * sizeof *x);
+	unsigned *cnt = malloc(p->n * sizeof *cnt), rattlers;
+	size_t rows = 0;
+	int listed = 1;
+
+	for (t = qs_methods; *t; t++, rows++) {
+		const struct qs_method_type *m = *t;
+		struct qs_min_report rep;
+		double E, dpos;
+		char tag[96];
+
+		CHECK(m->name && qs_method_find(m->name) == m, "table row %zu: '%s' finds its own row", rows,
+		    m->name ? m->name : "(null)");
+		CHECK(m->description && m->description[0] && !strchr(m->description, '\n'),
+		    "%s: a one-line description ('%s')", m->name, m->description ? m->description : "(null)");
+		CHECK(m->size > 0 || (!m->alloc && !m->free), "%s: a state, or nothing to allocate", m->name);
+		CHECK(m->start && m->iterate, "%s: start and iterate", m->name);
+		E = energy_from(p, x0, m, 200000, tol, 0, x, &rep, cnt);
+		CHECK(rep.status == 0 && rep.res_max <= tol && strcmp(rep.stopped_by, "residual") == 0,
+		    "%s converges (status %d, %ld iterations, %ld evaluations, residual %.3g <= %g)", m->name, rep.status,
+		    rep.iter, rep.evals, rep.res_max, tol);
+		snprintf(tag, sizeof tag, "%s reaches cg's energy", m->name);
+		CHECK_CLOSE(E, Ec, 1e-8, tag);
+		dpos = equilibria_apart(p, xc, x, cc, cnt, &rattlers);
+		CHECK(dpos <= 1e-6, "%s reaches cg's positions: %.3g R apart (%u rattlers left out)", m->name, dpos,
+		    rattlers);
+	}
+	CHECK(rows >= 1, "the method table has rows (%zu)", rows);
+	CHECK(qs_method_find("no-such-method") == NULL, "an unknown method name: no method");
+	for (t = qs_methods; *t; t++)
+		listed &= strstr(msg_geterr(), (*t)->name) != NULL;
+	CHECK(listed && strstr(msg_geterr(), "'no-such-method'"), "... and its message names it and lists the methods (%s)",
+	    msg_geterr());
+	free(x), free(cnt);
+}
+
 int
 main(void)
 {
@@ -193,8 +272,8 @@ main(void)
 	    rep.energy);
 
 	/* both methods from the same start */
-	Ec = energy_from(&p, x0, QS_CG, 200000, tol, 0, xc, &rc, cc);
-	Ef = energy_from(&p, x0, QS_FIRE, 200000, tol, 0, xf, &rf, cf);
+	Ec = energy_from(&p, x0, &qs_method_cg, 200000, tol, 0, xc, &rc, cc);
+	Ef = energy_from(&p, x0, &qs_method_fire, 200000, tol, 0, xf, &rf, cf);
 	CHECK(rc.status == 0 && rc.res_max <= tol && strcmp(rc.stopped_by, "residual") == 0,
 	    "cg converges (status %d, %ld iterations, %ld evaluations, residual %.3g <= %g)", rc.status, rc.iter, rc.evals,
 	    rc.res_max, tol);
@@ -208,39 +287,16 @@ main(void)
 	 * its stiffest contacts and more along soft collective modes; 1e-6 R is 1e-4 of a typical
 	 * overlap, far below the distance between two distinct minima */
 	CHECK(dpos <= 1e-6, "cg and fire reach the same positions: %.3g R apart (%u rattlers left out)", dpos, rattlers);
+	test_method_table(&p, x0, Ec, xc, cc, tol);
 
-	/* CG iteration by iteration: max_iter = k from the same start on a fresh system */
-	{
-		/* the start is 1e-4 strain from equilibrium, so a cap of 2e-5 R binds */
-		double cap = 2e-5, eprev, rise = 0, mv = 0, mvmax = 0;
-		int allmax = 1;
-		long kk, K = 40;
-		eprev = energy_from(&p, x0, QS_CG, 0, 1e-30, cap, xa, &rep, NULL);
-		allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == 0;
-		for (kk = 1; kk <= K; kk++) {
-			double e = energy_from(&p, x0, QS_CG, kk, 1e-30, cap, xb, &rep, NULL);
-			allmax &= rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0 && rep.iter == kk;
-			/* rounding: the energy is a sum of a few thousand terms, so 1e-13 relative */
-			rise = fmax(rise, (e - eprev) / fabs(eprev));
-			mv = maxmove(&p, xa, xb);
-			mvmax = fmax(mvmax, mv);
-			eprev = e;
-			memcpy(xa, xb, n3 * sizeof *xa);
-		}
-		CHECK(rise <= 1e-13, "cg: the energy never rises over %ld iterations (largest relative rise %.3g)", K, rise);
-		CHECK(allmax, "cg: max_iter too small gives status 1, stopped_by \"max_iter\" and iter = max_iter");
-		/* the line search may stop at alpha_max, where one grain moves exactly cap R: allow the
-		 * rounding of measuring the move (move_slack) above it */
-		CHECK(mvmax <= cap + move_slack(&p, x0) && mvmax >= 0.5 * cap,
-		    "cg: no grain moves more than cap R = %g R in one iteration (largest %.17g R)", cap, mvmax);
-	}
+	test_cg_steps(&p, x0, xa, xb);
 	{
 		double cap = 1e-4, mv;
-		energy_from(&p, x0, QS_CG, 1, 1e-30, cap, xa, &rep, NULL);
+		energy_from(&p, x0, &qs_method_cg, 1, 1e-30, cap, xa, &rep, NULL);
 		mv = maxmove(&p, x0, xa);
 		CHECK(mv <= cap + move_slack(&p, x0) && mv >= 0.999 * cap, "cg, max_iter = 1, cap %g: largest move %.8g R", cap, mv);
 		CHECK(rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0, "cg, max_iter = 1: status 1, max_iter");
-		energy_from(&p, x0, QS_FIRE, 1, 1e-30, cap, xa, &rep, NULL);
+		energy_from(&p, x0, &qs_method_fire, 1, 1e-30, cap, xa, &rep, NULL);
 		mv = maxmove(&p, x0, xa);
 		CHECK(mv <= cap + move_slack(&p, x0) && mv > 0, "fire, max_iter = 1, cap %g: largest move %.8g R", cap, mv);
 		CHECK(rep.status == 1 && strcmp(rep.stopped_by, "max_iter") == 0, "fire, max_iter = 1: status 1, max_iter");
@@ -250,9 +306,9 @@ main(void)
 		 * so the cap is smaller */
 		double cap = 1e-6, mvmax = 0;
 		long kk;
-		energy_from(&p, x0, QS_FIRE, 0, 1e-30, cap, xa, &rep, NULL);
+		energy_from(&p, x0, &qs_method_fire, 0, 1e-30, cap, xa, &rep, NULL);
 		for (kk = 1; kk <= 60; kk++) {
-			energy_from(&p, x0, QS_FIRE, kk, 1e-30, cap, xb, &rep, NULL);
+			energy_from(&p, x0, &qs_method_fire, kk, 1e-30, cap, xb, &rep, NULL);
 			mvmax = fmax(mvmax, maxmove(&p, xa, xb));
 			memcpy(xa, xb, n3 * sizeof *xa);
 		}
@@ -260,7 +316,7 @@ main(void)
 		    cap, mvmax);
 	}
 	/* an equilibrium is recognised at once */
-	energy_from(&p, xc, QS_CG, 10, tol, 0, xa, &rep, NULL);
+	energy_from(&p, xc, &qs_method_cg, 10, tol, 0, xa, &rep, NULL);
 	CHECK(rep.status == 0 && rep.iter == 0 && maxmove(&p, xa, xc) == 0,
 	    "cg from its own equilibrium: status 0 after 0 iterations, nothing moves");
 	free(x0), free(xc), free(xf), free(xa), free(xb), free(cc), free(cf);

@@ -14,8 +14,8 @@
 /* Minimise from x0 (copied into x) by method m to tol (max_iter, and cap when > 0, else the
  * defaults); each grain's contacts at the end into cnt unless NULL.  Returns the energy. */
 static double __attribute__((unused))
-energy_from(struct pack *p, const double *x0, enum qs_method m, long max_iter, double tol, double cap, double *x,
-    struct qs_min_report *rep, unsigned *cnt)
+energy_from(struct pack *p, const double *x0, const struct qs_method_type *m, long max_iter, double tol, double cap,
+    double *x, struct qs_min_report *rep, unsigned *cnt)
 {
 	struct qs_system s;
 	struct qs_min_params mp;
@@ -52,7 +52,7 @@ strained_start(struct pack *p, gsl_rng *rng, double *x0, double *xeq, struct qs_
 	random_pack(p, rng, n, 1e-4, 0.66, 0.04);
 	for (i = 0; i < n; i++)
 		rmean += p->r[i] / n;
-	energy_from(p, p->x, QS_CG, 200000, 1e-6, 0, x0, rep, cnt);
+	energy_from(p, p->x, &qs_method_cg, 200000, 1e-6, 0, x0, rep, cnt);
 	for (i = 0; i < n; i++)
 		braced += cnt[i] >= 4;
 	if (xeq)
