@@ -2,7 +2,6 @@
 /* law: the table of the contact laws (see law.h), and the policy the spring laws share; each
  * law is its own file (hertz.c, linear.c, harmonic.c). */
 #include "contact/law.h"
-#include "contact/hertz.h"
 #include "base/msg.h"
 
 #include <math.h>
@@ -124,13 +123,6 @@ law_pack_knows_stiffness(const struct contact_law *law, const struct pack *p)
 	double kn;
 
 	return law->stiffness == LAW_MODULI || (pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0 && isfinite(kn));
-}
-
-void
-law_spring_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp)
-{
-	hertz_mindlin_pair(law, p, i, j, lp);
-	lp->kn = law_pack_kn(law, p);
 }
 
 double

@@ -148,9 +148,6 @@ double law_pack_kn(const struct contact_law *law, const struct pack *p);
 /* Whether pack p records what law's forces need: always for LAW_MODULI (the grains' E and
  * nu), the pack's meta kn for a spring law (a pack without one has unknown forces). */
 int law_pack_knows_stiffness(const struct contact_law *law, const struct pack *p);
-/* The pair setup of the spring laws: hertz_mindlin_pair's E*, R*, compliances and mu, and
- * k_n of law_pack_kn. */
-void law_spring_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
 /* The spring laws' policy (struct contact_law): units k0 = k_n, pairs of scaled k_n 1;
  * stiffest 1 (k_n); kappa = k_n / (sigma r0), r0 the mean spheroradius (P eq. 6); a stress
  * is in range when its stiffness number is at least LAW_SPRING_KAPPA_MIN. */

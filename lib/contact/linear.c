@@ -4,6 +4,13 @@
 #include "contact/linear.h"
 #include "contact/hertz.h"
 
+void
+law_spring_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp)
+{
+	hertz_mindlin_pair(law, p, i, j, lp);
+	lp->kn = law_pack_kn(law, p);
+}
+
 static double
 linear_normal(const struct contact_law *law, const struct law_pair *lp, double h, double *P, double *k)
 {

@@ -486,7 +486,8 @@ on_contact(const struct contact *c, void *vw)
 	else
 		m = pair_interaction_cached(d, c, &it, xj);
 	if (m == 0) {
-		memset(c->hist, 0, d->law->history * sizeof *c->hist);
+		if (d->law->history)
+			memset(c->hist, 0, d->law->history * sizeof *c->hist);
 		return 0;
 	}
 	if (!wall)

@@ -317,9 +317,11 @@ expect_error "plates: lammps-data refuses plates" 1 '^packexport: plates\.pack: 
 # one element (the sphere on the face), and a flat plate (id 12, glued to zlo) whose face lies
 # 0.001 into the zlo wall: its 4 corners, each h = 1e-3.  With k_n = 1000 N/m the normal
 # forces are k_n h = 1 N and 4 k_n h = 4 N; the pair's contact line gives Q0 = (0.2, 0, 0)
-# on 4; the wall's line ends at the corners' mean foot on the wall, (0.25, 0.3, 0).
+# on 4; the wall's line ends at the corners' mean foot on the wall, (0.25, 0.3, 0).  The
+# linear law's (meta contact-law linear: a pack without the key is Hertz-Mindlin's).
 cat >pc.pack <<'EOF2'
 qusgm-pack 2
+meta contact-law linear
 meta kn 1000
 units SI
 box 0 0 0 1 1 1

@@ -648,6 +648,7 @@ test_plate_contacts(void)
 	pack_set_shapes(&p);
 	pack_add_grain(&p, 1, (const double[3]){A / 2, A / 2, r - h}, r, E_, NU, 2700);
 	pack_set_grain_shape(&p, 0, L, up);
+	pack_set_meta(&p, "contact-law", "linear");	/* a plate pack of the linear law */
 	pack_set_meta(&p, "kn", "1.5e3");
 	i = measure_plates(&p, SHAPE_R_EDGE, &m);
 	CHECK(i == 0, "plate contacts: measured");
@@ -661,11 +662,13 @@ test_plate_contacts(void)
 	CHECK(m.sig_wall[0] == 0 && fabs(m.sig_lw[0]) <= 1e-12 * m.sig_lw[2] && m.residual_mean <= 1e-12,
 	    "plate contacts: no lateral stress, balanced (residual %g)", m.residual_mean);
 	/* without the stiffness: counts, no forces */
+	pack_set_meta(&p, "contact-law", "linear");	/* a plate pack of the linear law */
 	pack_set_meta(&p, "kn", "none");
 	measure_plates(&p, SHAPE_R_EDGE, &m);
 	CHECK(m.contacts_gw == 2 && !m.has_forces && isnan(m.sig_wall[2]) && isnan(m.sig_lw[2]),
 	    "plate contacts: no meta kn, counts but no stresses");
 	/* a periodic axis has no wall stress */
+	pack_set_meta(&p, "contact-law", "linear");	/* a plate pack of the linear law */
 	pack_set_meta(&p, "kn", "1.5e3");
 	p.periodic[0] = 1;
 	p.box[3] = 4 * A;
@@ -683,6 +686,7 @@ test_plate_contacts(void)
 	pack_add_grain(&p, 2, (const double[3]){A / 2, A / 2, A / 2 - ell / 2}, r, E_, NU, 2700);
 	pack_set_grain_shape(&p, 0, L, up);
 	pack_set_grain_shape(&p, 1, L, up);
+	pack_set_meta(&p, "contact-law", "linear");	/* a plate pack of the linear law */
 	pack_set_meta(&p, "kn", "1.5e3");
 	pack_add_contact(&p, &c);
 	i = measure_plates(&p, SHAPE_R_EDGE, &m);
@@ -707,6 +711,7 @@ test_plate_contacts(void)
 	pack_add_grain(&p, 2, (const double[3]){0.75 * A, 0.75 * A, 1.5 * A - 3 * ell / 4}, r, E_, NU, 2700);
 	pack_set_grain_shape(&p, 0, L, up);
 	pack_set_grain_shape(&p, 1, L, up);
+	pack_set_meta(&p, "contact-law", "linear");	/* a plate pack of the linear law */
 	pack_set_meta(&p, "kn", "1.5e3");
 	i = measure_plates(&p, SHAPE_R_EDGE, &m);
 	CHECK(i == 0 && m.contacts_gg == 1 && m.contacts_gw == 0 && m.elements == 4,
@@ -781,6 +786,7 @@ test_grain_forces(void)
 		pack_add_grain(&p, 2, (const double[3]){A / 2, A / 2, A / 2 - ell / 2}, r, E_, NU, 2700);
 		pack_set_grain_shape(&p, 0, L, up);
 		pack_set_grain_shape(&p, 1, L, up);
+		pack_set_meta(&p, "contact-law", "linear");	/* a plate pack of the linear law */
 		pack_set_meta(&p, "kn", "1.5e3");
 		pack_add_contact(&p, &c);
 		CHECK(measure_is_plate_pack(&p) && measure_grain_forces(&p, &g) == 0 && g.has_forces,
@@ -792,6 +798,7 @@ test_grain_forces(void)
 		CHECK_CLOSE(g.fmax[1], f, 1e-12, "grain forces: plates, the same on the other");
 		CHECK_CLOSE(g.residual[0], 1, 1e-12, "grain forces: plates, a lone pair's net force is its force");
 		grain_forces_free(&g);
+		pack_set_meta(&p, "contact-law", "linear");	/* a plate pack of the linear law */
 		pack_set_meta(&p, "kn", "none");
 		CHECK(measure_grain_forces(&p, &g) == 0 && !g.has_forces && g.nlink == 1 && isnan(g.residual[0]),
 		    "grain forces: plates without kn, the link but no forces");
