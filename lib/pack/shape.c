@@ -100,7 +100,7 @@ sphere_side_ok(double L)
 const struct shape_ops shape_sphere = {
 	.name = "sphere", .kind = SHAPE_SPHERE, .oriented = 0, .lammps_type = 2,
 	.volume = sphere_volume, .inertia = sphere_inertia, .bounding_radius = sphere_bounding_radius,
-	.extent = sphere_extent, .side_ok = sphere_side_ok, .cached = 0,
+	.extent = sphere_extent, .side_ok = sphere_side_ok,
 };
 
 static void
@@ -119,7 +119,7 @@ plate_side_ok(double L)
 const struct shape_ops shape_spheroplate = {
 	.name = "spheroplate", .kind = SHAPE_SPHEROPLATE, .oriented = 1, .lammps_type = 1,
 	.volume = shape_volume, .inertia = shape_inertia, .bounding_radius = shape_bounding_radius,
-	.extent = plate_extent, .side_ok = plate_side_ok, .cached = 1,
+	.extent = plate_extent, .side_ok = plate_side_ok,
 };
 
 #define SHAPE_ROW(K, id) &shape_##id,

@@ -94,10 +94,6 @@ struct shape_ops {
 	/* Whether side L suits the kind (a sphere: L = 0; a spheroplate: L > 0), for the
 	 * reader's check of a shape column against the side column. */
 	int (*side_ok)(double L);
-	/* Its narrow phase's bounds, for a pair's pruning and its cache: 1 when it keeps a
-	 * feature cache between steps (contact/plate.h's), 0 when the pair is its bounding
-	 * spheres (two spheres keep none). */
-	int cached;
 };
 
 #define SHAPE_EXTERN(K, id) extern const struct shape_ops shape_##id;
