@@ -229,13 +229,14 @@ export_vtp_plates(const struct pack *p, FILE *fp)
 	fputs("</CellData>\n<Points>\n", fp);
 	vtk_array_open(fp, "Float64", "Points", 3);
 	for (i = 0; i < p->n; i++) {
-		double half = side[i] / 2 + p->r[i];
+		double half[3];
 
+		shape_of(pack_grain_shape(p, i))->extent(p->r[i], side[i], half);
 		grain_rotation(p, i, R);
 		for (k = 0; k < 8; k++) {
-			b[0] = k & 1 ? half : -half;
-			b[1] = k & 2 ? half : -half;
-			b[2] = k & 4 ? p->r[i] : -p->r[i];
+			b[0] = k & 1 ? half[0] : -half[0];
+			b[1] = k & 2 ? half[1] : -half[1];
+			b[2] = k & 4 ? half[2] : -half[2];
 			for (a = 0; a < 3; a++)
 				x[a] = p->x[3 * i + a] + R[3 * a] * b[0] + R[3 * a + 1] * b[1] + R[3 * a + 2] * b[2];
 			put_nums(fp, x, 3);
@@ -528,7 +529,8 @@ export_lammps_dump(const struct pack *p, FILE *fp, long timestep)
 {
 	int plates = pack_first_plate(p) != (size_t)-1;
 	size_t i;
-	double v[10];
+	double v[10], half[3];
+	const struct shape_ops *sh;
 
 	if (lammps_check_ids(p))
 		return -1;
@@ -547,11 +549,13 @@ export_lammps_dump(const struct pack *p, FILE *fp, long timestep)
 		}
 		/* LAMMPS's quaternion (w, i, j, k) turns the body frame into the lab frame, as
 		 * ours does; shape is the full extent along each body axis, as LAMMPS writes
-		 * shapex (a diameter).  Type 2 marks a sphere, for OVITO's per-type shape. */
+		 * shapex (a diameter): twice the shape's extent.  Its type is the shape's
+		 * (struct shape_ops's lammps_type: 2 marks a sphere, for OVITO's per-type shape). */
+		sh = shape_of(pack_grain_shape(p, i));
 		memcpy(v + 3, p->q + 4 * i, 4 * sizeof *v);
-		v[7] = v[8] = p->side[i] + 2 * p->r[i];
-		v[9] = 2 * p->r[i];
-		fprintf(fp, "%ld %d ", p->id[i], (p->side[i] > 0 ? 1 : 2) + 2 * pack_grain_phase(p, i));
+		sh->extent(p->r[i], p->side[i], half);
+		v[7] = 2 * half[0], v[8] = 2 * half[1], v[9] = 2 * half[2];
+		fprintf(fp, "%ld %d ", p->id[i], sh->lammps_type + 2 * pack_grain_phase(p, i));
 		put_nums(fp, v, 10);
 	}
 	return finish(fp);

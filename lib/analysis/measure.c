@@ -893,7 +893,7 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 		return -1;
 	}
 	for (i = 0; i < p->n; i++)
-		if (p->has_shapes && p->side[i] > 0 && !pack_grain_glued(p, i)) {
+		if (shape_of(pack_grain_shape(p, i))->oriented && !pack_grain_glued(p, i)) {
 			quat_to_matrix(p->q + 4 * i, R);
 			nm[3 * np] = R[2], nm[3 * np + 1] = R[5], nm[3 * np + 2] = R[8];
 			np++;
@@ -943,7 +943,7 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 
 		quat_to_matrix(p->q ? p->q + 4 * i : one, R + 9 * i);
 		half[i] = L / 2;
-		rb[i] = shape_bounding_radius(p->r[i], L);
+		rb[i] = shape_of(pack_grain_shape(p, i))->bounding_radius(p->r[i], L);
 	}
 	pass.g = (struct plate_grains){p->x, R, half, p->r, p->box, p->box + 3};
 	if (p->nc && !(pass.keys = pack_history_keys(p)))
@@ -1046,7 +1046,7 @@ measure_plates(const struct pack *p, enum shape_radius conv, struct plate_measur
 	m->aspect_mean = s[0], m->aspect_min = s[2] < s[3] ? s[2] : NAN, m->aspect_max = s[2] < s[3] ? s[3] : NAN;
 	/* the face normals n = R(q) e3, the third column of R(q), of the plates */
 	for (i = 0; i < p->n; i++)
-		if (p->has_shapes && p->side[i] > 0) {
+		if (shape_of(pack_grain_shape(p, i))->oriented) {
 			quat_to_matrix(p->q + 4 * i, R);
 			v[3 * m->plates] = R[2], v[3 * m->plates + 1] = R[5], v[3 * m->plates + 2] = R[8];
 			m->plates++;

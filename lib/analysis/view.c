@@ -131,7 +131,7 @@ tilt_degrees(const struct pack *p, size_t i)
 {
 	double R[9];
 
-	if (!p->has_shapes || !(p->side[i] > 0))
+	if (!shape_of(pack_grain_shape(p, i))->oriented)
 		return NAN;
 	quat_to_matrix(p->q + 4 * i, R);
 	return acos(fmin(fabs(R[8]), 1.0)) * 180 / M_PI;
@@ -143,10 +143,10 @@ put_data(FILE *fp, const struct pack *p, const struct grain_forces *g, const cha
 	struct words w;
 	size_t i, k, nplates = 0, nhyd = 0, ngg = 0;
 	double c[3];
-	int a, plates = p->has_shapes && pack_first_plate(p) != (size_t)-1;
+	int a, plates = pack_first_plate(p) != (size_t)-1;
 
 	for (i = 0; i < p->n; i++) {
-		nplates += p->has_shapes && p->side[i] > 0;
+		nplates += pack_grain_shape(p, i) != SHAPE_SPHERE;
 		nhyd += p->has_phase && p->phase[i] == PHASE_HYDRATE;
 	}
 	for (k = 0; k < g->nlink; k++)

@@ -351,6 +351,10 @@ dem_write_back(const struct dem *d, struct pack *p, const size_t *order, double 
 		memcpy(tmp, p->q, 4 * n * sizeof *tmp);
 		for (i = 0; i < n; i++)
 			memcpy(p->q + 4 * i, tmp + 4 * order[i], 4 * sizeof *tmp);
+		for (i = 0; i < n; i++)	/* the kinds, through tmp's first n doubles */
+			tmp[i] = p->shape[order[i]];
+		for (i = 0; i < n; i++)
+			p->shape[i] = (unsigned char)tmp[i];
 	}
 	if (p->has_phase) {	/* the phase tag too (packgen --hydrate-volume tags before settling) */
 		unsigned char *ph = malloc(n);

@@ -248,12 +248,13 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	d->u_force = k0 * r0;
 	for (i = 0; i < n; i++) {
 		double L = p->side ? p->side[i] / r0 : 0, rho = p->rho[i] / rho0, In, Ip;
+		const struct shape_ops *sh = shape_of(pack_grain_shape(p, i));
 
 		d->r[i] = p->r[i] / r0;
 		d->half[i] = L / 2;
-		d->rb[i] = shape_bounding_radius(d->r[i], L);
-		d->m[i] = rho * shape_volume(d->r[i], L);
-		shape_inertia(d->r[i], L, &In, &Ip);
+		d->rb[i] = sh->bounding_radius(d->r[i], L);
+		d->m[i] = rho * sh->volume(d->r[i], L);
+		sh->inertia(d->r[i], L, &In, &Ip);
 		d->J[3 * i] = d->J[3 * i + 1] = rho * Ip;
 		d->J[3 * i + 2] = rho * In;
 		for (a = 0; a < 3; a++)

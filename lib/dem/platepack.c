@@ -40,7 +40,7 @@ place_on_grid(struct pack *p, double s, double jitter, gsl_rng *rng)
 	for (i = 0; i < p->n; i++) {
 		size_t k[3] = {i % na, i / na % na, i / (na * na)};
 		double u1 = gsl_rng_uniform(rng), u2 = gsl_rng_uniform(rng), u3 = gsl_rng_uniform(rng);
-		double room = s / 2 - shape_bounding_radius(p->r[i], p->side[i]);
+		double room = s / 2 - shape_of(pack_grain_shape(p, i))->bounding_radius(p->r[i], p->side[i]);
 
 		for (a = 0; a < 3; a++)
 			p->x[3 * i + a] = (k[a] + 0.5) * s;

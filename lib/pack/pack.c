@@ -34,6 +34,7 @@ pack_free(struct pack *p)
 	free(p->rho);
 	free(p->side);
 	free(p->q);
+	free(p->shape);
 	free(p->phase);
 	free(p->glue);
 	free(p->c);
@@ -70,7 +71,8 @@ pack_reserve(struct pack *p, size_t n)
 	    grow((void **)&p->r, n, sizeof *p->r) || grow((void **)&p->E, n, sizeof *p->E) ||
 	    grow((void **)&p->nu, n, sizeof *p->nu) || grow((void **)&p->rho, n, sizeof *p->rho))
 		return -1;
-	if (p->has_shapes && (grow((void **)&p->side, n, sizeof *p->side) || grow((void **)&p->q, 4 * n, sizeof *p->q)))
+	if (p->has_shapes && (grow((void **)&p->side, n, sizeof *p->side) || grow((void **)&p->q, 4 * n, sizeof *p->q) ||
+	    grow((void **)&p->shape, n, sizeof *p->shape)))
 		return -1;
 	if (p->has_phase && grow((void **)&p->phase, n, sizeof *p->phase))
 		return -1;
@@ -90,7 +92,8 @@ pack_set_shapes(struct pack *p)
 	if (p->has_shapes)
 		return 0;
 	/* room for cap grains, as pack_reserve keeps it for the other arrays */
-	if (grow((void **)&p->side, p->cap, sizeof *p->side) || grow((void **)&p->q, 4 * p->cap, sizeof *p->q))
+	if (grow((void **)&p->side, p->cap, sizeof *p->side) || grow((void **)&p->q, 4 * p->cap, sizeof *p->q) ||
+	    grow((void **)&p->shape, p->cap, sizeof *p->shape))
 		return -1;
 	p->has_shapes = 1;
 	for (i = 0; i < p->n; i++)
@@ -133,8 +136,7 @@ pack_hydrate_grains(const struct pack *p, double *volume)
 	for (i = 0; p->has_phase && i < p->n; i++)
 		if (p->phase[i] == PHASE_HYDRATE) {
 			n++;
-			v += p->has_shapes && p->side[i] > 0 ? shape_volume(p->r[i], p->side[i]) :
-			    4.0 / 3.0 * M_PI * p->r[i] * p->r[i] * p->r[i];
+			v += shape_of(pack_grain_shape(p, i))->volume(p->r[i], p->has_shapes ? p->side[i] : 0);
 		}
 	if (volume)
 		*volume = v;
@@ -157,6 +159,21 @@ pack_set_grain_shape(struct pack *p, size_t i, double side, const double q[4])
 {
 	p->side[i] = side;
 	memcpy(p->q + 4 * i, q, 4 * sizeof *q);
+	p->shape[i] = (unsigned char)shape_kind_of_side(side);
+}
+
+void
+pack_set_grain_kind(struct pack *p, size_t i, enum shape_kind kind)
+{
+	p->shape[i] = (unsigned char)kind;
+}
+
+enum shape_kind
+pack_grain_shape(const struct pack *p, size_t i)
+{
+	if (p->shape)
+		return (enum shape_kind)p->shape[i];
+	return p->side ? shape_kind_of_side(p->side[i]) : SHAPE_SPHERE;
 }
 
 size_t
@@ -166,7 +183,7 @@ pack_first_plate(const struct pack *p)
 
 	if (p->has_shapes)
 		for (i = 0; i < p->n; i++)
-			if (p->side[i] > 0)
+			if (pack_grain_shape(p, i) != SHAPE_SPHERE)
 				return i;
 	return (size_t)-1;
 }
@@ -246,6 +263,7 @@ pack_copy(struct pack *dst, const struct pack *src)
 	if (src->has_shapes) {
 		memcpy(dst->side, src->side, n * sizeof *dst->side);
 		memcpy(dst->q, src->q, 4 * n * sizeof *dst->q);
+		memcpy(dst->shape, src->shape, n * sizeof *dst->shape);
 	}
 	if (src->has_phase)
 		memcpy(dst->phase, src->phase, n * sizeof *dst->phase);
@@ -430,8 +448,8 @@ pack_grain_volume(const struct pack *p)
 	/* the spheres summed as r^3 times 4 pi/3 at the end, as before the plates came: every
 	 * sphere pack keeps its porosity to the last bit, with or without shape columns */
 	for (i = 0; i < p->n; i++)
-		if (p->has_shapes && p->side[i] > 0)
-			vp += shape_volume(p->r[i], p->side[i]);
+		if (pack_grain_shape(p, i) != SHAPE_SPHERE)
+			vp += shape_of(pack_grain_shape(p, i))->volume(p->r[i], p->side[i]);
 		else
 			v += p->r[i] * p->r[i] * p->r[i];
 	return v * 4.0 / 3.0 * 3.14159265358979323846 + vp;

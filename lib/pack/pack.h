@@ -8,10 +8,10 @@
  * Units are SI: m, Pa, kg/m^3, N, N m.  Grains are stored as parallel arrays so that the
  * minimisers can work on x[] directly.
  *
- * Grains are spheres unless the pack carries the shape columns (has_shapes): then each is a
- * spheroplate (pack/shape.h) of spheroradius r[i], core side side[i] (0: a sphere) and
- * orientation q[4 i .. 4 i + 3] (base/quat.h), and only a tool that knows plates may use it
- * (pack_require_spheres).
+ * Grains are spheres unless the pack carries the shape columns (has_shapes): then each is of
+ * a kind of pack/shape.h's table (shape[i], pack_grain_shape: a sphere or a spheroplate) of
+ * spheroradius r[i], core side side[i] (0: a sphere) and orientation q[4 i .. 4 i + 3]
+ * (base/quat.h), and only a tool that knows plates may use it (pack_require_spheres).
  *
  * Public API (share/doc/library.md): a struct pack is a value the caller owns.  pack_init
  * makes an empty one, pack_free releases everything in it (and leaves it empty, so freeing
@@ -89,11 +89,15 @@ struct pack {
 	/* The shape columns of format 2 (pack-format.md), all or none: has_shapes says which.
 	 * side: L >= 0 of the square core (m), 0 for a sphere; q: 4n, the unit quaternion
 	 * (w x y z) turning the grain's body frame (core in its z = 0 plane, edges along x and
-	 * y) into the lab frame.  NULL without the columns, which keeps every sphere-only pack
-	 * and its output as they were. */
+	 * y) into the lab frame; shape: n, each grain's enum shape_kind (the shape column, or
+	 * from its side for a pack without one: shape_kind_of_side).  NULL without the columns,
+	 * which keeps every sphere-only pack and its output as they were.  A grain's side and
+	 * kind go together: pack_set_grain_shape sets both, and a caller that writes side[i]
+	 * itself sets shape[i] to agree (pack_validate checks that they do). */
 	int has_shapes;
 	double *side;
 	double *q;
+	unsigned char *shape;
 	/* The phase column of format 2 (pack-format.md, "The phase column"): has_phase says
 	 * whether the pack has it; phase[i] is PHASE_MINERAL or PHASE_HYDRATE.  What a grain
 	 * is made of is told by this tag, never guessed from its density or moduli (hydrate
@@ -166,13 +170,23 @@ size_t pack_hydrate_grains(const struct pack *p, double *volume);
  * (physics.md section 11): V_pores = V_box - V_mineral, grain volumes as in
  * pack_grain_volume (overlaps not subtracted).  0 for a pack without hydrate grains. */
 double pack_hydrate_saturation(const struct pack *p);
-/* Grain i's core side L (m) and orientation (a unit quaternion, copied); p has the shape
- * columns.  The reader and pack_validate check the values. */
+/* Grain i's core side L (m) and orientation (a unit quaternion, copied), its kind the one of
+ * its side (shape_kind_of_side: a spheroplate when L > 0); p has the shape columns.  The
+ * reader and pack_validate check the values. */
 void pack_set_grain_shape(struct pack *p, size_t i, double side, const double q[4]);
+/* Grain i's kind (a row of pack/shape.h's table); p has the shape columns.  The reader of a
+ * shape column sets it after pack_set_grain_shape; pack_validate checks it against the side
+ * (struct shape_ops's side_ok). */
+void pack_set_grain_kind(struct pack *p, size_t i, enum shape_kind kind);
+/* The kind of grain i: its shape column's, SHAPE_SPHERE for a pack without shape columns.
+ * (A struct pack that has side but not shape, as a test may make, gets the kind of its
+ * side.)  What a consumer asks instead of testing side > 0: shape_of(pack_grain_shape(p, i))
+ * answers for the grain's shape. */
+enum shape_kind pack_grain_shape(const struct pack *p, size_t i);
 /* How far from 1 the norm of a stored quaternion may be (pack-format.md, "Grain lines"). */
 #define PACK_QUAT_TOL 1e-6
-/* The index of the first spheroplate (side > 0), or (size_t)-1 when every grain is a
- * sphere: no shape columns, or every side 0. */
+/* The index of the first grain that is not a sphere (pack_grain_shape), or (size_t)-1 when
+ * every grain is a sphere: no shape columns, or every kind a sphere. */
 size_t pack_first_plate(const struct pack *p);
 /* The check of every tool that runs the sphere physics: 0 when every grain is a sphere;
  * otherwise -1 with "grain ID is a spheroplate (side > 0); WHO handles spheres only" in the

@@ -166,6 +166,11 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 	else if (p->has_shapes && !(isfinite(p->side[i]) && p->side[i] >= 0))
 		snprintf(why, len, "grain %ld: side %g is %s", p->id[i], p->side[i],
 		    isfinite(p->side[i]) ? "negative" : "not finite");
+	else if (p->has_shapes && p->shape[i] >= SHAPE_NKINDS)
+		snprintf(why, len, "grain %ld: shape %d is no kind of the table", p->id[i], p->shape[i]);
+	else if (p->has_shapes && !shape_of(pack_grain_shape(p, i))->side_ok(p->side[i]))
+		snprintf(why, len, "grain %ld: a %s cannot have side %g (a sphere has side 0, a spheroplate side > 0)",
+		    p->id[i], shape_of(pack_grain_shape(p, i))->name, p->side[i]);
 	else if (p->has_phase && p->phase[i] >= PACK_NPHASES)
 		snprintf(why, len, "grain %ld: phase %d is neither 0 (mineral) nor 1 (hydrate)", p->id[i], p->phase[i]);
 	else if (p->has_glue && p->glue[i] > NWALLS)
@@ -305,7 +310,10 @@ find_same_centre(const struct pack *p, size_t *first, size_t *later)
  * reading a column by its position reads it from every pack; a version-1 pack has exactly
  * these and no columns line.  An optional group comes all or none, its columns together and
  * in this order, after the required ones: so a pack is spheres or shapes as a whole, and a
- * reader never meets a side without its orientation.  A later group (a phase tag) is more
+ * reader never meets a side without its orientation.  The kind column 'shape' (a name of
+ * pack/shape.h's table) goes with the shape columns, just before them: every writer puts it
+ * there, and a pack of shape columns without it (as written before it was) reads with each
+ * grain's kind from its side (shape_kind_of_side).  A later group (a phase tag) is more
  * rows with a new group number, a name in groups[], the storage of its values in struct
  * pack, their parsing in read_grain_line and writing in format_pack, and a test in
  * pack_format_version that the pack has it. */
@@ -314,13 +322,17 @@ static const struct column {
 	int group;
 } columns[] = {
 	{"id", 0}, {"x", 0}, {"y", 0}, {"z", 0}, {"r", 0}, {"E", 0}, {"nu", 0}, {"rho", 0},
-	{"side", 1}, {"qw", 1}, {"qx", 1}, {"qy", 1}, {"qz", 1},
-	{"phase", 2},
-	{"glued", 3},
+	{"shape", 1},
+	{"side", 2}, {"qw", 2}, {"qx", 2}, {"qy", 2}, {"qz", 2},
+	{"phase", 3},
+	{"glued", 4},
 };
 #define NCOLUMNS ((int)(sizeof columns / sizeof columns[0]))
-enum { COL_SIDE = 8, COL_PHASE = 13, COL_GLUED = 14, GROUP_SHAPE = 1, GROUP_PHASE = 2, GROUP_GLUED = 3, NGROUPS = 4 };
-static const char *const groups[NGROUPS] = {"required", "shape", "phase", "glued"};
+enum {
+	COL_KIND = 8, COL_SIDE = 9, COL_PHASE = 14, COL_GLUED = 15,
+	GROUP_KIND = 1, GROUP_SHAPE = 2, GROUP_PHASE = 3, GROUP_GLUED = 4, NGROUPS = 5
+};
+static const char *const groups[NGROUPS] = {"required", "kind", "shape", "phase", "glued"};
 
 /* A columns line naming every known column once, and one more name, fits in tok[]: so the
  * unknown or repeated name of a longer line is among the fields kept. */
@@ -370,6 +382,7 @@ struct header {
 	long ngr, nco;
 	unsigned seen;	/* bit k: keywords[k] has been read */
 	int ncol;	/* fields of a grain line */
+	int kinds;	/* whether a grain line has the kind column 'shape' */
 	int col[MAXTOK];	/* the columns[] index of each field of a grain line */
 	char colnames[256];	/* the names, "id x y z r E nu rho", for messages */
 	/* The meta keys read so far, by hash: slot k holds 1 + the index of a meta line, 0 when
@@ -582,6 +595,9 @@ kw_columns(struct header *h, char **tok, int n)
 		h->col[k - 1] = column_index(tok[k]);
 	}
 	h->ncol = n - 1;
+	h->kinds = have[GROUP_KIND] != 0;
+	if (have[GROUP_KIND] && !have[GROUP_SHAPE])
+		return rd_error(h->rd, "columns: 'shape' (the grains' kinds) needs the shape columns (side qw qx qy qz)");
 	if ((have[GROUP_SHAPE] && pack_set_shapes(h->p)) || (have[GROUP_PHASE] && pack_set_phases(h->p)) ||
 	    (have[GROUP_GLUED] && pack_set_glue(h->p)))
 		return rd_error(h->rd, "out of memory");
@@ -752,7 +768,16 @@ read_grain_line(const struct header *h, char *s)
 	for (k = 1; k < n; k++) {
 		long ph;
 
-		if (h->col[k] == COL_PHASE) {	/* a tag, written as an integer: nothing else reads back alike */
+		if (h->col[k] == COL_KIND) {	/* a name of the shapes' table */
+			const struct shape_ops *sh = shape_find(tok[k]);
+			char names[128];
+
+			if (!sh) {
+				shape_names(names, sizeof names);
+				return rd_error(rd, "grain %ld: shape '%s' is not a kind (%s)", id, tok[k], names);
+			}
+			v[COL_KIND] = (double)sh->kind;
+		} else if (h->col[k] == COL_PHASE) {	/* a tag, written as an integer: nothing else reads back alike */
 			if (num_parse_long(tok[k], &ph) || ph < 0 || ph >= PACK_NPHASES)
 				return rd_error(rd, "grain %ld: phase '%s' is neither 0 (mineral) nor 1 (hydrate)", id, tok[k]);
 			v[COL_PHASE] = (double)ph;
@@ -772,6 +797,8 @@ read_grain_line(const struct header *h, char *s)
 		return rd_error(rd, "out of memory");
 	if (h->p->has_shapes)
 		pack_set_grain_shape(h->p, h->p->n - 1, v[COL_SIDE], v + COL_SIDE + 1);
+	if (h->kinds)
+		pack_set_grain_kind(h->p, h->p->n - 1, (enum shape_kind)v[COL_KIND]);
 	if (h->p->has_phase)
 		h->p->phase[h->p->n - 1] = (unsigned char)v[COL_PHASE];
 	if (h->p->has_glue)
@@ -1144,15 +1171,17 @@ format_boundary(const struct pack *p, struct sbuf *b)
 static void
 format_columns(const struct pack *p, struct sbuf *b)
 {
-	int k;
+	int k, g;
 
 	sb_puts(b, "columns");
-	for (k = 0; k < NCOLUMNS; k++)
-		if (columns[k].group == 0 || (columns[k].group == GROUP_SHAPE && p->has_shapes) ||
-		    (columns[k].group == GROUP_PHASE && p->has_phase) || (columns[k].group == GROUP_GLUED && p->has_glue)) {
+	for (k = 0; k < NCOLUMNS; k++) {
+		g = columns[k].group;
+		if (g == 0 || ((g == GROUP_KIND || g == GROUP_SHAPE) && p->has_shapes) || (g == GROUP_PHASE && p->has_phase) ||
+		    (g == GROUP_GLUED && p->has_glue)) {
 			sb_puts(b, " ");
 			sb_puts(b, columns[k].name);
 		}
+	}
 	sb_puts(b, "\n");
 }
 
@@ -1205,9 +1234,10 @@ format_pack(const struct pack *p, struct sbuf *b)
 		v[4] = p->E[k];
 		v[5] = p->nu[k];
 		v[6] = p->rho[k];
-		if (p->has_shapes) {	/* then side qw qx qy qz */
+		if (p->has_shapes) {	/* then shape side qw qx qy qz */
 			for (a = 0; a < 7; a++)
 				sb_num(b, v[a], ' ');
+			sb_printf(b, "%s ", shape_of(pack_grain_shape(p, k))->name);
 			sb_num(b, p->side[k], ' ');
 			sb_nums(b, p->q + 4 * k, 4);
 		} else {

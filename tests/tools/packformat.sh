@@ -462,6 +462,24 @@ bad3 shapes-unknown 10 "columns: unknown column 'qs'" '10s/ qz$/ qs/'
 bad3 shapes-in-v1 9 "columns: not in version 1 of the format" '1s/2$/1/;5d'
 bad3 shapes-lines-in-v1 10 "grain line: expected 8 columns \(id x y z r E nu rho\), found 13; more columns need 'qusgm-pack 2' and a columns line$" '1s/2$/1/;5d;10d'
 
+# --- version 2: the kind column 'shape', just before the shape columns ---------------------
+# good3.pack has none: each grain's kind is its side's (side > 0: spheroplate); with it, the
+# same pack reads to the same report, and a writer puts it there (packgen, shear)
+sed '10s/ rho side / rho shape side /;12,14s/ 2420 / 2420 spheroplate /' good3.pack >kind3.pack
+expect_ok shapes-kind-good packinfo kind3.pack
+packinfo kind3.pack >kind3.info 2>/dev/null
+expect_same shapes-kind-same-output good3.info kind3.info
+bad_kind() {
+	name=$1 line=$2 re=$3
+	sed "$4" kind3.pack >"$name.pack"
+	expect_error "$name" 1 "^packinfo: $name\\.pack:$line: .*$re" packinfo "$name.pack"
+}
+bad_kind shapes-kind-unknown 13 "grain 2: shape 'cube' is not a kind \(sphere, spheroplate\)$" '13s/ spheroplate / cube /'
+bad_kind shapes-kind-sphere-side 12 "grain 1: a sphere cannot have side 0.0001 " '12s/ spheroplate / sphere /'
+bad_kind shapes-kind-plate-side-0 14 "grain 3: a spheroplate cannot have side 0 " '14s/ spheroplate 1e-4 / spheroplate 0 /'
+bad_kind shapes-kind-alone 10 "columns: 'shape' \(the grains' kinds\) needs the shape columns" '10s/ side qw qx qy qz$//;12,14s/ spheroplate .*$/ spheroplate/'
+bad_kind shapes-kind-after-side 10 "columns: column 14 'shape': the kind columns come before the shape columns" '10s/ shape side qw qx qy qz$/ side qw qx qy qz shape/'
+
 # --- version 2: the phase column (0 mineral, 1 hydrate) --------------------------------------
 # The example of pack-format.md, "The phase column".  Line numbers of good4.pack:
 #  1 magic   2 meta   3 units   4 box   5 boundary   6 walls   7 friction   8 grains

@@ -40,8 +40,8 @@ expect_ok "densify takes shape columns with every side 0" densify --stress 4e6 -
 awk 'f && NF { print $1, $2, $3, $4, $5, $6, $7, $8 } $1 == "end" { f = 1 }' dense.pack | head -n 200 >plain.grains
 awk 'f && NF { print $1, $2, $3, $4, $5, $6, $7, $8 } $1 == "end" { f = 1 }' dense0.pack | head -n 200 >shape.grains
 expect_same "densify: shape columns with side 0 give the spheres' result" plain.grains shape.grains
-if grep -q '^columns id x y z r E nu rho side qw qx qy qz$' dense0.pack && head -n 1 dense0.pack | grep -q '^qusgm-pack 2$' &&
-    [ "$(awk 'f && NF == 13 { n++ } $1 == "end" { f = 1 } END { print n }' dense0.pack)" = 200 ]; then
+if grep -q '^columns id x y z r E nu rho shape side qw qx qy qz$' dense0.pack && head -n 1 dense0.pack | grep -q '^qusgm-pack 2$' &&
+    [ "$(awk 'f && NF == 14 && $9 == "sphere" { n++ } $1 == "end" { f = 1 } END { print n }' dense0.pack)" = 200 ]; then
 	pass "densify writes the shape columns back"
 else
 	fail "densify writes the shape columns back" "$(grep -E '^(qusgm-pack|columns)' dense0.pack)"

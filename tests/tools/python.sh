@@ -76,7 +76,7 @@ def same_numbers(p, path):
     head, g, c = tokens(path)
     bad = []
     for k, col in enumerate(p.columns):
-        ref = [int(t[k]) if col in ("id", "phase") else float(t[k]) for t in g]
+        ref = [int(t[k]) if col in ("id", "phase") else t[k] if col == "shape" else float(t[k]) for t in g]
         a = p.grains[col].tolist()
         if a != ref:
             bad.append(col)
@@ -117,6 +117,10 @@ for path, version in (("dense.pack", 1), ("dense.pack.gz", 1), ("fr.pack", 1), (
         phi = porosity(p)
         check("%s: porosity recomputed = packinfo's to 1e-12" % path, abs(phi / float(i["porosity"]) - 1) < 1e-12, (repr(phi), i["porosity"]))
     check("%s: history lines" % path, len(p.history) >= 1 and p.history[0].startswith("packgen "), p.history)
+    kinds = p.kinds.tolist()
+    check("%s: kinds, one of SHAPES, spheroplate where side > 0" % path,
+          set(kinds) <= set(qusgm.SHAPES) and ("side" not in p.columns or
+          kinds == ["spheroplate" if s > 0 else "sphere" for s in p.grains["side"].tolist()]), kinds[:3])
     check("%s: units" % path, p.units == "SI" and p.units_of["E"] == "Pa" and p.units_of["rho"] == "kg/m^3" and p.units_of["P0"] == "N", p.units_of)
 
 d = qusgm.read_pack("dense.pack")
@@ -178,6 +182,10 @@ for path, names, units, colfile in (("curve.tsv", ("sig_zz", "porosity"), ("Pa",
     rows = [l for l in raw if not l.startswith("#")]
     check("%s: column names without units (%d)" % (path, len(t.names)),
           t.names == [h.split("[")[0] for h in header] and list(t.data.dtype.names) == t.names, t.names)
+    kinds = p.kinds.tolist()
+    check("%s: kinds, one of SHAPES, spheroplate where side > 0" % path,
+          set(kinds) <= set(qusgm.SHAPES) and ("side" not in p.columns or
+          kinds == ["spheroplate" if s > 0 else "sphere" for s in p.grains["side"].tolist()]), kinds[:3])
     check("%s: units" % path, [t.units[n] for n in names] == list(units), t.units)
     check("%s: %d rows" % (path, len(rows)), len(t) == len(rows) and len(rows) > 0, len(t))
     cols = [l.split("\t") for l in open(colfile).read().splitlines()]

@@ -500,7 +500,7 @@ plate_pack(struct pack *p, size_t n, double r, double L)
 	for (i = 0; i < n; i++) {
 		double x[3] = {(double)(i + 1) / (double)(n + 1), 0.5, 0.5};
 		pack_add_grain(p, (long)i + 1, x, r, E_, NU, 2420);
-		p->side[i] = L;
+		pack_set_grain_shape(p, i, L, p->q + 4 * i);
 	}
 }
 

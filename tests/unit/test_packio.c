@@ -171,8 +171,8 @@ check_fields(const struct pack *a, const struct pack *b, const char *how)
 		    same_bits(a->c[k].M0, b->c[k].M0);
 	CHECK(ok, "%s: contact P0 Q0 M0 (bit patterns)", how);
 	CHECK(a->has_shapes == b->has_shapes && (!a->has_shapes || (same_array(a->side, b->side, a->n) &&
-	    same_array(a->q, b->q, 4 * a->n))), "%s: shape columns side qw qx qy qz (%s)", how,
-	    a->has_shapes ? "present, bit patterns" : "absent");
+	    same_array(a->q, b->q, 4 * a->n) && memcmp(a->shape, b->shape, a->n) == 0)),
+	    "%s: shape columns shape side qw qx qy qz (%s)", how, a->has_shapes ? "present, bit patterns" : "absent");
 	ok = a->nhist == b->nhist;
 	for (k = 0; ok && k < a->nhist; k++)
 		ok = strcmp(a->history[k], b->history[k]) == 0;
@@ -582,10 +582,10 @@ shapes(const char *dir)
 		CHECK(pack_write_path(&p, a) == 0, "%s: write", how);
 		t = text_of(a);
 		CHECK(t && strncmp(t, "qusgm-pack 2\n", 13) == 0 && strstr(t, "\nboundary walls walls walls\n") &&
-		    strstr(t, "\ncolumns id x y z r E nu rho side qw qx qy qz\nend\n"),
-		    "%s: version 2, 'columns id x y z r E nu rho side qw qx qy qz'", how);
-		CHECK(t && strstr(t, " 2420.123456789123 0 1 0 0 0\n") && strstr(t, " 1e-300 0.5 0.5 0.5 0.5\n") &&
-		    strstr(t, " -0 -0 0 0 -1\n"), "%s: side and q follow rho on each grain line", how);
+		    strstr(t, "\ncolumns id x y z r E nu rho shape side qw qx qy qz\nend\n"),
+		    "%s: version 2, 'columns id x y z r E nu rho shape side qw qx qy qz'", how);
+		CHECK(t && strstr(t, " 2420.123456789123 sphere 0 1 0 0 0\n") && strstr(t, " spheroplate 1e-300 0.5 0.5 0.5 0.5\n") &&
+		    strstr(t, " sphere -0 -0 0 0 -1\n"), "%s: the kind, side and q follow rho on each grain line", how);
 		free(t);
 		CHECK(pack_read_path(a, &q) == 0, "%s: read back (%s)", how, msg_geterr());
 		check_fields(&p, &q, how);
@@ -738,10 +738,10 @@ phases(const char *dir)
 		CHECK(pack_write_path(&p, a) == 0, "%s: write", how);
 		t = text_of(a);
 		CHECK(t && strncmp(t, "qusgm-pack 2\n", 13) == 0 &&
-		    strstr(t, sh ? "\ncolumns id x y z r E nu rho side qw qx qy qz phase\nend\n" : "\ncolumns id x y z r E nu rho phase\nend\n"),
+		    strstr(t, sh ? "\ncolumns id x y z r E nu rho shape side qw qx qy qz phase\nend\n" : "\ncolumns id x y z r E nu rho phase\nend\n"),
 		    "%s: version 2, the columns line ends in phase", how);
-		CHECK(t && strstr(t, sh ? " 2420.123456789123 0 1 0 0 0 0\n" : " 2420.123456789123 0\n") &&
-		    strstr(t, sh ? " -0 -0 0 0 -1 1\n" : " 2420.123456789123 1\n"), "%s: the tag last on each grain line, 0 or 1", how);
+		CHECK(t && strstr(t, sh ? " 2420.123456789123 sphere 0 1 0 0 0 0\n" : " 2420.123456789123 0\n") &&
+		    strstr(t, sh ? " sphere -0 -0 0 0 -1 1\n" : " 2420.123456789123 1\n"), "%s: the tag last on each grain line, 0 or 1", how);
 		free(t);
 		CHECK(pack_read_path(a, &q) == 0, "%s: read back (%s)", how, msg_geterr());
 		check_fields(&p, &q, how);

@@ -37,8 +37,10 @@ lines' text, oldest first), meta (dict), units ('SI'), box and refbox (numpy arr
 xlo ylo zlo xhi yhi zhi, m; refbox None when the pack has none), boundary (three of
 'walls'/'periodic', x y z), walls (dict E, nu, mu), friction (grain-grain mu), columns
 (the grain columns, in file order), grains (structured array, one record per grain line, in
-file order: id int64; x y z r E nu rho and, where present, side qw qx qy qz float64; phase
-int8, 0 mineral 1 hydrate), contacts (structured array: i int64, the first grain's id; j
+file order: id int64; x y z r E nu rho and, where present, side qw qx qy qz float64; shape
+str, the grain's kind, one of SHAPES; phase int8, 0 mineral 1 hydrate), kinds (each grain's
+kind, a str array: the shape column, or for a pack without it 'spheroplate' where side > 0
+and 'sphere' elsewhere), contacts (structured array: i int64, the first grain's id; j
 int64, the second grain's id, or for a wall -1 - w with w the wall's index in WALLS, so
 xlo -1 ... zhi -6; j_wall the wall's name, '' for a grain; P0 Q0x Q0y Q0z M0 float64),
 units_of (dict: column -> unit, '' for a dimensionless one or a count), name and line (where
@@ -67,7 +69,7 @@ from typing import IO, Any, Dict, Iterator, List, Optional, Sequence, Tuple, Uni
 
 import numpy as np
 
-__all__ = ["read_pack", "read_packs", "read_table", "Pack", "Table", "FormatError", "WALLS", "UNITS"]
+__all__ = ["read_pack", "read_packs", "read_table", "Pack", "Table", "FormatError", "WALLS", "UNITS", "SHAPES"]
 __version__ = "0.2.0"
 
 #: What the readers take: a path, "-" for standard input, or a binary (or text) file object.
@@ -79,18 +81,25 @@ VERSIONS = (1, 2)
 # The unit of every column a pack can hold ('' dimensionless or a count).
 UNITS: Dict[str, str] = {
     "id": "", "x": "m", "y": "m", "z": "m", "r": "m", "E": "Pa", "nu": "", "rho": "kg/m^3",
-    "side": "m", "qw": "", "qx": "", "qy": "", "qz": "", "phase": "",
+    "shape": "", "side": "m", "qw": "", "qx": "", "qy": "", "qz": "", "phase": "",
     "i": "", "j": "", "j_wall": "", "P0": "N", "Q0x": "N", "Q0y": "N", "Q0z": "N", "M0": "N m",
 }
 
+# The grains' kinds, the names of the shape column: lib/pack/shape.h's table (SHAPES), in its
+# order.
+SHAPES = ("sphere", "spheroplate")
+
 _REQUIRED = ("id", "x", "y", "z", "r", "E", "nu", "rho")
+_SHAPE = ("side", "qw", "qx", "qy", "qz")
 _VALID_COLUMNS = (
     _REQUIRED,
-    _REQUIRED + ("side", "qw", "qx", "qy", "qz"),
+    _REQUIRED + _SHAPE,
+    _REQUIRED + ("shape",) + _SHAPE,
     _REQUIRED + ("phase",),
-    _REQUIRED + ("side", "qw", "qx", "qy", "qz", "phase"),
+    _REQUIRED + _SHAPE + ("phase",),
+    _REQUIRED + ("shape",) + _SHAPE + ("phase",),
 )
-_DTYPES = {"id": np.int64, "phase": np.int8}
+_DTYPES = {"id": np.int64, "phase": np.int8, "shape": "U%d" % max(len(k) for k in SHAPES)}
 _CONTACT_DTYPE = np.dtype([("i", np.int64), ("j", np.int64), ("j_wall", "U3"), ("P0", np.float64),
                            ("Q0x", np.float64), ("Q0y", np.float64), ("Q0z", np.float64),
                            ("M0", np.float64)])
@@ -269,6 +278,17 @@ class Pack:
         return len(self.grains)
 
     @property
+    def kinds(self) -> np.ndarray:
+        """Each grain's kind (one of SHAPES): the shape column; without it, 'spheroplate'
+        where side > 0 and 'sphere' elsewhere (pack-format.md, "The shape column")."""
+        g = self.grains
+        if "shape" in self.columns:
+            return g["shape"].copy()
+        if "side" in self.columns:
+            return np.where(g["side"] > 0, SHAPES[1], SHAPES[0]).astype(_DTYPES["shape"])
+        return np.full(len(g), SHAPES[0], dtype=_DTYPES["shape"])
+
+    @property
     def periodic(self) -> Tuple[bool, bool, bool]:
         """Per axis x y z, whether it is periodic."""
         return (self.boundary[0] == "periodic", self.boundary[1] == "periodic", self.boundary[2] == "periodic")
@@ -411,6 +431,10 @@ def _grains_slow(lines: _Lines, p: Pack, ng: int) -> np.ndarray:
                 if v in ids:
                     raise lines.error("duplicate grain id %d" % v)
                 ids[v] = n
+            elif c == "shape":
+                v = tok[k]
+                if v not in SHAPES:
+                    raise lines.error("grain %s: shape '%s' is not a kind (%s)" % (tok[0], v, ", ".join(SHAPES)))
             elif c == "phase":
                 v = _int(tok[k], "phase", lines)
                 if v not in (0, 1):
@@ -419,6 +443,11 @@ def _grains_slow(lines: _Lines, p: Pack, ng: int) -> np.ndarray:
             else:
                 v = _float(tok[k], c, lines)
             cols[k].append(v)
+        if "shape" in p.columns:
+            kind, side = cols[p.columns.index("shape")][-1], cols[p.columns.index("side")][-1]
+            if (kind == "sphere") != (side == 0) or not side >= 0:
+                raise lines.error("grain %s: a %s cannot have side %s (a sphere has side 0, a spheroplate side > 0)"
+                                  % (tok[0], kind, tok[p.columns.index("side")]))
     dt = np.dtype([(c, _DTYPES.get(c, np.float64)) for c in p.columns])
     g = np.empty(ng, dtype=dt)
     for k, c in enumerate(p.columns):
@@ -467,7 +496,28 @@ def _spans(arr: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarray:
     return arr[first + np.arange(int(lens.sum()))]
 
 
-def _parse_block(data: bytes, dtype: np.dtype, n: int, wall_col: int = -1) -> Tuple[np.ndarray, np.ndarray]:
+def _kinds_to_numbers(data: bytes, arr: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> bytes:
+    """The kind names (SHAPES) of the tokens arr[lo:hi] written over with their index in
+    SHAPES, right-aligned in blanks (the same length), or ValueError at a token that is none."""
+    out = np.array(arr)  # a copy to write on
+    done = np.zeros(len(lo), dtype=bool)
+    for k, name in enumerate(SHAPES):
+        w = np.frombuffer(name.encode(), np.uint8)
+        cand = (hi - lo == len(w)) & ~done
+        for j in range(len(w)):
+            cand &= arr[np.where(cand, lo + j, 0)] == w[j]
+        at = lo[cand]
+        for j in range(len(w) - 1):
+            out[at + j] = 32
+        out[at + len(w) - 1] = 48 + k
+        done |= cand
+    if not done.all():
+        raise ValueError("a word that is not a kind's name")
+    return out.tobytes()
+
+
+def _parse_block(data: bytes, dtype: np.dtype, n: int, wall_col: int = -1,
+                 kind_col: int = -1) -> Tuple[np.ndarray, np.ndarray]:
     """n lines of numbers, separated by single spaces, into a structured array, or ValueError.
     numpy's fromstring reads the numbers (its strtod rounds correctly, as Python's float()
     does); the shape is checked on the bytes first: no other blank than one space between
@@ -475,7 +525,8 @@ def _parse_block(data: bytes, dtype: np.dtype, n: int, wall_col: int = -1) -> Tu
     made of digits and signs alone (fromstring reads '1.5' as a float where the line-by-line
     reader wants an integer).  In the column wall_col a token may be a wall's name instead,
     which is written over with a number before fromstring reads the lines; the second array
-    returned is each line's wall index in WALLS there, -1 for a number."""
+    returned is each line's wall index in WALLS there, -1 for a number.  In the column
+    kind_col (an integer field) every token is a kind's name (SHAPES), read as its index."""
     ncol = len(dtype.names)
     if (b"\t" in data or b"\r" in data or b"\v" in data or b"\f" in data or b"  " in data
             or b" \n" in data or b"\n " in data or data[:1] == b" "):
@@ -494,6 +545,9 @@ def _parse_block(data: bytes, dtype: np.dtype, n: int, wall_col: int = -1) -> Tu
             continue
         lo = starts if k == 0 else sp[k - 1::ncol - 1] + 1
         hi = nl if k == ncol - 1 else sp[k::ncol - 1]
+        if k == kind_col:
+            data = _kinds_to_numbers(data, arr, lo, hi)
+            continue
         if k == wall_col:
             # xlo xhi ylo yhi zlo zhi: x, y or z, then lo or hi; the index 2 axis + (hi)
             first = arr[lo]
@@ -537,8 +591,8 @@ def _parse_block(data: bytes, dtype: np.dtype, n: int, wall_col: int = -1) -> Tu
 _CHUNK = 1 << 16
 
 
-def _parse_lines(lines: _Lines, n: int, dtype: np.dtype,
-                 wall_col: int = -1) -> Tuple[Optional[np.ndarray], np.ndarray, bytes]:
+def _parse_lines(lines: _Lines, n: int, dtype: np.dtype, wall_col: int = -1,
+                 kind_col: int = -1) -> Tuple[Optional[np.ndarray], np.ndarray, bytes]:
     """The next n lines parsed by numpy's C parser (_parse_block, _CHUNK lines at a time) into
     a structured array, or None where it cannot (a token that is not a number of the field's
     kind, a line of another length, fewer lines, a blank or a NUL byte...); the lines' walls
@@ -556,7 +610,7 @@ def _parse_lines(lines: _Lines, n: int, dtype: np.dtype,
             if b"\0" in block or b"#" in block or b"\r" in block:
                 return None, np.zeros(0, dtype=np.int64), b"".join(raws)
             try:
-                a, w = _parse_block(block, dtype, m, wall_col)
+                a, w = _parse_block(block, dtype, m, wall_col, kind_col)
             except Exception:  # whatever the C parser refuses, the line-by-line reader names
                 return None, np.zeros(0, dtype=np.int64), b"".join(raws)
             parts.append(a)
@@ -570,8 +624,16 @@ def _parse_lines(lines: _Lines, n: int, dtype: np.dtype,
 def _grains_fast(lines: _Lines, p: Pack, ng: int) -> Optional[np.ndarray]:
     """The grain lines through a C parser, checked as _grains_slow checks them; None,
     the lines given back, where any check fails."""
-    dt = np.dtype([(c, _DTYPES.get(c, np.float64)) for c in p.columns])
-    g, _, block = _parse_lines(lines, ng, dt)
+    kind_col = p.columns.index("shape") if "shape" in p.columns else -1
+    dt = np.dtype([(c, np.int8 if c == "shape" else _DTYPES.get(c, np.float64)) for c in p.columns])
+    g, _, block = _parse_lines(lines, ng, dt, kind_col=kind_col)
+    if g is not None and kind_col >= 0:  # the kinds' indices as their names
+        ok = ((g["shape"] == 0) == (g["side"] == 0)).all() and (g["side"] >= 0).all()
+        names = np.array(SHAPES, dtype=_DTYPES["shape"])[g["shape"]]
+        g2 = np.empty(ng, dtype=[(c, _DTYPES.get(c, np.float64)) for c in p.columns])
+        for c in p.columns:
+            g2[c] = names if c == "shape" else g[c]
+        g = g2 if ok else None
     if g is not None:
         floats = [c for c in p.columns if c not in _DTYPES]
         ok = all(np.isfinite(g[c]).all() for c in floats)
