@@ -38,9 +38,8 @@
 extern "C" {
 #endif
 
-/* Floor of a grain's largest contact force in the residual, relative to the mean normal
- * contact force: packinfo and the minimisers share it (qs/functional.h, qs_residual). */
-#define MEASURE_RESIDUAL_FLOOR 1e-3
+/* Floor of a grain's largest contact force in the residual (contacts.h). */
+#define MEASURE_RESIDUAL_FLOOR CONTACT_RESIDUAL_FLOOR
 
 struct pack_measures {
 	size_t grains, contacts_gg, contacts_gw, under4, rattlers, history, stale_history;

@@ -130,6 +130,11 @@ int contact_enum_update(struct contact_enum *e, const double *x, int force);
  * evaluations with a small skin, and the walks visit a third fewer pairs apart; a relaxation
  * that moves grains far grows the skin back in a few rebuilds. */
 #define CONTACT_SKIN_GROW 100
+
+/* Floor of a grain's largest contact force in a residual, relative to the mean normal
+ * contact force: packinfo's (MEASURE_RESIDUAL_FLOOR) and the minimisers' (QS_RESIDUAL_FLOOR,
+ * qs_residual), one value. */
+#define CONTACT_RESIDUAL_FLOOR 1e-3
 void contact_enum_skin_auto(struct contact_enum *e, double skin_max);
 /* Prune the lists from the next build on (pr, the caller's, outlives e; NULL: no more):
  * the list is rebuilt at the next update. */

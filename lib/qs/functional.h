@@ -24,7 +24,6 @@
 
 #include "contact/contacts.h"
 #include "contact/law.h"
-#include "analysis/measure.h"
 #include "pack/pack.h"
 #include "qs/layout.h"
 
@@ -34,7 +33,7 @@ extern "C" {
 
 /* Default floor of a grain's largest contact force in the residual, relative to the mean
  * normal contact force (see qs_residual); packinfo and the minimisers share it. */
-#define QS_RESIDUAL_FLOOR MEASURE_RESIDUAL_FLOOR
+#define QS_RESIDUAL_FLOOR CONTACT_RESIDUAL_FLOOR
 
 struct qs_system;
 struct qs_hessian;
