@@ -1065,7 +1065,8 @@ measure_is_plate_pack(const struct pack *p)
 
 	if (!law)
 		return -1;
-	return pack_first_plate(p) != (size_t)-1 || law != &contact_law_hertz_mindlin;
+	/* the sphere report's limits are the frictional chain's (contact_laws_qs_friction) */
+	return pack_first_plate(p) != (size_t)-1 || !contact_law_in(law, contact_laws_qs_friction);
 }
 
 void

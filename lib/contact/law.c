@@ -75,6 +75,17 @@ contact_law_choose(const struct pack *p, const char *name)
 	return law;
 }
 
+const struct contact_law *const contact_laws_qs_friction[] = {&contact_law_hertz_mindlin, NULL};
+
+int
+contact_law_in(const struct contact_law *law, const struct contact_law *const *laws)
+{
+	for (; *laws; laws++)
+		if (*laws == law)
+			return 1;
+	return 0;
+}
+
 const struct contact_law *
 contact_law_require(const struct pack *p, const char *who, const struct contact_law *const *laws)
 {
@@ -82,11 +93,8 @@ contact_law_require(const struct pack *p, const char *who, const struct contact_
 	char names[256];
 	size_t at = 0;
 
-	if (!law)
-		return NULL;
-	for (l = laws; *l; l++)
-		if (*l == law)
-			return law;
+	if (!law || contact_law_in(law, laws))
+		return law;
 	names[0] = 0;
 	for (l = laws; *l && at < sizeof names; l++) {
 		int k = snprintf(names + at, sizeof names - at, "%s%s", at ? ", " : "", (*l)->name);

@@ -200,6 +200,15 @@ void contact_law_option_help(char *buf, size_t size);
  * NULL, else pack p's (contact_law_of_pack).  NULL, with the error slot set, for a name or
  * key no law has ("no such contact law '...': the laws are ..."). */
 const struct contact_law *contact_law_choose(const struct pack *p, const char *name);
+/* The laws of the quasi-static frictional chain (frictionalize, loadtest, dissociate, and
+ * packinfo's sphere report of their packs): those whose tangential closed forms its
+ * incremental solve, its history checks (qs/friction.c) and the sphere report's limits
+ * (analysis/measure.c) implement, Mindlin's Coulomb and twist limits through the contact
+ * radius.  A pack of another law is refused there (contact_law_require), not run as Hertz,
+ * and packinfo gives it the report of the DEM's packs.  NULL-terminated. */
+extern const struct contact_law *const contact_laws_qs_friction[];
+/* Whether law is one of laws (NULL-terminated). */
+int contact_law_in(const struct contact_law *law, const struct contact_law *const *laws);
 /* The law of pack p (contact_law_of_pack) when it is one of laws (NULL-terminated): a tool
  * that runs only some laws (who: its name).  NULL with the error slot set for a law not
  * among them ("the pack's contact law is linear; frictionalize runs hertz-mindlin"). */

@@ -16,8 +16,6 @@
 #include <string.h>
 
 
-const struct contact_law *const friction_laws[] = {&contact_law_hertz_mindlin, NULL};
-
 /* doubles per grain in f->gs: x - x0 (3), w = R Omega (3) */
 #define FR_GS 6
 

@@ -91,11 +91,6 @@ struct qs_friction {
 void fr_init(struct qs_friction *f, enum fr_rule rule);
 void fr_free(struct qs_friction *f);
 /* Parse "return-map" / "paper"; 0 or -1. */
-/* The laws the frictional stage runs (frictionalize, loadtest, dissociate): those whose
- * tangential closed forms its incremental solve and history checks implement (Mindlin's:
- * the Coulomb and twist limits through the contact radius).  A pack of another law is refused
- * (contact_law_require), not run as Hertz.  NULL-terminated. */
-extern const struct contact_law *const friction_laws[];
 int fr_rule_parse(const char *name, enum fr_rule *rule);
 const char *fr_rule_name(enum fr_rule rule);
 

@@ -316,7 +316,7 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 		return -1;
 	if (pack_require_spheres(p, who))
 		return 1;
-	if (!contact_law_require(p, who, friction_laws))
+	if (!contact_law_require(p, who, contact_laws_qs_friction))
 		return 1;
 	if (p->n < 5) {
 		msg_seterr("%zu grains: %s needs at least 5", p->n, who);
