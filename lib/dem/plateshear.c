@@ -237,6 +237,92 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 	return plateshear_run_resumable(p, sp, fn, ctx, NULL, NULL, res);
 }
 
+/* The run's start, after pdem_init: the state of a run of this input after a row (from),
+ * or the pack's frictional history, the relaxation at sigma_w and the glued walls; then
+ * the scales the run reports.  *mtop the top body's mass, sigma_s the scaled stress, *A the
+ * top's area, *vol the grains' volume.  0, -1, or -2 for a bad checkpoint (its file:line
+ * message). */
+static int
+shear_begin(struct pdem *d, struct pack *p, const struct shear_params *sp, struct lines *from, double sigma_s,
+    struct shear_state *ss, struct shear_result *res, double *mtop, double *A, double *vol)
+{
+	size_t i;
+
+	if (from) {	/* the state of a run of this input, after a row */
+		if (state_read(ss, from))
+			return -2;
+		glue_count(d, res, mtop);
+	} else {
+		/* the pack's frictional history, for the pairs that were in it (those across a new
+		 * periodic boundary start from zero) */
+		if (pdem_read_history(d, p))
+			return -1;
+		if (sp->relax_tol > 0 && relax(d, sp, sigma_s, res))
+			return -1;
+		if (glue_walls(d, res, mtop))
+			return -1;
+		ss->H0 = d->hi[1] - d->lo[1];
+		/* I = gamma_dot r sqrt(rho / sigma_w) with r = 1 and rho = 1 in these units */
+		ss->vw = sp->velocity > 0 ? sp->velocity * d->u_time / d->u_len : sp->inertial * sqrt(sigma_s) * ss->H0;
+		ss->next_row = sp->every;
+		d->wallv[WALL_TOP][0] = ss->vw;
+	}
+	*vol = 0;
+	for (i = 0; i < d->n; i++)
+		*vol += shape_volume(d->r[i], 2 * d->half[i]);
+	*A = (d->hi[0] - d->lo[0]) * (d->hi[2] - d->lo[2]);
+	res->inertial = ss->vw / ss->H0 / sqrt(sigma_s);
+	res->v_w = ss->vw * d->u_len / d->u_time;
+	res->gamma_dot = res->v_w / (ss->H0 * d->u_len);
+	res->kappa = pdem_kappa(p, &sp->dyn, sp->sigma_w);
+	return 0;
+}
+
+/* The force on the top body: its glued grains', and its plane's push on the free grains
+ * reversed. */
+static void
+top_body_force(const struct pdem *d, double F[3])
+{
+	size_t i;
+	int a;
+
+	for (a = 0; a < 3; a++)
+		F[a] = -d->wallF[WALL_TOP][a];
+	for (i = 0; i < d->n; i++)
+		if (d->glue[i] == 1 + WALL_TOP)
+			for (a = 0; a < 3; a++)
+				F[a] += d->f[3 * i + a];
+}
+
+/* The top body's normal velocity after a step under force fy - sigma_s A, its motion damped
+ * at the start (shear_params). */
+static void
+top_body_push(struct pdem *d, const struct shear_params *sp, const struct shear_state *ss, double fy, double mtop)
+{
+	double vy = d->wallv[WALL_TOP][1];
+
+	if (ss->xw < sp->start_strain * (d->hi[1] - d->lo[1]))
+		fy -= sp->relax_damping * fabs(fy) * (vy > 0 ? 1 : vy < 0 ? -1 : 0);
+	d->wallv[WALL_TOP][1] += fy / mtop * d->dt;
+}
+
+/* The row of the steps summed in rs, at strain gamma; rs emptied and the next row's strain
+ * set. */
+static void
+row_emit(struct row_sums *rs, const struct pdem *d, const struct shear_params *sp, struct shear_state *ss, double sigma_s,
+    double gamma, struct shear_row *row)
+{
+	row_make(rs, d, sigma_s, row);
+	row->step = ss->step;
+	row->time = ss->step * d->dt * d->u_time;
+	row->gamma = gamma;
+	row->profile_sum = ss->psum;
+	row->profile_n = ss->pn;
+	memset(rs, 0, sizeof *rs);
+	while (ss->next_row <= gamma)
+		ss->next_row += sp->every;
+}
+
 int
 plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_row_fn fn, void *ctx,
     shear_checkpoint_fn ck, struct lines *from, struct shear_result *res)
@@ -247,8 +333,7 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 	struct row_sums rs;
 	struct shear_row row;
 	struct shear_state ss = {&d, 0, 0, 0, 0, 0, sp->profile_bins, NULL, NULL};
-	double mtop, sigma_s, A, vol = 0;
-	size_t i;
+	double mtop, sigma_s, A, vol;
 	int status = -1, a, nb = sp->profile_bins;
 
 	memset(res, 0, sizeof *res);
@@ -274,34 +359,9 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		goto out;
 	}
 	sigma_s = sp->sigma_w / (d.u_force / (d.u_len * d.u_len));
-	if (from) {	/* the state of a run of this input, after a row */
-		if (state_read(&ss, from)) {
-			status = -2;
-			goto out;
-		}
-		glue_count(&d, res, &mtop);
-	} else {
-		/* the pack's frictional history, for the pairs that were in it (those across a new
-		 * periodic boundary start from zero) */
-		if (pdem_read_history(&d, p))
-			goto out;
-		if (sp->relax_tol > 0 && relax(&d, sp, sigma_s, res))
-			goto out;
-		if (glue_walls(&d, res, &mtop))
-			goto out;
-		ss.H0 = d.hi[1] - d.lo[1];
-		/* I = gamma_dot r sqrt(rho / sigma_w) with r = 1 and rho = 1 in these units */
-		ss.vw = sp->velocity > 0 ? sp->velocity * d.u_time / d.u_len : sp->inertial * sqrt(sigma_s) * ss.H0;
-		ss.next_row = sp->every;
-		d.wallv[WALL_TOP][0] = ss.vw;
-	}
-	for (i = 0; i < d.n; i++)
-		vol += shape_volume(d.r[i], 2 * d.half[i]);
-	A = (d.hi[0] - d.lo[0]) * (d.hi[2] - d.lo[2]);
-	res->inertial = ss.vw / ss.H0 / sqrt(sigma_s);
-	res->v_w = ss.vw * d.u_len / d.u_time;
-	res->gamma_dot = res->v_w / (ss.H0 * d.u_len);
-	res->kappa = pdem_kappa(p, &sp->dyn, sp->sigma_w);
+	if ((status = shear_begin(&d, p, sp, from, sigma_s, &ss, res, &mtop, &A, &vol)) != 0)
+		goto out;
+	status = -1;
 	memset(&rs, 0, sizeof rs);
 	for (;;) {
 		double F[3], gamma;
@@ -313,22 +373,10 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		}
 		if (pdem_forces(&d))
 			goto out;
-		/* the top body: its glued grains, and its plane's push on the free grains reversed */
-		for (a = 0; a < 3; a++)
-			F[a] = -d.wallF[WALL_TOP][a];
-		for (i = 0; i < d.n; i++)
-			if (d.glue[i] == 1 + WALL_TOP)
-				for (a = 0; a < 3; a++)
-					F[a] += d.f[3 * i + a];
+		top_body_force(&d, F);
 		row_add(&rs, &d, -F[0] / A, F[1] / A, (d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]), vol,
 		    res->glued_bottom + res->glued_top);
-		{	/* the top body's normal motion, damped at the start (shear_params) */
-			double fy = F[1] - sigma_s * A, vy = d.wallv[WALL_TOP][1];
-
-			if (ss.xw < sp->start_strain * (d.hi[1] - d.lo[1]))
-				fy -= sp->relax_damping * fabs(fy) * (vy > 0 ? 1 : vy < 0 ? -1 : 0);
-			d.wallv[WALL_TOP][1] += fy / mtop * d.dt;
-		}
+		top_body_push(&d, sp, &ss, F[1] - sigma_s * A, mtop);
 		pdem_integrate(&d);
 		d.hi[1] += d.wallv[WALL_TOP][1] * d.dt;
 		ss.xw += ss.vw * d.dt;
@@ -338,15 +386,7 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		if (gamma >= ss.next_row || gamma >= sp->strain) {
 			int r;
 
-			row_make(&rs, &d, sigma_s, &row);
-			row.step = ss.step;
-			row.time = ss.step * d.dt * d.u_time;
-			row.gamma = gamma;
-			row.profile_sum = ss.psum;
-			row.profile_n = ss.pn;
-			memset(&rs, 0, sizeof rs);
-			while (ss.next_row <= gamma)
-				ss.next_row += sp->every;
+			row_emit(&rs, &d, sp, &ss, sigma_s, gamma, &row);
 			if (fn && fn(&row, &d, ctx)) {
 				if (!*msg_geterr())
 					msg_seterr("stopped");
