@@ -318,6 +318,48 @@ check_stop(int r, struct file_out *logout, const struct densify_stage *last, con
 	    last->porosity, last->coordination, last->under4, last->res_max);
 }
 
+/* The header flushed at once: a log that cannot be written (--log /dev/full) fails the run
+ * before it starts. */
+static void
+open_log(struct file_out *logout, struct log_ctx *lc)
+{
+	if (file_log_open(logout, o.log))
+		msg_die_err(EXIT_DATA);
+	lc->log = logout;
+	densify_log_header(logout->fp);
+	if (file_out_flush(logout)) {
+		errno = logout->err;
+		file_out_abort(logout);
+		msg_die(EXIT_DATA, "%s: write error:", o.log);
+	}
+}
+
+/* Returns whether the run goes on from the checkpoint (which then holds the state in p and at). */
+static int
+start_checkpoint(struct pack *p, struct densify_resume *at, struct log_ctx *lc)
+{
+	if (!(lc->rows = open_memstream(&lc->rowbuf, &lc->rowlen)))
+		msg_die(EXIT_DATA, "out of memory");
+	lc->ckpath = o.checkpoint;
+	lc->calls = 1;
+	lc->run = run_identity(p);
+	return resume_from(o.checkpoint, p, at, lc);
+}
+
+/* The time limit: neither a pack nor a log; the checkpoint is where the same command goes on. */
+static int
+stop_at_limit(struct file_out *logout, struct log_ctx *lc, const struct densify_stage *last, struct pack *p)
+{
+	if (o.log)
+		file_out_abort(logout);
+	msg_info(0, "stopped after %s %ld at the time limit (%.0f s); the same command goes on from %s", last->stage,
+	    last->round, cli_elapsed(), o.checkpoint);
+	fclose(lc->rows);
+	free(lc->rowbuf), free(lc->run);
+	pack_free(p);
+	return EXIT_STOPPED;
+}
+
 int
 main(int argc, char **argv)
 {
@@ -334,41 +376,16 @@ main(int argc, char **argv)
 	parse_args(argc, argv, &st);
 	read_pack(st.input, &p);
 	check_stress(&p);
-	if (o.log) {
-		/* the header flushed at once: a log that cannot be written (--log /dev/full) fails
-		 * the run before it starts */
-		if (file_log_open(&logout, o.log))
-			msg_die_err(EXIT_DATA);
-		lc.log = &logout;
-		densify_log_header(logout.fp);
-		if (file_out_flush(&logout)) {
-			errno = logout.err;
-			file_out_abort(&logout);
-			msg_die(EXIT_DATA, "%s: write error:", o.log);
-		}
-	}
-	if (o.checkpoint) {
-		if (!(lc.rows = open_memstream(&lc.rowbuf, &lc.rowlen)))
-			msg_die(EXIT_DATA, "out of memory");
-		lc.ckpath = o.checkpoint;
-		lc.calls = 1;
-		lc.run = run_identity(&p);
-		resumed = resume_from(o.checkpoint, &p, &at, &lc);
-	}
+	if (o.log)
+		open_log(&logout, &lc);
+	if (o.checkpoint)
+		resumed = start_checkpoint(&p, &at, &lc);
 	lc.last = cli_elapsed();	/* the first stage's time does not count the reading */
 	r = densify_run_resumable(&p, &o.dp, on_stage, &lc, o.checkpoint ? on_checkpoint : NULL, resumed ? &at : NULL,
 	    &last);
 	cli_progress_end();
-	if (r == 2) {
-		if (o.log)
-			file_out_abort(&logout);
-		msg_info(0, "stopped after %s %ld at the time limit (%.0f s); the same command goes on from %s", last.stage,
-		    last.round, cli_elapsed(), o.checkpoint);
-		fclose(lc.rows);
-		free(lc.rowbuf), free(lc.run);
-		pack_free(&p);
-		return EXIT_STOPPED;
-	}
+	if (r == 2)
+		return stop_at_limit(&logout, &lc, &last, &p);
 	/* a resumed run's state is the checkpoint's */
 	if (resumed && (size_t)snprintf(ckname, sizeof ckname, "%s (resumed)", o.checkpoint) >= sizeof ckname)
 		strcpy(ckname, "the checkpoint");

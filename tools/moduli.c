@@ -45,6 +45,78 @@ static const struct table_col out_cols[] = {
 	{"porosity", NULL}, {"coordination", NULL}, {"K_emt", "Pa"}, {"G_emt_rough", "Pa"}, {"G_emt_smooth", "Pa"},
 };
 
+/* Every usage error before any work. */
+static void
+check_args(const struct cli_state *st, struct material *mat)
+{
+	if (window < 1)
+		cli_usage_error("--window: must be positive");
+	if (stress_arg && strcmp(stress_arg, "wall") && strcmp(stress_arg, "lw"))
+		cli_usage_error("--stress: must be wall or lw");
+	if (emt_arg && material_lookup(emt_arg, mat))
+		cli_usage_error("--emt: %s", msg_geterr());
+	{	/* -o writable, and neither the input table nor --emt's file */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {st->input, "the input", 0},
+		    {emt_arg && material_is_file(emt_arg) ? emt_arg : NULL, "the --emt material file", 0}};
+		if (file_roles_check(r, 3))
+			cli_usage_error("%s", msg_geterr());
+	}
+	cli_usage_done();
+}
+
+static void
+read_table(const char *input, struct table *t, const char **display)
+{
+	FILE *in;
+
+	if (!(in = file_in_open(input, display)))
+		msg_die_err(EXIT_DATA);
+	if (table_read(in, *display, t))
+		msg_die_err(EXIT_DATA);
+	if (in != stdin)
+		fclose(in);
+}
+
+static void
+warn_negative(const struct table *t, const char *display, const struct curve_interval *iv, size_t n)
+{
+	size_t k;
+
+	for (k = 0; k < n; k++) {
+		const struct curve_interval *I = &iv[k];
+		if (!isnan(I->K_negative) || !isnan(I->G_negative))
+			msg_warn("%s:%ld: increments %ld-%ld: %s = %.4g Pa is negative: no modulus, written as nan",
+			    display, t->line[I->row_to], I->inc_from, I->inc_to, isnan(I->G_negative) ? "K" : "G",
+			    isnan(I->G_negative) ? I->K_negative : I->G_negative);
+	}
+}
+
+/* cphi and cz: the table's porosity and coordination columns, read with --emt only. */
+static void
+put_rows(FILE *fp, const struct table *t, const struct curve_interval *iv, size_t n, const struct material *mat,
+    int cphi, int cz, int ncol)
+{
+	size_t k;
+
+	for (k = 0; k < n; k++) {
+		const struct curve_interval *I = &iv[k];
+		double v[17] = {I->seg, (double)I->inc_from, (double)I->inc_to, (double)I->n, I->sigma_c, I->sig_lat,
+		    I->hk.K, I->hk.G, I->hk.lambda, I->hk.E, I->hk.nu, I->hk.rel};
+		if (emt_arg) {
+			struct emt e;
+			/* the state at the interval's end row */
+			double phi = t->v[I->row_to * t->ncol + cphi], Z = t->v[I->row_to * t->ncol + cz];
+			emt_moduli(mat->E / (2 * (1 + mat->nu)), mat->nu, phi, Z, I->sigma_c, &e);
+			v[12] = phi;
+			v[13] = Z;
+			v[14] = e.K;
+			v[15] = e.G_rough;
+			v[16] = e.G_smooth;
+		}
+		table_row(fp, v, ncol);
+	}
+}
+
 int
 main(int argc, char **argv)
 {
@@ -53,36 +125,18 @@ main(int argc, char **argv)
 	struct table t;
 	struct curve_cols cols;
 	struct curve_interval *iv;
-	size_t n, k;
+	size_t n;
 	const char *display;
-	FILE *in;
 	int ncol = (int)(sizeof out_cols / sizeof out_cols[0]), cphi = -1, cz = -1;
 	struct material mat;
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
-	if (window < 1)
-		cli_usage_error("--window: must be positive");
-	if (stress_arg && strcmp(stress_arg, "wall") && strcmp(stress_arg, "lw"))
-		cli_usage_error("--stress: must be wall or lw");
-	if (emt_arg && material_lookup(emt_arg, &mat))
-		cli_usage_error("--emt: %s", msg_geterr());
-	{	/* before any work: -o writable, and neither the input table nor --emt's file */
-		struct file_role r[] = {{st.output ? st.output : "-", "-o", 1}, {st.input, "the input", 0},
-		    {emt_arg && material_is_file(emt_arg) ? emt_arg : NULL, "the --emt material file", 0}};
-		if (file_roles_check(r, 3))
-			cli_usage_error("%s", msg_geterr());
-	}
-	cli_usage_done();
+	check_args(&st, &mat);
 	if (!emt_arg)
 		ncol -= 5;
 
-	if (!(in = file_in_open(st.input, &display)))
-		msg_die_err(EXIT_DATA);
-	if (table_read(in, display, &t))
-		msg_die_err(EXIT_DATA);
-	if (in != stdin)
-		fclose(in);
+	read_table(st.input, &t, &display);
 	/* a window longer than the whole table would fit each segment as one interval */
 	if (t.nrow >= 2 && (size_t)window > t.nrow - 1)
 		msg_die(EXIT_DATA, "%s: --window %ld is longer than the table's %zu increments (%zu rows)",
@@ -94,13 +148,7 @@ main(int argc, char **argv)
 	cols.pool = pool;
 	if (curve_moduli(&t, &cols, display, window, &iv, &n))
 		msg_die_err(EXIT_DATA);
-	for (k = 0; k < n; k++) {
-		const struct curve_interval *I = &iv[k];
-		if (!isnan(I->K_negative) || !isnan(I->G_negative))
-			msg_warn("%s:%ld: increments %ld-%ld: %s = %.4g Pa is negative: no modulus, written as nan",
-			    display, t.line[I->row_to], I->inc_from, I->inc_to, isnan(I->G_negative) ? "K" : "G",
-			    isnan(I->G_negative) ? I->K_negative : I->G_negative);
-	}
+	warn_negative(&t, display, iv, n);
 	/* the effective medium is a model of the bulk: the state of the grains away from the
 	 * walls where the table has it (loadtest's bulk_ columns), else of the whole box */
 	if (emt_arg && ((cphi = table_find(&t, "bulk_porosity")) < 0 || (cz = table_find(&t, "bulk_coordination")) < 0) &&
@@ -109,23 +157,7 @@ main(int argc, char **argv)
 	if (file_out_open(&out, st.output))
 		msg_die_err(EXIT_DATA);
 	table_header(out.fp, out_cols, ncol);
-	for (k = 0; k < n; k++) {
-		const struct curve_interval *I = &iv[k];
-		double v[17] = {I->seg, (double)I->inc_from, (double)I->inc_to, (double)I->n, I->sigma_c, I->sig_lat,
-		    I->hk.K, I->hk.G, I->hk.lambda, I->hk.E, I->hk.nu, I->hk.rel};
-		if (emt_arg) {
-			struct emt e;
-			/* the state at the interval's end row */
-			double phi = t.v[I->row_to * t.ncol + cphi], Z = t.v[I->row_to * t.ncol + cz];
-			emt_moduli(mat.E / (2 * (1 + mat.nu)), mat.nu, phi, Z, I->sigma_c, &e);
-			v[12] = phi;
-			v[13] = Z;
-			v[14] = e.K;
-			v[15] = e.G_rough;
-			v[16] = e.G_smooth;
-		}
-		table_row(out.fp, v, ncol);
-	}
+	put_rows(out.fp, &t, iv, n, &mat, cphi, cz, ncol);
 	if (file_out_commit(&out))
 		msg_die_err(EXIT_DATA);
 	free(iv);

@@ -174,6 +174,57 @@ write_lammps_frames(const char *input, struct text *t)
 	text_close(t);
 }
 
+/* Every usage error before any work, the files of a .vtm included. */
+static void
+check_args(const struct cli_state *st, const char *out)
+{
+	if ((vtk > 0) + (lammps > 0) + (lammps_data > 0) + (xyzr > 0) + (tsv_grains > 0) + (tsv_contacts > 0) != 1)
+		cli_usage_error("give exactly one of --vtk, --lammps, --lammps-data, --xyzr, --tsv-grains, --tsv-contacts");
+	if (periodic && !xyzr)
+		cli_usage_error("--periodic goes with --xyzr only");
+	if (vtk && out && !has_suffix(out, ".vtm") && !has_suffix(out, ".vtp"))
+		cli_usage_error("--vtk: the output name must end in .vtm (grains, contacts and the .vtm) or .vtp (grains only)");
+	else if (vtk && out && has_suffix(out, ".vtm")) {
+		char *gname, *cname;
+		vtp_names(out, &gname, &cname);
+		{
+			struct file_role fr[] = {{out, "-o", 1}, {gname, "the grains' .vtp of -o", 1},
+			    {cname, "the contacts' .vtp of -o", 1}, {st->input, "the input", 0}};
+			if (file_roles_check(fr, 4))
+				cli_usage_error("%s", msg_geterr());
+		}
+		free(gname);
+		free(cname);
+	} else {
+		struct file_role fr[] = {{st->output, "-o", 1}, {st->input, "the input", 0}};
+		if (file_roles_check(fr, 2))
+			cli_usage_error("%s", msg_geterr());
+	}
+	cli_usage_done();
+}
+
+/* The one-file formats, into t (closed here). */
+static void
+format_one(const struct pack *p, struct text *t, int plates, const char *name)
+{
+	int r;
+
+	text_open(t);
+	if (vtk)
+		r = plates ? export_vtp_plates(p, t->fp) : export_vtp_grains(p, t->fp);
+	else if (lammps_data)
+		r = export_lammps_data(p, t->fp);
+	else if (tsv_grains)
+		r = export_tsv_grains(p, t->fp);
+	else if (tsv_contacts)
+		r = export_tsv_contacts(p, t->fp);
+	else
+		r = export_xyzr(p, t->fp, periodic);
+	if (r)
+		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
+	text_close(t);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -181,34 +232,12 @@ main(int argc, char **argv)
 	struct pack p;
 	struct text t;
 	const char *out, *name, *who;
-	int r = 0, plates;
+	int plates;
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
 	out = st.output && strcmp(st.output, "-") != 0 ? st.output : NULL;
-	if ((vtk > 0) + (lammps > 0) + (lammps_data > 0) + (xyzr > 0) + (tsv_grains > 0) + (tsv_contacts > 0) != 1)
-		cli_usage_error("give exactly one of --vtk, --lammps, --lammps-data, --xyzr, --tsv-grains, --tsv-contacts");
-	if (periodic && !xyzr)
-		cli_usage_error("--periodic goes with --xyzr only");
-	if (vtk && out && !has_suffix(out, ".vtm") && !has_suffix(out, ".vtp"))
-		cli_usage_error("--vtk: the output name must end in .vtm (grains, contacts and the .vtm) or .vtp (grains only)");
-	else if (vtk && out && has_suffix(out, ".vtm")) {	/* before any work: the three files */
-		char *gname, *cname;
-		vtp_names(out, &gname, &cname);
-		{
-			struct file_role fr[] = {{out, "-o", 1}, {gname, "the grains' .vtp of -o", 1},
-			    {cname, "the contacts' .vtp of -o", 1}, {st.input, "the input", 0}};
-			if (file_roles_check(fr, 4))
-				cli_usage_error("%s", msg_geterr());
-		}
-		free(gname);
-		free(cname);
-	} else {
-		struct file_role fr[] = {{st.output, "-o", 1}, {st.input, "the input", 0}};
-		if (file_roles_check(fr, 2))
-			cli_usage_error("%s", msg_geterr());
-	}
-	cli_usage_done();
+	check_args(&st, out);
 
 	if (lammps) {
 		write_lammps_frames(st.input, &t);
@@ -229,20 +258,7 @@ main(int argc, char **argv)
 		pack_free(&p);
 		return 0;
 	}
-	text_open(&t);
-	if (vtk)
-		r = plates ? export_vtp_plates(&p, t.fp) : export_vtp_grains(&p, t.fp);
-	else if (lammps_data)
-		r = export_lammps_data(&p, t.fp);
-	else if (tsv_grains)
-		r = export_tsv_grains(&p, t.fp);
-	else if (tsv_contacts)
-		r = export_tsv_contacts(&p, t.fp);
-	else
-		r = export_xyzr(&p, t.fp, periodic);
-	if (r)
-		msg_die(EXIT_DATA, "%s: %s", name, msg_geterr());
-	text_close(&t);
+	format_one(&p, &t, plates, name);
 	emit(out, &t);
 	pack_free(&p);
 	return 0;

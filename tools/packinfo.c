@@ -253,6 +253,51 @@ print_keys(FILE *fp, const struct row *r)
 	}
 }
 
+/* Every usage error before any work: -o writable and none of the inputs (packinfo -o X X
+ * replaced its input). */
+static void
+check_args(const struct cli_state *st)
+{
+	int f;
+
+	if (bulk_margin < 0)
+		cli_usage_error("--bulk-margin: must be >= 0 (a length in m; 0: the box itself)");
+	for (f = 0; f < st->noperands; f++) {
+		struct file_role fr[] = {{st->output ? st->output : "-", "-o", 1}, {st->operands[f], "an input", 0}};
+		if (file_roles_check(fr, 2)) {
+			cli_usage_error("%s", msg_geterr());
+			break;
+		}
+	}
+	if (st->noperands == 0) {
+		struct file_role fr = {st->output ? st->output : "-", "-o", 1};
+		if (file_roles_check(&fr, 1))
+			cli_usage_error("%s", msg_geterr());
+	}
+	cli_usage_done();
+}
+
+/* count: the packs before this one, in all the inputs; *first_plates is set by the first. */
+static void
+put_row(FILE *mem, const struct row *row, int plates, int count, int *first_plates, const char *name)
+{
+	if (tsv) {
+		/* one header, so one kind: plate rows have other columns */
+		if (count == 0) {
+			table_header(mem, row->col, row->n);
+			*first_plates = plates;
+		} else if (plates != *first_plates) {
+			msg_die(EXIT_DATA, "%s: --tsv: pack %d has %s, the first %s: one table holds one kind of pack",
+			    name, count + 1, plates ? "spheroplates" : "spheres only", plates ? "spheres only" : "spheroplates");
+		}
+		table_row(mem, row->v, row->n);
+	} else {
+		if (count > 0)
+			fputc('\n', mem);
+		print_keys(mem, row);
+	}
+}
+
 int
 main(int argc, char **argv)
 {
@@ -270,22 +315,7 @@ main(int argc, char **argv)
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
-	if (bulk_margin < 0)
-		cli_usage_error("--bulk-margin: must be >= 0 (a length in m; 0: the box itself)");
-	/* before any work: -o writable and none of the inputs (packinfo -o X X replaced its input) */
-	for (f = 0; f < st.noperands; f++) {
-		struct file_role fr[] = {{st.output ? st.output : "-", "-o", 1}, {st.operands[f], "an input", 0}};
-		if (file_roles_check(fr, 2)) {
-			cli_usage_error("%s", msg_geterr());
-			break;
-		}
-	}
-	if (st.noperands == 0) {
-		struct file_role fr = {st.output ? st.output : "-", "-o", 1};
-		if (file_roles_check(&fr, 1))
-			cli_usage_error("%s", msg_geterr());
-	}
-	cli_usage_done();
+	check_args(&st);
 	/* Everything is formatted in memory first: a bad pack later in the stream (or in a later
 	 * FILE) must not leave the rows of the earlier ones behind. */
 	if (!(mem = open_memstream(&text, &textlen)))
@@ -300,21 +330,7 @@ main(int argc, char **argv)
 			msg_die_err(EXIT_DATA);
 		while ((r = pack_read_next(rd, &p)) == 1) {
 			plates = measure_row(&p, name, &gc, &row);
-			if (tsv) {
-				/* one header, so one kind: plate rows have other columns */
-				if (count == 0) {
-					table_header(mem, row.col, row.n);
-					first_plates = plates;
-				} else if (plates != first_plates) {
-					msg_die(EXIT_DATA, "%s: --tsv: pack %d has %s, the first %s: one table holds one kind of pack",
-					    name, count + 1, plates ? "spheroplates" : "spheres only", plates ? "spheres only" : "spheroplates");
-				}
-				table_row(mem, row.v, row.n);
-			} else {
-				if (count > 0)
-					fputc('\n', mem);
-				print_keys(mem, &row);
-			}
+			put_row(mem, &row, plates, count, &first_plates, name);
 			pack_free(&p);
 			count++;
 			here++;

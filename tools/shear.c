@@ -448,6 +448,48 @@ write_profile(const double *mean, const double *n, double to, struct file_out *o
 	}
 }
 
+/* The checkpoint's table and identity; the checkpoint to go on from, or NULL (none yet). */
+static struct lines *
+start_checkpoint(struct run_ctx *c)
+{
+	/* where output goes, when to stop or save, and the snapshots' names change no row */
+	static const char *const skip[] = {"checkpoint", "checkpoint-every", "time-limit", "profile", "snapshot-prefix", NULL};
+	char id[64];
+
+	if (!(c->table = open_memstream(&c->tablebuf, &c->tablelen)))
+		msg_die(EXIT_DATA, "out of memory");
+	pack_checksum(c->p, id, sizeof id);
+	c->run = cli_run_identity(&tool, skip, id);
+	return resume_from(c);
+}
+
+/* The end of a finished run: the profile and the pack, all or none; then the checkpoint,
+ * which would only start the run again at its last save, goes. */
+static void
+write_outputs(struct pack *p, const struct cli_state *st, const struct shear_result *res)
+{
+	struct file_out profout, packout;
+	char buf[40];
+
+	if (o.profile)
+		write_profile(res->profile, res->profile_n, o.sp.strain, &profout);
+	if (st->output) {
+		num_format(buf, o.sp.strain);
+		if (pack_set_meta(p, "shear_gamma", buf) || pack_write_tool_out(p, &tool, st, &packout)) {
+			if (o.profile)
+				file_out_abort(&profout);
+			msg_die_err(EXIT_DATA);
+		}
+	}
+	{
+		struct file_out *outs[2] = {o.profile ? &profout : NULL, st->output ? &packout : NULL};
+		if (file_out_commit_all(outs, 2))
+			msg_die_err(EXIT_DATA);
+	}
+	if (o.checkpoint && remove(o.checkpoint) != 0 && errno != ENOENT)
+		msg_warn("%s: %s (the run is done; remove it)", o.checkpoint, strerror(errno));
+}
+
 int
 main(int argc, char **argv)
 {
@@ -455,10 +497,8 @@ main(int argc, char **argv)
 	struct pack p;
 	struct shear_result res;
 	struct run_ctx c = {&p, &res, &st, 0, 0, 0, NULL, NULL, 0, NULL, 0, 0, 0, 0, 0, 1, 0, 0};
-	struct file_out profout, packout;
 	struct lines *from = NULL;
 	const char *in;
-	char buf[40];
 	int r;
 
 	msg_init(argv[0]);
@@ -467,17 +507,8 @@ main(int argc, char **argv)
 	if (pack_read_path(st.input, &p))
 		msg_die_err(EXIT_DATA);
 	set_law(&p, in);
-	if (o.checkpoint) {
-		/* where output goes, when to stop or save, and the snapshots' names change no row */
-		static const char *const skip[] = {"checkpoint", "checkpoint-every", "time-limit", "profile", "snapshot-prefix", NULL};
-		char id[64];
-
-		if (!(c.table = open_memstream(&c.tablebuf, &c.tablelen)))
-			msg_die(EXIT_DATA, "out of memory");
-		pack_checksum(&p, id, sizeof id);
-		c.run = cli_run_identity(&tool, skip, id);
-		from = resume_from(&c);
-	}
+	if (o.checkpoint)
+		from = start_checkpoint(&c);
 	c.start = time(NULL);
 	r = plateshear_run_resumable(&p, &o.sp, on_row, &c, o.checkpoint ? on_checkpoint : NULL, from, &res);
 	if (from)
@@ -500,24 +531,7 @@ main(int argc, char **argv)
 		    res.relax_steps, res.relax_phi, res.relax_z);
 	msg_info(1, "%zu grains glued to the bottom, %zu to the top; v_w %.4g m/s, gamma_dot %.4g 1/s, I %.4g, kappa %.4g; %ld rows",
 	    res.glued_bottom, res.glued_top, res.v_w, res.gamma_dot, res.inertial, res.kappa, c.rows);
-	if (o.profile)
-		write_profile(res.profile, res.profile_n, o.sp.strain, &profout);
-	if (st.output) {
-		num_format(buf, o.sp.strain);
-		if (pack_set_meta(&p, "shear_gamma", buf) || pack_write_tool_out(&p, &tool, &st, &packout)) {
-			if (o.profile)
-				file_out_abort(&profout);
-			msg_die_err(EXIT_DATA);
-		}
-	}
-	{	/* the profile and the pack, all or none */
-		struct file_out *outs[2] = {o.profile ? &profout : NULL, st.output ? &packout : NULL};
-		if (file_out_commit_all(outs, 2))
-			msg_die_err(EXIT_DATA);
-	}
-	/* the run is done: its checkpoint would only start it again at its last save */
-	if (o.checkpoint && remove(o.checkpoint) != 0 && errno != ENOENT)
-		msg_warn("%s: %s (the run is done; remove it)", o.checkpoint, strerror(errno));
+	write_outputs(&p, &st, &res);
 	if (c.table)
 		fclose(c.table);
 	free(c.tablebuf), free(c.run);

@@ -137,13 +137,12 @@ tilt_degrees(const struct pack *p, size_t i)
 	return acos(fmin(fabs(R[8]), 1.0)) * 180 / M_PI;
 }
 
-static int
-put_data(FILE *fp, const struct pack *p, const struct grain_forces *g, const char *title, const struct view_scripts *s)
+/* The pack's description: title, counts, box, the scripts' names, history and meta. */
+static void
+put_header(FILE *fp, const struct pack *p, const struct grain_forces *g, const char *title, const struct view_scripts *s)
 {
-	struct words w;
 	size_t i, k, nplates = 0, nhyd = 0, ngg = 0;
-	double c[3];
-	int a, plates = pack_first_plate(p) != (size_t)-1;
+	int a;
 
 	for (i = 0; i < p->n; i++) {
 		nplates += pack_grain_shape(p, i) != SHAPE_SPHERE;
@@ -178,31 +177,15 @@ put_data(FILE *fp, const struct pack *p, const struct grain_forces *g, const cha
 		fputc(']', fp);
 	}
 	fputc(']', fp);
-	for (a = 0; a < 3; a++)
-		c[a] = 0.5 * (p->box[a] + p->box[a + 3]);
-	if (words_alloc(&w, 3 * p->n))
-		return -1;
-	for (i = 0; i < 3 * p->n; i++)
-		word_set_float(&w, i, p->x[i] - c[i % 3]);
-	put_words(fp, "pos", &w);
-	if (words_alloc(&w, p->n))
-		return -1;
-	for (i = 0; i < p->n; i++)
-		word_set_float(&w, i, p->r[i]);
-	put_words(fp, "rad", &w);
-	if (plates) {
-		if (words_alloc(&w, p->n))
-			return -1;
-		for (i = 0; i < p->n; i++)
-			word_set_float(&w, i, p->side[i]);
-		put_words(fp, "side", &w);
-		if (words_alloc(&w, 4 * p->n))
-			return -1;
-		for (i = 0; i < 4 * p->n; i++)
-			word_set_float(&w, i, p->q[i]);
-		put_words(fp, "quat", &w);
-	}
-	/* the fields, the default first: the phases where there are hydrate grains */
+}
+
+/* The fields, the default first: the phases where there are hydrate grains. */
+static int
+put_fields(FILE *fp, const struct pack *p, const struct grain_forces *g, int plates)
+{
+	struct words w;
+	size_t i;
+
 	fputs(",\n\"fields\":[", fp);
 	if (p->has_phase) {
 		if (words_alloc(&w, p->n))
@@ -246,7 +229,16 @@ put_data(FILE *fp, const struct pack *p, const struct grain_forces *g, const cha
 		put_field(fp, 0, "residual", "net force / largest contact force", "1", "log", &w);
 	}
 	fputc(']', fp);
-	/* the contacts: grain i, grain j or the wall (-1 - w), the normal force */
+	return 0;
+}
+
+/* The contacts: grain i, grain j or the wall (-1 - w), the normal force. */
+static int
+put_links(FILE *fp, const struct grain_forces *g)
+{
+	struct words w;
+	size_t k;
+
 	if (words_alloc(&w, g->nlink))
 		return -1;
 	for (k = 0; k < g->nlink; k++)
@@ -262,6 +254,46 @@ put_data(FILE *fp, const struct pack *p, const struct grain_forces *g, const cha
 	for (k = 0; k < g->nlink; k++)
 		word_set_float(&w, k, g->link[k].P);
 	put_words(fp, "lp", &w);
+	return 0;
+}
+
+static int
+put_data(FILE *fp, const struct pack *p, const struct grain_forces *g, const char *title, const struct view_scripts *s)
+{
+	struct words w;
+	size_t i;
+	double c[3];
+	int a, plates = pack_first_plate(p) != (size_t)-1;
+
+	put_header(fp, p, g, title, s);
+	for (a = 0; a < 3; a++)
+		c[a] = 0.5 * (p->box[a] + p->box[a + 3]);
+	if (words_alloc(&w, 3 * p->n))
+		return -1;
+	for (i = 0; i < 3 * p->n; i++)
+		word_set_float(&w, i, p->x[i] - c[i % 3]);
+	put_words(fp, "pos", &w);
+	if (words_alloc(&w, p->n))
+		return -1;
+	for (i = 0; i < p->n; i++)
+		word_set_float(&w, i, p->r[i]);
+	put_words(fp, "rad", &w);
+	if (plates) {
+		if (words_alloc(&w, p->n))
+			return -1;
+		for (i = 0; i < p->n; i++)
+			word_set_float(&w, i, p->side[i]);
+		put_words(fp, "side", &w);
+		if (words_alloc(&w, 4 * p->n))
+			return -1;
+		for (i = 0; i < 4 * p->n; i++)
+			word_set_float(&w, i, p->q[i]);
+		put_words(fp, "quat", &w);
+	}
+	if (put_fields(fp, p, g, plates))
+		return -1;
+	if (put_links(fp, g))
+		return -1;
 	fputs("}\n", fp);
 	return 0;
 }
