@@ -214,8 +214,8 @@ set_law(struct pack *p, const char *in)
 	o.kn = o.sp.dyn.kn, o.kt = o.sp.dyn.kt, o.restitution = o.sp.dyn.restitution;
 	o.mu = o.sp.dyn.mu, o.wall_mu = o.sp.dyn.wall_mu;
 	if (law->stiffness == LAW_MODULI) {
-		o.Estar = pdem_mean_Estar(p);
-		o.kappa_run = pdem_kappa(p, &o.sp.dyn, o.sp.sigma_w);
+		o.Estar = engine_mean_Estar(p);
+		o.kappa_run = engine_kappa(p, &o.sp.dyn, o.sp.sigma_w);
 	}
 }
 
@@ -271,7 +271,7 @@ print_header(FILE *fp, double inertial)
 /* A snapshot: the state as a pack, with its strain in meta shear_gamma and this run's
  * history line, to PREFIX-G.pack (atomically). */
 static int
-write_snapshot(struct run_ctx *c, struct pdem *d, double gamma, const char *path)
+write_snapshot(struct run_ctx *c, struct engine *d, double gamma, const char *path)
 {
 	char buf[40];
 	struct cli_state st = *c->st;
@@ -292,7 +292,7 @@ write_snapshot(struct run_ctx *c, struct pdem *d, double gamma, const char *path
 static void write_profile(const double *mean, const double *n, double to, struct file_out *out);
 
 static int
-on_row(const struct shear_row *row, struct pdem *d, void *vc)
+on_row(const struct shear_row *row, struct engine *d, void *vc)
 {
 	struct run_ctx *c = vc;
 	double v[NCOLS] = {(double)row->step, row->time, row->gamma, row->tau_ratio, row->sigma_ratio, row->qp, row->p,

@@ -911,7 +911,7 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 }
 
 /* The interaction measures of measure_plates (measure.h): the enumerator over the bounding
- * spheres, each record's element contacts by plate_record_interaction, as dem/platedem finds
+ * spheres, each record's element contacts by plate_record_interaction, as dem/engine finds
  * them; with list, the interactions one by one too (measure_plate_contact_list). */
 static int
 measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct grain_forces *gf, struct plate_contact **list,

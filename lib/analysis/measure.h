@@ -123,7 +123,7 @@ double measure_sphere_box_volume(double r, const double lo[3], const double hi[3
  * the plates (side > 0), whose face normal exists, count in the nematic order.
  *
  * From the interactions (contact/plate.h: the element contacts of a pair, or of a grain and
- * a wall, found as dem/platedem finds them): the coordination Z, interactions per grain
+ * a wall, found as dem/engine finds them): the coordination Z, interactions per grain
  * (grain-grain counted at both ends, plus grain-wall), as the platy-particle paper's Fig. 12
  * counts it (an interaction of several element contacts is one); the floating grains, with
  * 0 or 1 interaction (P §IV: they carry no load); the element contacts, and the interactions
@@ -132,7 +132,7 @@ double measure_sphere_box_volume(double r, const double lo[3], const double hi[3
  *
  * Forces, when the pack records its normal stiffness (meta kn, N/m: packgen writes it): each
  * element's elastic normal force k_n h (the dashpot is zero at rest) along the interaction's
- * normal, plus the tangential spring's force of the pair's contact line (Q0, pdem_write_back;
+ * normal, plus the tangential spring's force of the pair's contact line (Q0, engine_write_back;
  * zero without a line).  The wall stress is the normal force on the two walls of an axis,
  * averaged, over the wall area (NaN on a periodic axis); the Love-Weber stress sums
  * (x_i - x_j) (x) F over the pairs (j's nearest image) and (x_i - x_w) (x) F over the wall

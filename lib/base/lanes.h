@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lanes: two doubles side by side in one SSE register (GCC and clang vector extensions),
  * for the hot kernels that evaluate two contacts or two grains at once (friction.c; the DEM
- * engine's sphere pass, dem/platedem_spheres.c; functional.c's residual and minimize.c's step cap; par.c's dot products),
+ * engine's sphere pass, dem/engine_spheres.c; functional.c's residual and minimize.c's step cap; par.c's dot products),
  * and four in an AVX2 register for the friction kernel where the processor has AVX2 (below:
  * chosen at run time, so the build stays the baseline x86-64 one).  Every operation is IEEE
  * arithmetic on each lane, with no contraction (the Makefile's -ffp-contract=off, which GCC's

@@ -14,7 +14,7 @@
  * evaluation, Hessian and stiffness bound (qs/functional.c), friction's limits (qs/friction.c),
  * the contact network (contacts.c), the measures (analysis/measure.c) and the DEM engine
  * (its interactions of m elements, hertz_dem_interaction; its sphere pass's inlined
- * hertz_dem_force and two-lane hertz_dem_force2, dem/platedem_spheres.c).  Where a
+ * hertz_dem_force and two-lane hertz_dem_force2, dem/engine_spheres.c).  Where a
  * fast path keeps a product (the pair's coefficient 4/3 E* sqrt(R*) by list entry, E* from
  * per-grain compliances), the kernels are cut there, so that every path computes the same
  * operations in the same order: the same bytes. */

@@ -27,7 +27,7 @@
  *    tangential spring of force increments with a dashpot).  k_n (N/m) is a field of the law.
  *
  * Either law's DEM entry (dem_interaction) takes an interaction of m element contacts, one
- * for spheres, so the DEM engine (dem/platedem.h) runs each law on each shape.
+ * for spheres, so the DEM engine (dem/engine.h) runs each law on each shape.
  *
  * Here: the interface, the kernels every law's DEM force shares (the Coulomb limit, the
  * viscous damping coefficient, the tangential spring, the damped force; each with its
@@ -103,7 +103,7 @@ struct contact_law {
 	 * part into *fel, and the interaction's tangential force on i into ft, updating its
 	 * history (law->history doubles: the tangential spring); the Coulomb limit at the pair's
 	 * mu times the summed normal force.  The one DEM entry of a law: the engine
-	 * (dem/platedem.h) calls it for every shape. */
+	 * (dem/engine.h) calls it for every shape. */
 	double (*dem_interaction)(const struct contact_law *law, const struct law_pair *lp,
 	    const struct law_dem_elems *in, double *hist, double *fk, double ft[3], double *fel);
 	/* The value of a pack's meta key contact-law that names this law ('hertz'; packgen's
@@ -114,7 +114,7 @@ struct contact_law {
 	enum law_stiffness { LAW_MODULI, LAW_SPRING } stiffness;
 	/* Its policy, the decisions a consumer would otherwise take by asking which law it is:
 	 *
-	 * The DEM's units and scaled pairs (dem/platedem.h): for pack p of mean spheroradius r0
+	 * The DEM's units and scaled pairs (dem/engine.h): for pack p of mean spheroradius r0
 	 * (m) and a run's spring stiffness kn (N/m; a LAW_MODULI law ignores it), the stiffness
 	 * unit k0 (N/m) returned, and the grain-grain and grain-wall pair constants in those
 	 * units (Es, kn; R* and mu are set by the engine) into g and w. */
@@ -122,10 +122,10 @@ struct contact_law {
 	    struct law_pair *w);
 	/* The normal stiffness, in the same units, of the stiffest contact a time step is made
 	 * for: a grain of radius r on a wall of pair constants w at overlap h (the run's largest
-	 * likely, PDEM_OVERLAP_KAPPA / kappa of r; a spring law's stiffness has no overlap). */
+	 * likely, ENGINE_OVERLAP_KAPPA / kappa of r; a spring law's stiffness has no overlap). */
 	double (*stiffest)(const struct contact_law *law, const struct law_pair *w, double r, double h);
 	/* The stiffness number kappa of a normal stress sigma (Pa) on pack p under the law at
-	 * spring stiffness kn (platedem.h's pdem_kappa), and its inverse. */
+	 * spring stiffness kn (engine.h's engine_kappa), and its inverse. */
 	double (*kappa)(const struct contact_law *law, const struct pack *p, double kn, double sigma);
 	double (*kappa_stress)(const struct contact_law *law, const struct pack *p, double kn, double kappa);
 	/* The DEM history (law->history doubles; none when 0) and the tangential force on i it

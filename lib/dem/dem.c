@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* dem: packgen's loose sphere packs by explicit DEM compaction (see dem.h), on the engine of
- * every shape (platedem.h): placement, the compaction schedule and the rest criterion here;
+ * every shape (engine.h): placement, the compaction schedule and the rest criterion here;
  * the forces, the integration and the walls there. */
 #include "dem/dem.h"
-#include "dem/platedem.h"
+#include "dem/engine.h"
 #include "dem/servo.h"
 #include "contact/cell.h"
 #include "contact/contacts.h"
@@ -27,7 +27,7 @@
 /* What the compaction keeps beside the engine: the largest radius, the unloading stage,
  * the servo's rate, the time step's safety factor, a cell grid for placement and sorting. */
 struct dem {
-	struct pdem e;
+	struct engine e;
 	double rmax, dt_safety, rate;
 	int unloading;
 	struct cell_grid grid;
@@ -219,7 +219,7 @@ dem_setup(struct dem *d, const struct pack *p, size_t *order, double *rmean, dou
 {
 	size_t n = p->n, i, bins[257] = {0}, *tmp;
 
-	if (pdem_alloc(&d->e, n))
+	if (engine_alloc(&d->e, n))
 		return -1;
 	cell_init(&d->grid);
 	if (!(tmp = malloc(n * sizeof *tmp))) {
@@ -273,10 +273,10 @@ dem_settle(struct dem *d, const struct dem_params *dp, double pfinal, double vol
 
 	dt_for_overlap(d, mmin, rmin, fmax(dp->overlap, 1e-6) * pow(dp->preload, 2.0 / 3.0) * 10);
 	for (step = 1; step <= dp->max_steps; step++) {
-		if (pdem_forces(&d->e))
+		if (engine_forces(&d->e))
 			return -1;
 		if (step % 100 == 0 || step == dp->max_steps) {
-			double coord, ub = pdem_unbalanced(&d->e);
+			double coord, ub = engine_unbalanced(&d->e);
 			st->step = step;
 			st->unbalanced = ub;
 			st->max_overlap = max_overlap(d, &coord);
@@ -306,7 +306,7 @@ dem_settle(struct dem *d, const struct dem_params *dp, double pfinal, double vol
 			}
 			dt_for_overlap(d, mmin, rmin, fmax(st->max_overlap, dp->overlap));
 		}
-		pdem_integrate(&d->e);
+		engine_integrate(&d->e);
 		dem_servo(d->e.lo, d->e.hi, d->e.wallf, ptarget, d->unloading ? d->rate * 0.05 : d->rate, NULL, d->e.x, d->e.n);
 	}
 	if (!st->at_rest) {
@@ -427,7 +427,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	d.e.u_len = rmean;
 	d.rate = dp->rate;
 	d.dt_safety = dp->dt_safety;
-	if (pdem_start(&d.e, 0.3 * rmin))
+	if (engine_start(&d.e, 0.3 * rmin))
 		goto out;
 	/* Target stress from the mean overlap: Love-Weber p = Z phi <F> / (4 pi r^2) with
 	 * Z ~ 4.5 and phi ~ 0.6 for a loose frictional pack and <F> the Hertz force at that
@@ -442,7 +442,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	status = 0;
 out:
 	free(order);
-	pdem_free(&d.e);
+	engine_free(&d.e);
 	cell_free(&d.grid);
 	return status;
 }

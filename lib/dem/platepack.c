@@ -13,7 +13,7 @@
 void
 platepack_params_default(struct platepack_params *pp)
 {
-	pdem_params_default(&pp->dyn);
+	engine_params_default(&pp->dyn);
 	pp->dyn.damping = 0.3;
 	pp->spacing = 0;
 	pp->jitter = 0;
@@ -54,7 +54,7 @@ place_on_grid(struct pack *p, double s, double jitter, gsl_rng *rng)
 }
 
 static double
-grains_volume(const struct pdem *d)
+grains_volume(const struct engine *d)
 {
 	double v = 0;
 	size_t i;
@@ -66,7 +66,7 @@ grains_volume(const struct pdem *d)
 
 /* The wall stress over the target (mean over the wall axes), without moving anything. */
 static double
-wall_ratio(const struct pdem *d, double target)
+wall_ratio(const struct engine *d, double target)
 {
 	double s = 0;
 	int a, nw = 0;
@@ -81,7 +81,7 @@ wall_ratio(const struct pdem *d, double target)
 }
 
 int
-platepack_settle(struct pdem *d, const struct platepack_params *pp, double target, int stage, platepack_progress_fn fn,
+platepack_settle(struct engine *d, const struct platepack_params *pp, double target, int stage, platepack_progress_fn fn,
     void *ctx, struct platepack_status *st)
 {
 	double vol = grains_volume(d);
@@ -90,11 +90,11 @@ platepack_settle(struct pdem *d, const struct platepack_params *pp, double targe
 	st->stage = stage;
 	st->at_rest = 0;
 	for (step = 1; step <= pp->max_steps; step++) {
-		if (pdem_forces(d))
+		if (engine_forces(d))
 			return -1;
 		if (step % 100 == 0) {
 			st->step = step;
-			st->unbalanced = pdem_unbalanced(d);
+			st->unbalanced = engine_unbalanced(d);
 			st->p_ratio = wall_ratio(d, target);
 			st->phi = vol / ((d->hi[0] - d->lo[0]) * (d->hi[1] - d->lo[1]) * (d->hi[2] - d->lo[2]));
 			st->z = (2.0 * d->ninter - d->nwall) / d->n;	/* packinfo's coordination: walls counted once */
@@ -105,7 +105,7 @@ platepack_settle(struct pdem *d, const struct platepack_params *pp, double targe
 			if (st->at_rest)
 				return 0;
 		}
-		pdem_integrate(d);
+		engine_integrate(d);
 		dem_servo(d->lo, d->hi, d->wallf, target, pp->rate, d->periodic, d->x, d->n);
 	}
 	msg_seterr("the plates did not come to rest in %ld steps (stage %d: stress/target %.3g, unbalanced %.3g)",
@@ -117,7 +117,7 @@ int
 platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, platepack_progress_fn fn, void *ctx,
     struct platepack_status *st)
 {
-	struct pdem d;
+	struct engine d;
 	double target;
 	int status = -1;
 
@@ -127,7 +127,7 @@ platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, 
 		return -1;
 	}
 	place_on_grid(p, pp->spacing, pp->jitter, rng);
-	if (pdem_init(&d, p, &pp->dyn))
+	if (engine_init(&d, p, &pp->dyn))
 		return -1;
 	target = pp->sigma0 * d.u_len / d.u_force * d.u_len;	/* stress unit: k_n / r0 */
 	st->kappa = 1 / target;	/* r0 = 1, k_n = 1 */
@@ -135,14 +135,14 @@ platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *rng, 
 	if (platepack_settle(&d, pp, target, 1, fn, ctx, st))
 		goto out;
 	if (pp->periodic[0] || pp->periodic[1] || pp->periodic[2]) {
-		if (pdem_make_periodic(&d, pp->periodic) || platepack_settle(&d, pp, target, 2, fn, ctx, st))
+		if (engine_make_periodic(&d, pp->periodic) || platepack_settle(&d, pp, target, 2, fn, ctx, st))
 			goto out;
 	}
-	pdem_wrap(&d);
-	if (pdem_write_back(&d, p))
+	engine_wrap(&d);
+	if (engine_write_back(&d, p))
 		goto out;
 	status = 0;
 out:
-	pdem_free(&d);
+	engine_free(&d);
 	return status;
 }

@@ -29,11 +29,11 @@
 #define QUSGM_PLATEPACK_H
 
 #include <gsl/gsl_rng.h>
-#include "dem/platedem.h"
+#include "dem/engine.h"
 #include "pack/pack.h"
 
 struct platepack_params {
-	struct pdem_params dyn;	/* the contact law and the step (mu: friction during compaction) */
+	struct engine_params dyn;	/* the contact law and the step (mu: friction during compaction) */
 	double spacing;		/* grid spacing (m): 2 sqrt(2) R */
 	double jitter;		/* off the nodes, in [0, 1] of the room each cell leaves (0: on them) */
 	double sigma0;		/* target isotropic stress (Pa) */
@@ -59,7 +59,7 @@ struct platepack_status {
 
 typedef void (*platepack_progress_fn)(const struct platepack_status *s, void *ctx);
 
-/* Defaults: P's contact law (platedem.h) and friction 0.58, Cundall damping 0.3 (removes
+/* Defaults: P's contact law (engine.h) and friction 0.58, Cundall damping 0.3 (removes
  * kinetic energy, so rest comes sooner; the equilibrium condition is the same), rest_tol
  * 1e-3, rate 1e-4. */
 void platepack_params_default(struct platepack_params *pp);
@@ -75,7 +75,7 @@ int platepack_make(struct pack *p, const struct platepack_params *pp, gsl_rng *r
  * steps, at most pp->max_steps; st (stage as given) is filled, fn called every 1000 steps.
  * The damping is d's own.  0 or -1 (msg_seterr).  Stage 1 and 2 of platepack_make, and the
  * shear's relaxation before its strain (plateshear.h). */
-int platepack_settle(struct pdem *d, const struct platepack_params *pp, double target, int stage, platepack_progress_fn fn,
+int platepack_settle(struct engine *d, const struct platepack_params *pp, double target, int stage, platepack_progress_fn fn,
     void *ctx, struct platepack_status *st);
 
 #endif

@@ -15,7 +15,7 @@ enum { WALL_BOTTOM = 2, WALL_TOP = 3 };	/* the y walls, PACK_WALL_INDEX order */
 void
 shear_params_default(struct shear_params *sp)
 {
-	pdem_params_default(&sp->dyn);
+	engine_params_default(&sp->dyn);
 	sp->dyn.damping = 0;
 	sp->sigma_w = 0;
 	sp->inertial = 1e-3;
@@ -32,9 +32,9 @@ shear_params_default(struct shear_params *sp)
 }
 
 int
-plateshear_snapshot(struct pdem *d, struct pack *p)
+plateshear_snapshot(struct engine *d, struct pack *p)
 {
-	if (pdem_write_back(d, p))
+	if (engine_write_back(d, p))
 		return -1;
 	/* wrapped in the pack, not in the engine: the run goes on bit for bit as without it */
 	pack_wrap_centres(p->x, p->n, p->box, p->box + 3, p->periodic);
@@ -51,7 +51,7 @@ shear_result_free(struct shear_result *res)
 
 /* The grains touching a y wall at the start are glued to it. */
 static int
-on_glue(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist,
+on_glue(const struct engine *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist,
     void *ctx)
 {
 	int w = PACK_IS_WALL(j) ? PACK_WALL_INDEX(j) : -1;
@@ -69,7 +69,7 @@ struct row_sums {
 };
 
 static void
-row_add(struct row_sums *s, const struct pdem *d, double tau, double sn, double V, double vol, size_t nglued)
+row_add(struct row_sums *s, const struct engine *d, double tau, double sn, double V, double vol, size_t nglued)
 {
 	int a;
 
@@ -83,7 +83,7 @@ row_add(struct row_sums *s, const struct pdem *d, double tau, double sn, double 
 }
 
 static void
-row_make(const struct row_sums *s, const struct pdem *d, double sigma_s, struct shear_row *row)
+row_make(const struct row_sums *s, const struct engine *d, double sigma_s, struct shear_row *row)
 {
 	double k = 1.0 / s->steps, su = d->u_force / (d->u_len * d->u_len), hd, a;
 	int b;
@@ -104,7 +104,7 @@ row_make(const struct row_sums *s, const struct pdem *d, double sigma_s, struct 
 }
 
 static void
-profile_add(const struct pdem *d, double vw, int nb, double *sum, double *cnt)
+profile_add(const struct engine *d, double vw, int nb, double *sum, double *cnt)
 {
 	double H = d->hi[1] - d->lo[1];
 	size_t i;
@@ -121,7 +121,7 @@ profile_add(const struct pdem *d, double vw, int nb, double *sum, double *cnt)
 /* The relaxation before the strain (see shear_params): at sigma_s (scaled), the periodic
  * axes fixed, with local damping, until static. */
 static int
-relax(struct pdem *d, const struct shear_params *sp, double sigma_s, struct shear_result *res)
+relax(struct engine *d, const struct shear_params *sp, double sigma_s, struct shear_result *res)
 {
 	struct platepack_params pp;
 	struct platepack_status st;
@@ -144,12 +144,12 @@ relax(struct pdem *d, const struct shear_params *sp, double sigma_s, struct shea
 	return 0;
 }
 
-static void glue_count(const struct pdem *d, struct shear_result *res, double *mtop);
+static void glue_count(const struct engine *d, struct shear_result *res, double *mtop);
 
 static int
-glue_walls(struct pdem *d, struct shear_result *res, double *mtop)
+glue_walls(struct engine *d, struct shear_result *res, double *mtop)
 {
-	if (pdem_foreach_interaction(d, 1, on_glue, NULL))
+	if (engine_foreach_interaction(d, 1, on_glue, NULL))
 		return -1;
 	glue_count(d, res, mtop);
 	if (res->glued_bottom == 0 || res->glued_top == 0) {
@@ -163,7 +163,7 @@ glue_walls(struct pdem *d, struct shear_result *res, double *mtop)
 /* Where a run stands after a row: the engine, and what the loop carries from step to step
  * (the sums of the row are empty after a row). */
 struct shear_state {
-	struct pdem *d;
+	struct engine *d;
 	long step;
 	double xw, next_row, vw, H0;
 	int nb;
@@ -178,7 +178,7 @@ plateshear_state_write(const struct shear_state *s, FILE *fp)
 	fprintf(fp, "shear-state 1 %d\nloop %ld %a %a %a %a\n", s->nb, s->step, s->xw, s->next_row, s->vw, s->H0);
 	for (b = 0; b < s->nb; b++)
 		fprintf(fp, "%a %a\n", s->psum[b], s->pn[b]);
-	return pdem_state_write(s->d, fp);
+	return engine_state_write(s->d, fp);
 }
 
 static int
@@ -212,12 +212,12 @@ state_read(struct shear_state *s, struct lines *in)
 		}
 		s->psum[b] = v[0], s->pn[b] = v[1];
 	}
-	return pdem_state_read(s->d, in);
+	return engine_state_read(s->d, in);
 }
 
 /* The glued grains' counts and the top body's mass. */
 static void
-glue_count(const struct pdem *d, struct shear_result *res, double *mtop)
+glue_count(const struct engine *d, struct shear_result *res, double *mtop)
 {
 	size_t i;
 
@@ -237,13 +237,13 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 	return plateshear_run_resumable(p, sp, fn, ctx, NULL, NULL, res);
 }
 
-/* The run's start, after pdem_init: the state of a run of this input after a row (from),
+/* The run's start, after engine_init: the state of a run of this input after a row (from),
  * or the pack's frictional history, the relaxation at sigma_w and the glued walls; then
  * the scales the run reports.  *mtop the top body's mass, sigma_s the scaled stress, *A the
  * top's area, *vol the grains' volume.  0, -1, or -2 for a bad checkpoint (its file:line
  * message). */
 static int
-shear_begin(struct pdem *d, struct pack *p, const struct shear_params *sp, struct lines *from, double sigma_s,
+shear_begin(struct engine *d, struct pack *p, const struct shear_params *sp, struct lines *from, double sigma_s,
     struct shear_state *ss, struct shear_result *res, double *mtop, double *A, double *vol)
 {
 	size_t i;
@@ -255,7 +255,7 @@ shear_begin(struct pdem *d, struct pack *p, const struct shear_params *sp, struc
 	} else {
 		/* the pack's frictional history, for the pairs that were in it (those across a new
 		 * periodic boundary start from zero) */
-		if (pdem_read_history(d, p))
+		if (engine_read_history(d, p))
 			return -1;
 		if (sp->relax_tol > 0 && relax(d, sp, sigma_s, res))
 			return -1;
@@ -274,14 +274,14 @@ shear_begin(struct pdem *d, struct pack *p, const struct shear_params *sp, struc
 	res->inertial = ss->vw / ss->H0 / sqrt(sigma_s);
 	res->v_w = ss->vw * d->u_len / d->u_time;
 	res->gamma_dot = res->v_w / (ss->H0 * d->u_len);
-	res->kappa = pdem_kappa(p, &sp->dyn, sp->sigma_w);
+	res->kappa = engine_kappa(p, &sp->dyn, sp->sigma_w);
 	return 0;
 }
 
 /* The force on the top body: its glued grains', and its plane's push on the free grains
  * reversed. */
 static void
-top_body_force(const struct pdem *d, double F[3])
+top_body_force(const struct engine *d, double F[3])
 {
 	size_t i;
 	int a;
@@ -297,7 +297,7 @@ top_body_force(const struct pdem *d, double F[3])
 /* The top body's normal velocity after a step under force fy - sigma_s A, its motion damped
  * at the start (shear_params). */
 static void
-top_body_push(struct pdem *d, const struct shear_params *sp, const struct shear_state *ss, double fy, double mtop)
+top_body_push(struct engine *d, const struct shear_params *sp, const struct shear_state *ss, double fy, double mtop)
 {
 	double vy = d->wallv[WALL_TOP][1];
 
@@ -309,7 +309,7 @@ top_body_push(struct pdem *d, const struct shear_params *sp, const struct shear_
 /* The row of the steps summed in rs, at strain gamma; rs emptied and the next row's strain
  * set. */
 static void
-row_emit(struct row_sums *rs, const struct pdem *d, const struct shear_params *sp, struct shear_state *ss, double sigma_s,
+row_emit(struct row_sums *rs, const struct engine *d, const struct shear_params *sp, struct shear_state *ss, double sigma_s,
     double gamma, struct shear_row *row)
 {
 	row_make(rs, d, sigma_s, row);
@@ -328,8 +328,8 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
     shear_checkpoint_fn ck, struct lines *from, struct shear_result *res)
 {
 	const int per[3] = {1, 0, 1};
-	struct pdem_params dyn;
-	struct pdem d;
+	struct engine_params dyn;
+	struct engine d;
 	struct row_sums rs;
 	struct shear_row row;
 	struct shear_state ss = {&d, 0, 0, 0, 0, 0, sp->profile_bins, NULL, NULL};
@@ -341,15 +341,15 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 		msg_seterr("the gradient axis y is periodic: the shear needs its walls");
 		return -1;
 	}
-	/* the time step made for the overlaps sigma_w makes (platedem.h; the law's stiffest: a
+	/* the time step made for the overlaps sigma_w makes (engine.h; the law's stiffest: a
 	 * spring law's does not depend on them) */
 	dyn = sp->dyn;
-	dyn.hertz_overlap = fmax(dyn.hertz_overlap, PDEM_OVERLAP_KAPPA / pdem_kappa(p, &dyn, sp->sigma_w));
-	if (pdem_init(&d, p, &dyn))
+	dyn.hertz_overlap = fmax(dyn.hertz_overlap, ENGINE_OVERLAP_KAPPA / engine_kappa(p, &dyn, sp->sigma_w));
+	if (engine_init(&d, p, &dyn))
 		return -1;
-	d.cache_margin = pdem_shear_cache_margin(&d);	/* a slow shear's (packgen's compaction keeps the default) */
+	d.cache_margin = engine_shear_cache_margin(&d);	/* a slow shear's (packgen's compaction keeps the default) */
 	d.stress = 1;	/* the rows' Love-Weber stress */
-	if ((!d.periodic[0] || !d.periodic[2]) && pdem_make_periodic(&d, per))
+	if ((!d.periodic[0] || !d.periodic[2]) && engine_make_periodic(&d, per))
 		goto out;
 	res->profile = calloc((size_t)nb, sizeof *res->profile);
 	res->profile_n = ss.pn = calloc((size_t)nb, sizeof *res->profile_n);
@@ -371,13 +371,13 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 			msg_seterr("the shear did not reach gamma %g in %ld steps", sp->strain, sp->max_steps);
 			goto out;
 		}
-		if (pdem_forces(&d))
+		if (engine_forces(&d))
 			goto out;
 		top_body_force(&d, F);
 		row_add(&rs, &d, -F[0] / A, F[1] / A, (d.hi[0] - d.lo[0]) * (d.hi[1] - d.lo[1]) * (d.hi[2] - d.lo[2]), vol,
 		    res->glued_bottom + res->glued_top);
 		top_body_push(&d, sp, &ss, F[1] - sigma_s * A, mtop);
-		pdem_integrate(&d);
+		engine_integrate(&d);
 		d.hi[1] += d.wallv[WALL_TOP][1] * d.dt;
 		ss.xw += ss.vw * d.dt;
 		gamma = ss.xw / (d.hi[1] - d.lo[1]);
@@ -402,15 +402,15 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 	}
 	for (a = 0; a < nb; a++)
 		res->profile[a] = res->profile_n[a] > 0 ? ss.psum[a] / res->profile_n[a] : NAN;
-	pdem_wrap(&d);
-	if (pdem_write_back(&d, p))
+	engine_wrap(&d);
+	if (engine_write_back(&d, p))
 		goto out;
 	status = 0;
 out:
 	free(ss.psum);
 	if (status)
 		shear_result_free(res);
-	pdem_free(&d);
+	engine_free(&d);
 	return status;
 }
 
@@ -429,7 +429,7 @@ plateshear_choose_law(struct pack *p, const struct shear_law_choice *c, struct s
     const struct contact_law **lawp)
 {
 	const struct contact_law *law = contact_law_choose(p, c->law);
-	struct pdem_params *dyn = &sp->dyn;
+	struct engine_params *dyn = &sp->dyn;
 	double v, kn = c->kn, kt = c->kt;
 
 	if (!(*lawp = law))
@@ -449,13 +449,13 @@ plateshear_choose_law(struct pack *p, const struct shear_law_choice *c, struct s
 		msg_seterr("--kn and --kt are a spring law's; under %s the stiffness is the grains' E and nu", law->name);
 		return -2;
 	}
-	pdem_params_law(dyn, law);
+	engine_params_law(dyn, law);
 	dyn->restitution = !isnan(c->restitution) ? c->restitution :
 	    pack_get_meta_double(p, "restitution", &v) == 0 ? v : 0.6;
 	dyn->mu = p->mu = isnan(c->mu) ? p->mu : c->mu;
 	dyn->wall_mu = p->wall_mu = isnan(c->wall_mu) ? p->wall_mu : c->wall_mu;
 	if (!isnan(c->kappa))
-		sp->sigma_w = pdem_kappa_stress(p, dyn, c->kappa);
+		sp->sigma_w = engine_kappa_stress(p, dyn, c->kappa);
 	if (sp->sigma_w == 0 && pack_get_meta_double(p, "sigma0", &sp->sigma_w)) {
 		msg_seterr("no meta sigma0 (the compaction stress packgen records for plates): give --stress or --kappa");
 		return -1;
@@ -468,8 +468,8 @@ plateshear_choose_law(struct pack *p, const struct shear_law_choice *c, struct s
 		msg_seterr("meta restitution %g: must be in [0.21, 1]; give --restitution", dyn->restitution);
 		return -1;
 	}
-	if (law->stiffness == LAW_MODULI && !(pdem_mean_Estar(p) > 0 && isfinite(pdem_mean_Estar(p)))) {
-		msg_seterr("the grains' mean E* %g Pa: %s needs the grains' E and nu", pdem_mean_Estar(p), law->name);
+	if (law->stiffness == LAW_MODULI && !(engine_mean_Estar(p) > 0 && isfinite(engine_mean_Estar(p)))) {
+		msg_seterr("the grains' mean E* %g Pa: %s needs the grains' E and nu", engine_mean_Estar(p), law->name);
 		return -1;
 	}
 	if (law->stress_in_range(law, p, sp->sigma_w)) {

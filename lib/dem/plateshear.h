@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plateshear: the platy-particle paper's simple shear test (P §II C, Fig. 4b), for packs of
  * spheroplates and of spheres, under any law of the table (shear_params.dyn.law: P's linear
- * law, or Hertz-Mindlin with the grains' moduli; dem/platedem.h).  Under Hertz the time step
- * is made for the overlaps sigma_w makes (PDEM_OVERLAP_KAPPA / kappa, pdem_kappa).
+ * law, or Hertz-Mindlin with the grains' moduli; dem/engine.h).  Under Hertz the time step
+ * is made for the overlaps sigma_w makes (ENGINE_OVERLAP_KAPPA / kappa, engine_kappa).
  *
  * Shear direction x, gradient direction y, neutral direction z.  x and z are periodic (a pack
  * compacted between six walls has those walls replaced, its lengths kept as the periods; a
@@ -33,13 +33,13 @@
 #ifndef QUSGM_PLATESHEAR_H
 #define QUSGM_PLATESHEAR_H
 
-#include "dem/platedem.h"
+#include "dem/engine.h"
 #include "pack/pack.h"
 
 #include <stdio.h>
 
 struct shear_params {
-	struct pdem_params dyn;	/* the contact law and step (damping: Cundall's, 0 in P) */
+	struct engine_params dyn;	/* the contact law and step (damping: Cundall's, 0 in P) */
 	double sigma_w;		/* normal stress on the top wall (Pa) */
 	double inertial;	/* I, sets v_w ... */
 	double velocity;	/* ... unless this is positive: v_w (m/s) outright */
@@ -76,15 +76,15 @@ struct shear_row {
 };
 
 /* Called at every row; nonzero stops the run (and the run returns -1).  d is the engine
- * (pdem_write_back(d, p) turns it into a pack: a snapshot). */
-typedef int (*shear_row_fn)(const struct shear_row *row, struct pdem *d, void *ctx);
+ * (engine_write_back(d, p) turns it into a pack: a snapshot). */
+typedef int (*shear_row_fn)(const struct shear_row *row, struct engine *d, void *ctx);
 
 /* The result beside the rows. */
 struct shear_result {
 	double v_w;		/* m/s */
 	double inertial;	/* I of v_w at the start */
 	double gamma_dot;	/* 1/s */
-	double kappa;		/* the stiffness number of sigma_w (platedem.h's pdem_kappa) */
+	double kappa;		/* the stiffness number of sigma_w (engine.h's engine_kappa) */
 	size_t glued_bottom, glued_top;
 	long relax_steps;	/* steps of the relaxation (0: none, or going on from a checkpoint) */
 	double relax_phi, relax_z;	/* the packing fraction and Z (interactions per grain) at its end */
@@ -92,7 +92,7 @@ struct shear_result {
 	double *profile_n;	/* samples per bin */
 };
 
-/* Defaults: P's law (platedem.h) without Cundall damping, I = 1e-3, gamma 2.5, a row every
+/* Defaults: P's law (engine.h) without Cundall damping, I = 1e-3, gamma 2.5, a row every
  * 0.01, the profile from gamma 1.5 in 20 bins, at most 1e8 steps; the relaxation to 1e-3
  * with damping 0.3 (packgen's), at most 2e6 steps, the top body damped up to gamma 0.05. */
 void shear_params_default(struct shear_params *sp);
@@ -120,7 +120,7 @@ int plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn f
 void shear_result_free(struct shear_result *res);
 /* Where a run stands after a row (the engine and the loop's counters and sums), and what
  * saves it: a checkpoint (plateshear_state_write: text of hex floats, so that it reads back to
- * the bit; platedem.h's pdem_state_write is its engine part). */
+ * the bit; engine.h's engine_state_write is its engine part). */
 struct shear_state;
 int plateshear_state_write(const struct shear_state *s, FILE *fp);
 /* Called after every row but the last (after shear_row_fn) with the run's state: 0 goes on,
@@ -138,6 +138,6 @@ int plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shea
 
 /* The engine's state into p, the centres wrapped into the box along the periodic axes there
  * (not in the engine, so that a run with snapshots is the run without them).  0 or -1. */
-int plateshear_snapshot(struct pdem *d, struct pack *p);
+int plateshear_snapshot(struct engine *d, struct pack *p);
 
 #endif

@@ -29,7 +29,7 @@
  * volume, principal moments, bounding radius, the body-frame box that holds it (drawing), and
  * whether its orientation is observable.  A grain's kind is pack_grain_shape (pack/pack.h);
  * the consumers ask shape_of(kind).  The narrow phase is not in the table yet: the DEM engine
- * (dem/platedem.c) and the measures run contact/plate.h's on every pair, a sphere being a
+ * (dem/engine.c) and the measures run contact/plate.h's on every pair, a sphere being a
  * core of side 0. */
 #ifndef QUSGM_SHAPE_H
 #define QUSGM_SHAPE_H

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* platestep: the cost of one explicit DEM step of a spheroplate pack (lib/dem/platedem.c).
+/* platestep: the cost of one explicit DEM step of a spheroplate pack (lib/dem/engine.c).
  *
  * usage: platestep PACK [STEPS]
  *
@@ -9,7 +9,7 @@
  * the last step, CPU time per step (the process's, neighbour-list rebuilds included; on one
  * thread what a step costs whatever else the machine runs),
  * time per step per grain, element contacts per second (elements visited over time). */
-#include "dem/platedem.h"
+#include "dem/engine.h"
 #include "base/msg.h"
 #include "pack/packio.h"
 
@@ -21,8 +21,8 @@ int
 main(int argc, char **argv)
 {
 	struct pack p;
-	struct pdem d;
-	struct pdem_params pp;
+	struct engine d;
+	struct engine_params pp;
 	long steps = argc > 2 ? atol(argv[2]) : 200, s;
 	double t0, t, elements = 0;
 
@@ -33,13 +33,13 @@ main(int argc, char **argv)
 	}
 	if (pack_read_path(argv[1], &p))
 		msg_die_err(1);
-	pdem_params_default(&pp);
-	if (pdem_init(&d, &p, &pp) || pdem_forces(&d))
+	engine_params_default(&pp);
+	if (engine_init(&d, &p, &pp) || engine_forces(&d))
 		msg_die_err(1);
 	t0 = bench_cpu();
 	for (s = 0; s < steps; s++) {
-		pdem_integrate(&d);
-		if (pdem_forces(&d))
+		engine_integrate(&d);
+		if (engine_forces(&d))
 			msg_die_err(1);
 		elements += (double)d.nelem;
 	}
@@ -47,7 +47,7 @@ main(int argc, char **argv)
 	printf("# grains\tsteps\tinteractions\telements\ts_per_step\tus_per_step_per_grain\telements_per_s\n");
 	printf("%zu\t%ld\t%zu\t%zu\t%.6f\t%.4f\t%.4g\n", d.n, steps, d.ninter, d.nelem, t / steps, 1e6 * t / steps / d.n,
 	    elements / t);
-	pdem_free(&d);
+	engine_free(&d);
 	pack_free(&p);
 	return 0;
 }

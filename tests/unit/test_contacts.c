@@ -611,7 +611,7 @@ test_law_history(gsl_rng *rng)
 }
 
 /* The linear law's spring-dashpot element kernels against the arithmetic that
- * dem/platedem.c's interaction_force writes out (copied here as it stands), bit for bit on
+ * dem/engine.c's interaction_force writes out (copied here as it stands), bit for bit on
  * random states, in the plate engine's units (k_n = 1): the elements' normal forces and
  * elastic sums, then the tangential spring on force increments, dashpot and cap. */
 static void
@@ -635,7 +635,7 @@ test_linear_elements(gsl_rng *rng)
 			double h = 0.02 * (gsl_rng_uniform(rng) - 0.2), f0, f1, e1;
 
 			vn = 0.05 * gsl_ran_gaussian(rng, 1);
-			/* platedem.c */
+			/* engine.c */
 			f0 = (h > 0 ? h : 0) - gn0 * vn;
 			if (f0 < 0)
 				f0 = 0;
@@ -652,7 +652,7 @@ test_linear_elements(gsl_rng *rng)
 		}
 		for (a = 0; a < 3; a++)
 			vt[a] -= vn * n[a], h1[a] = h0[a];
-		{	/* platedem.c */
+		{	/* engine.c */
 			double tn = mu * fsum0, kv[3] = {Kt * vt[0], Kt * vt[1], Kt * vt[2]}, gt, fm;
 
 			law_dem_spring(h0, n, kv, dt, 1.0, tn, ft0);
@@ -670,7 +670,7 @@ test_linear_elements(gsl_rng *rng)
 		if (fsum0 != fsum1 || fel0 != fel1 || memcmp(ft0, ft1, sizeof ft0) || memcmp(h0, h1, sizeof h0))
 			bad++;
 	}
-	CHECK(bad == 0 && capped > 100 && capped < 1900, "linear.h: the element and tangential kernels give platedem's bytes (%ld of 2000 "
+	CHECK(bad == 0 && capped > 100 && capped < 1900, "linear.h: the element and tangential kernels give engine's bytes (%ld of 2000 "
 	    "differ; %ld capped)", bad, capped);
 }
 

@@ -1,26 +1,21 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* platedem: the explicit DEM engine of every shape (the name is its history): spheres and
- * spheroplates (pack/shape.h; a sphere is one of side 0), under any contact law of the table
- * (contact/law.h: dem_interaction); packgen's compactions (dem/dem.h for spheres,
- * dem/platepack.h for plates) and the shear test (dem/plateshear.h) run on it.  The
- * platy-particle paper's engine (P §II B, App. A; physics.md §12) with its linear law; for
- * spheres, the settling of the quasi-static papers with Hertz-Mindlin.
+/* engine: the explicit DEM engine of every shape (pack/shape.h: spheres and spheroplates)
+ * under every contact law of the table (contact/law.h); packgen's compactions (dem/dem.h
+ * for spheres, dem/platepack.h for plates) and the shear test (dem/plateshear.h) run on it.
+ * The platy-particle paper's engine (P §II B, App. A; physics.md §12).
  *
  * An interaction is the element contacts of contact/plate.h (one for a pair of spheres or a
- * sphere and a wall), sharing its normal; the law gives each element's normal force, never
- * attractive, at its own contact point, and the interaction's one tangential force (3 history
- * doubles in the enumerator's slot: its spring) at the overlap-weighted centre of the
- * elements, within mu times the summed normal force.  The linear law (P eqs. 2-4): elements
- * k_n h + gamma_n dh/dt; a spring that keeps its force and takes increments of M k_t times
- * the sliding (M elements each sharing the tangential displacement, as P's common tangent t
- * implies), so an element coming or going changes the stiffness, not the force; a dashpot
- * M-fold too.  The dashpots come from a restitution coefficient e, through the damping ratio
- * zeta whose collision returns e with the never-attractive force (platedem.c: Schwager and
- * Poschel's closed form, not the classical exp(-pi zeta/...)), and each of M elements gets
- * gamma = 2 zeta sqrt(m* k_n / M), so the interaction's damping ratio is zeta whether a
- * collision meets a corner (M = 1) or a face (M = 4): a head-on collision returns e either
- * way.  Hertz-Mindlin (contact/hertz.h, hertz_dem_interaction): elements 2/3 k h with
- * k = 2 E* sqrt(R* h), R* of the two spheroradii.
+ * sphere and a wall), sharing its normal.  The law gives them their forces (its
+ * dem_interaction: each element's normal force at its own contact point, never attractive,
+ * and the interaction's one tangential force at the overlap-weighted centre of the
+ * elements), and keeps law->history doubles per interaction in the enumerator's slot (a
+ * tangential spring's 3, none for a law without one).  The law's formulas are the law's
+ * (contact/linear.h: P eqs. 2-4; contact/hertz.h); the engine sets what they share: the
+ * damping ratio zeta of a restitution coefficient e, whose collision returns e with the
+ * never-attractive force (engine.c: Schwager and Poschel's closed form, not the classical
+ * exp(-pi zeta/...)), and the tangential over normal stiffness ratio.  The law also gives
+ * the engine's units and time step (dem_units, stiffest) and its history's force (what a
+ * pack's Q0 lines carry: engine_write_back, engine_read_history).
  *
  * Integration: leapfrog translations; rotations by Euler's equations in the principal
  * (body) frame, P eq. A2, with the angular velocity at the full step taken as the mean of
@@ -42,15 +37,15 @@
  * pairs), each grain gathers its column's in a fixed order, so the bytes are the same for any
  * thread count.
  *
- * A pack of spheres only takes the sphere pass (platedem_spheres.c): no narrow phase, a pair's
+ * A pack of spheres only takes the sphere pass (engine_spheres.c): no narrow phase, a pair's
  * force into both grains as the walk meets it, Hertz pairs two at a time in lanes; the same
  * integrator, sums and law entry.
  *
- * Units inside: length r0 (the mean spheroradius), mass rho0 r0^3, stiffness k0 (the linear
- * law's k_n; Hertz's E* r0 of two mean grains), so time sqrt(rho0 r0^3 / k0) and stress
- * k0 / r0; the pack (SI) is converted in and out. */
-#ifndef QUSGM_PLATEDEM_H
-#define QUSGM_PLATEDEM_H
+ * Units inside: length r0 (the mean spheroradius), mass rho0 r0^3, stiffness k0 (the law's
+ * dem_units: a spring law's k_n; Hertz's E* r0 of two mean grains), so time
+ * sqrt(rho0 r0^3 / k0) and stress k0 / r0; the pack (SI) is converted in and out. */
+#ifndef QUSGM_ENGINE_H
+#define QUSGM_ENGINE_H
 
 #include <stddef.h>
 #include <stdio.h>
@@ -59,7 +54,7 @@
 #include "contact/plate.h"
 #include "pack/pack.h"
 
-struct pdem_params {
+struct engine_params {
 	const struct contact_law *law;	/* the contact law (contact/law.h's table): linear, P's, by default */
 	double kn, kt;		/* linear law: normal, tangential stiffness (N/m); kt / kn is the
 				 * tangential over normal stiffness ratio of either law */
@@ -72,34 +67,34 @@ struct pdem_params {
 	double dt_factor;	/* dt = dt_factor sqrt(m_min / k_n) */
 };
 
-/* A pair's share for its grain j in a pass of pdem_forces: the force on i (j gets its
+/* A pair's share for its grain j in a pass of engine_forces: the force on i (j gets its
  * opposite) and the torque on j about its centre. */
-struct pdem_xrec;
-struct pdem_rec {
+struct engine_xrec;
+struct engine_rec {
 	double F[3], Tj[3];
 };
 
 /* A pair's narrow-phase cache: the word of plate_interaction_cached, and the branch vector,
- * the sum of the two grains' turns when it was made, for list `list` (pdem.cache_list). */
-struct pdem_cache {
+ * the sum of the two grains' turns when it was made, for list `list` (engine.cache_list). */
+struct engine_cache {
 	double dx[3], turn;
 	unsigned word;
 	long list;
 };
 
 /* A block of rows' share of a pass's sums (added in block order). */
-struct pdem_sums {
+struct engine_sums {
 	double wallf[NWALLS], wallF[NWALLS][3], sig[6], sum_f;
 	size_t ninter, nwall, nelem, zends;
 };
 
-struct pdem {
+struct engine {
 	size_t n;
 	double *x, *v;		/* centres, velocities (3n) */
 	double *q;		/* orientations (4n), body -> lab */
 	double *w;		/* angular velocities in the body frame (3n), at half steps */
 	double *f, *t;		/* forces, torques in the lab frame (3n) */
-	double *R;		/* rotation matrices of q (9n), refreshed by pdem_forces */
+	double *R;		/* rotation matrices of q (9n), refreshed by engine_forces */
 	double *m, *J;		/* masses (n), principal moments (3n: in-plane, in-plane, normal) */
 	double *r, *half;	/* spheroradii, half sides (n) */
 	double *rb;		/* bounding radii (n): what the enumerator sees */
@@ -113,16 +108,16 @@ struct pdem {
 	struct law_pair lp_grain, lp_wall;
 	/* the mobilities dt / m and dt / J (interleaved per grain), made for the step mob_dt */
 	double *mob, mob_dt;
-	/* every grain a sphere: the sphere pass (platedem_spheres.c), no narrow phase, and each
+	/* every grain a sphere: the sphere pass (engine_spheres.c), no narrow phase, and each
 	 * sphere's frame kept as the lab's (its orientation is not observable); pair_lanes: its
 	 * Hertz pairs two at a time in lanes (the same bytes) */
 	int spheres, pair_lanes;
 	/* the sphere pass on threads: block sums, and the records of the pairs that cross from one
 	 * thread's rows to a later one's, for x_team threads on the list of rebuild x_builds */
-	struct pdem_xrec *xrec;
+	struct engine_xrec *xrec;
 	size_t *xslot, *xin_first, x_team;
 	long stamp, x_builds;
-	/* the last pdem_forces: elastic normal force on each wall, interactions with at least one
+	/* the last engine_forces: elastic normal force on each wall, interactions with at least one
 	 * element (nwall of them with a wall), elements, sum of interaction force magnitudes */
 	double wallf[NWALLS];
 	size_t ninter, nwall, nelem;
@@ -146,7 +141,7 @@ struct pdem {
 	unsigned char *glue;
 	double wallv[NWALLS][3];
 	/* The narrow phase kept between steps (plate_interaction_cached): per listed pair its
-	 * cache (struct pdem_cache), remade when the pair's cores may have moved against each
+	 * cache (struct engine_cache), remade when the pair's cores may have moved against each
 	 * other by cache_margin since it was made: the change of their branch vector plus what
 	 * their turns move a corner.  A grain's turn is the sum over the passes of what its turn
 	 * from one pass to the next (from q0, its orientation at the last pass) can move a point
@@ -155,7 +150,7 @@ struct pdem {
 	 * made.  The caches of a pair listed again when the list is rebuilt are kept; cache_list
 	 * is the list the caches are of (0: none yet, the turns start afresh).  Set cache_margin
 	 * to 0 to compute every feature at every step (the same bytes). */
-	struct pdem_cache *pcache;
+	struct engine_cache *pcache;
 	size_t pcap;
 	long cache_list, cache_builds;
 	double cache_margin;
@@ -169,17 +164,17 @@ struct pdem {
 	 * 2.6 times fewer pairs than the bounding spheres meet.  Plates only. */
 	double *turn_list;
 	struct contact_prune prune;
-	/* pdem_forces' records: a pair's share for j and whether it holds this pass's
+	/* engine_forces' records: a pair's share for j and whether it holds this pass's
 	 * interaction (ptouch), both by the pair's place in the enumerator's columns
 	 * (contact_enum_columns' col_pos), which the gather reads in order; each grain's force
 	 * and torque from its own row (frow, 6n), the block sums, the lab-frame angular
 	 * velocities (3n), and whether the passes run on threads */
-	struct pdem_rec *prec;
+	struct engine_rec *prec;
 	unsigned char *ptouch;
 	double *frow;
 	size_t rcap;
 	long rec_builds;
-	struct pdem_sums *sums;
+	struct engine_sums *sums;
 	size_t sums_cap;
 	double *wl;
 	int threads;
@@ -192,55 +187,55 @@ struct pdem {
  * elements do not depend on it, the cost does: a wider one keeps more features per pair, a
  * narrower one remakes caches more often; a shear at I = 1e-3 at eta 0.8 cost least at
  * 0.03-0.05 (bench/plates.md). */
-#define PDEM_CACHE_MARGIN 0.03
+#define ENGINE_CACHE_MARGIN 0.03
 
 /* The cache margin for a slow shear of d's grains: 0.0075 times the plates' mean core
- * half-side, within [0.005, PDEM_CACHE_MARGIN].  Small cores have their features close
+ * half-side, within [0.005, ENGINE_CACHE_MARGIN].  Small cores have their features close
  * together, so a margin keeps more of them per pair: 8000 plates sheared at I = 1e-3 cost
  * least near 0.005 at eta 0.14 (half-side 0.16 r0), 0.005-0.01 at eta 0.5 (1 r0) and 0.03 at
- * eta 0.8 (4 r0) (bench/plates.md).  PDEM_CACHE_MARGIN for spheres only. */
-double pdem_shear_cache_margin(const struct pdem *d);
+ * eta 0.8 (4 r0) (bench/plates.md).  ENGINE_CACHE_MARGIN for spheres only. */
+double engine_shear_cache_margin(const struct engine *d);
 
-void pdem_params_default(struct pdem_params *pp);
+void engine_params_default(struct engine_params *pp);
 /* pp set for law: the law, and for a law other than the linear one (whose kn and kt are the
  * caller's, N/m) the law's own tangential over normal stiffness ratio (kt / kn = the law's
  * kt_ratio, as packgen's sphere DEM takes it). */
-void pdem_params_law(struct pdem_params *pp, const struct contact_law *law);
+void engine_params_law(struct engine_params *pp, const struct contact_law *law);
 /* E* of two grains of pack p's mean Young's modulus and Poisson ratio (Pa): the Hertz law's
  * stiffness unit in the engine, over r0. */
-double pdem_mean_Estar(const struct pack *p);
+double engine_mean_Estar(const struct pack *p);
 /* The stiffness number kappa of a normal stress sigma (Pa) on pack p under pp's law: the
  * mean spheroradius r0 over the typical overlap that sigma makes, up to a factor of order
  * one, so that 1 / kappa is the contacts' strain whatever the law.  Linear law:
  * kappa = k_n / (sigma r0) (P eq. 6).  Hertz: kappa = (E* / sigma)^(2/3), E* of
- * pdem_mean_Estar (Agnolin and Roux's, with E* for their E / (1 - nu^2), which is 2 E*).
+ * engine_mean_Estar (Agnolin and Roux's, with E* for their E / (1 - nu^2), which is 2 E*).
  * The overlaps follow from the Love-Weber stress sigma = Z phi <F> / (4 pi r0^2) of spheres
  * (Z about 4.5, phi about 0.6): a mean overlap of 4.7 r0 / kappa under the linear law and
  * 2.9 r0 / kappa under Hertz (R* = r0 / 2). */
-double pdem_kappa(const struct pack *p, const struct pdem_params *pp, double sigma);
+double engine_kappa(const struct pack *p, const struct engine_params *pp, double sigma);
 /* Its inverse: the stress (Pa) of stiffness number kappa. */
-double pdem_kappa_stress(const struct pack *p, const struct pdem_params *pp, double kappa);
+double engine_kappa_stress(const struct pack *p, const struct engine_params *pp, double kappa);
 /* The largest overlap over the smallest spheroradius likely at stiffness number kappa, what
- * a Hertz time step is made for (hertz_overlap): PDEM_OVERLAP_KAPPA / kappa.  The mean
- * overlap of pdem_kappa is 2.9 r0 / kappa; over the smallest radius (0.7 r0 in packgen's
+ * a Hertz time step is made for (hertz_overlap): ENGINE_OVERLAP_KAPPA / kappa.  The mean
+ * overlap of engine_kappa is 2.9 r0 / kappa; over the smallest radius (0.7 r0 in packgen's
  * default radii) and at the tail of a pack's forces it is several times that: 300 spheres
  * sheared at kappa 1e3 (tests/tools/shear.sh) had their largest at 13 / kappa.  The time
  * step goes as the overlap^(-1/4): a factor 2 in it moves the step by 19 %. */
-#define PDEM_OVERLAP_KAPPA 20.0
+#define ENGINE_OVERLAP_KAPPA 20.0
 /* The arrays of an engine for n grains, zeroed, for a caller that fills them itself (x, r,
- * half, rb, m, J, q; packgen's sphere compaction, dem.c) and then calls pdem_start.  0 or -1. */
-int pdem_alloc(struct pdem *d, size_t n);
+ * half, rb, m, J, q; packgen's sphere compaction, dem.c) and then calls engine_start.  0 or -1. */
+int engine_alloc(struct engine *d, size_t n);
 /* After the grains are set: the per-shape arrays, the time step's mobilities, and the contact
  * list of the bounding radii rb with that skin (scaled), periodic along d->periodic.  The
  * caller has set the law, its pair physics and the DEM coefficients.  0 or -1. */
-int pdem_start(struct pdem *d, double skin);
+int engine_start(struct engine *d, double skin);
 /* An interaction into a pass's sums: grain i with grain j (branch vector br = x_i - x_j, the
  * nearest image) or a wall (br unused), its whole force Fc on i, elastic normal force fel, m
  * elements.  A pair of two glued grains is part of a
  * wall: in none of the sums. */
 CONTACT_INLINE void
-pdem_count(const struct pdem *d, size_t i, long j, const double br[3], const double Fc[3], double fel, int m,
-    struct pdem_sums *sums)
+engine_count(const struct engine *d, size_t i, long j, const double br[3], const double Fc[3], double fel, int m,
+    struct engine_sums *sums)
 {
 	int wall = PACK_IS_WALL(j), gi = d->glue ? d->glue[i] : 0, gj = d->glue && !wall ? d->glue[j] : 0, a;
 
@@ -267,49 +262,49 @@ pdem_count(const struct pdem *d, size_t i, long j, const double br[3], const dou
 /* The first block of thread t's share of nb blocks of bl grains among T threads (t = T: nb),
  * for both passes: runs of whole blocks of about equal work, measured by list nl's pairs.
  * Which thread takes a block changes no byte. */
-size_t pdem_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t);
+size_t engine_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t);
 /* Room for nb blocks' sums (0 or -1), and their total in block order into the engine's. */
-int pdem_sums_fit(struct pdem *d, size_t nb);
-void pdem_sums_total(struct pdem *d, size_t nb);
-/* The sphere pass of pdem_forces (platedem_spheres.c). */
-int pdem_sphere_forces(struct pdem *d);
+int engine_sums_fit(struct engine *d, size_t nb);
+void engine_sums_total(struct engine *d, size_t nb);
+/* The sphere pass of engine_forces (engine_spheres.c). */
+int engine_sphere_forces(struct engine *d);
 /* The engine for pack p (SI): scaled copies of its grains and box, at rest, the boundary of
  * the pack.  0 or -1 (msg_seterr). */
-int pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp);
-void pdem_free(struct pdem *d);
+int engine_init(struct engine *d, const struct pack *p, const struct engine_params *pp);
+void engine_free(struct engine *d);
 /* Forces and torques at the current state (the contact list brought up to date). 0 or -1. */
-int pdem_forces(struct pdem *d);
+int engine_forces(struct engine *d);
 /* Calls fn for every interaction of the current state that has element contacts (a pair, or
  * a grain and a wall: j = PACK_WALL(w)), in the enumerator's order (contacts.h), with j's
  * centre xj (its nearest image; NULL for a wall), the interaction in scaled units and its
  * tangential spring hist (3 doubles: minus the spring's force on i), which fn may set.  The
  * list is rebuilt first when rebuild is set, else brought up to date.  0, or -1 (msg_seterr,
  * or fn returned nonzero). */
-typedef int (*pdem_interaction_fn)(const struct pdem *d, size_t i, long j, const double *xj,
+typedef int (*engine_interaction_fn)(const struct engine *d, size_t i, long j, const double *xj,
     const struct plate_interaction *it, double *hist, void *ctx);
-int pdem_foreach_interaction(struct pdem *d, int rebuild, pdem_interaction_fn fn, void *ctx);
-/* One leapfrog step from the forces of pdem_forces. */
-void pdem_integrate(struct pdem *d);
+int engine_foreach_interaction(struct engine *d, int rebuild, engine_interaction_fn fn, void *ctx);
+/* One leapfrog step from the forces of engine_forces. */
+void engine_integrate(struct engine *d);
 /* Kinetic energy (translation + rotation) and total angular momentum about the origin, lab
  * frame, into L unless NULL (scaled units). */
-double pdem_kinetic(const struct pdem *d, double L[3]);
+double engine_kinetic(const struct engine *d, double L[3]);
 /* Mean |net force| over the grains over the mean interaction force (INFINITY without one). */
-double pdem_unbalanced(const struct pdem *d);
+double engine_unbalanced(const struct engine *d);
 /* Wrap the centres into the box along the periodic axes. */
-void pdem_wrap(struct pdem *d);
+void engine_wrap(struct engine *d);
 /* Replace the walls of the axes set in periodic by periodic boundaries, the box lengths kept
  * as the periods: a new enumerator (the pairs across the boundary appear; the tangential
  * springs start again from zero).  -1 (msg_seterr) when an axis is shorter than three
  * interaction distances (the enumerator's cell grid needs them): "use more grains". */
-int pdem_make_periodic(struct pdem *d, const int periodic[3]);
+int engine_make_periodic(struct engine *d, const int periodic[3]);
 /* Positions, orientations, box and frictional history (one contact line per interaction:
  * P0 its elastic normal force, Q0 its tangential spring's force on i, M0 0) back into p
  * (SI), replacing p's contact lines, and with glued grains (glue) the glued column
  * (pack_set_glue).  0 or -1. */
-int pdem_write_back(struct pdem *d, struct pack *p);
-/* Set the tangential springs from p's contact lines (pdem_write_back's), for the
+int engine_write_back(struct engine *d, struct pack *p);
+/* Set the tangential springs from p's contact lines (engine_write_back's), for the
  * interactions that touch now; the others start from zero.  0 or -1. */
-int pdem_read_history(struct pdem *d, struct pack *p);
+int engine_read_history(struct engine *d, struct pack *p);
 
 /* The engine's state between two steps, for a checkpoint: the grains' centres, velocities,
  * orientations, angular velocities and glue, the box and the walls' velocities, and the
@@ -323,11 +318,11 @@ int pdem_read_history(struct pdem *d, struct pack *p);
  *     wallv 18 numbers (NWALLS x 3)
  *     N lines: X0 X1 X2 V0 V1 V2 QW QX QY QZ W0 W1 W2 GLUE
  *     springs M, then M lines: I J H0 H1 H2 (J < 0: a wall, PACK_WALL)
- * pdem_state_write returns 0 or -1 (a write error: msg_seterr).  pdem_state_read reads them
- * from in into d, an engine made by pdem_init for the same grains (and made periodic as the
+ * engine_state_write returns 0 or -1 (a write error: msg_seterr).  engine_state_read reads them
+ * from in into d, an engine made by engine_init for the same grains (and made periodic as the
  * run that wrote it was), and builds its list: 0, or -1 with the file:line message. */
 struct lines;
-int pdem_state_write(const struct pdem *d, FILE *fp);
-int pdem_state_read(struct pdem *d, struct lines *in);
+int engine_state_write(const struct engine *d, FILE *fp);
+int engine_state_read(struct engine *d, struct lines *in);
 
 #endif

@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* platedem_spheres: the engine's force pass when every grain is a sphere (platedem.h).
+/* engine_spheres: the engine's force pass when every grain is a sphere (engine.h).
  *
  * A sphere's geometry is its neighbour-list record: the contact point on the line of the
  * centres, the normal along the branch vector, the overlap r_i + r_j - d, the lever arms
@@ -11,13 +11,13 @@
  * chain; the divider does two lanes in the time of one, and the two chains overlap).
  *
  * Threads with the same bytes for any number (base/par.h): each thread takes a run of whole
- * blocks of grains (par_block(n), fixed by n) of about equal list pairs (pdem_blocks_share,
+ * blocks of grains (par_block(n), fixed by n) of about equal list pairs (engine_blocks_share,
  * as the plate pass).  A pair's force goes into both grains; where
  * j is a later thread's, the pair is computed first (pass 1, so that its tangential spring
  * advances once) and j's thread gathers it before walking its own rows.  Every grain's sum
  * then has the one-pass walk's terms in its order: the pairs (m, j) by ascending m, then j's
  * own pairs and walls.  The sums are kept per block and added in block order. */
-#include "dem/platedem.h"
+#include "dem/engine.h"
 #include "contact/hertz.h"
 #include "base/lanes.h"
 #include "base/msg.h"
@@ -32,7 +32,7 @@
 
 /* A pair whose j is a later thread's: its force, computed before the walk by its row's
  * thread (pass 1), for i to add and j's thread to gather. */
-struct pdem_xrec {
+struct engine_xrec {
 	double F[3], cr[3];
 	long stamp;		/* the pass that wrote it: older, the pair was apart */
 };
@@ -42,7 +42,7 @@ struct pdem_xrec {
  * magnitude is returned, its elastic part goes into *fel.  The tangential spring (the
  * contact's history slot) is advanced. */
 CONTACT_INLINE double
-sphere_force(const struct pdem *d, const struct contact *c, double F[3], double cr[3], double *fel)
+sphere_force(const struct engine *d, const struct contact *c, double F[3], double cr[3], double *fel)
 {
 	size_t i = c->i;
 	int wall = PACK_IS_WALL(c->j), a;
@@ -100,9 +100,9 @@ sphere_force(const struct pdem *d, const struct contact *c, double F[3], double 
  * share of a pair's force that thread gathers (the pair's record); and a touching pair
  * waiting for a second, with which it shares the lanes of sphere_force2. */
 struct sphere_walk {
-	struct pdem *d;
+	struct engine *d;
 	size_t jend;
-	struct pdem_sums s;
+	struct engine_sums s;
 	int plain;		/* no glue and no stress sums: a contact counts its force alone */
 	size_t plain_pairs, plain_walls;	/* the contacts so counted (pair_count, on_wall) */
 	int npend;
@@ -113,7 +113,7 @@ struct sphere_walk {
 /* sphere_force of two Hertz grain-grain contacts at once, each in one lane of the same
  * arithmetic (lanes.h: the same bytes as sphere_force; tests/unit/test_dem.c checks it). */
 CONTACT_INLINE void
-sphere_force2(const struct pdem *d, const struct contact *A, const struct contact *B, double F[2][3], double cr[2][3])
+sphere_force2(const struct engine *d, const struct contact *A, const struct contact *B, double F[2][3], double cr[2][3])
 {
 	size_t i0 = A->i, i1 = B->i, j0 = (size_t)A->j, j1 = (size_t)B->j;
 	const double *v = d->v, *w = d->w;
@@ -153,7 +153,7 @@ sphere_force2(const struct pdem *d, const struct contact *A, const struct contac
 #endif
 
 CONTACT_INLINE void
-add_to_i(struct pdem *d, size_t i, const double F[3], const double cr[3])
+add_to_i(struct engine *d, size_t i, const double F[3], const double cr[3])
 {
 	int a;
 
@@ -164,7 +164,7 @@ add_to_i(struct pdem *d, size_t i, const double F[3], const double cr[3])
 }
 
 CONTACT_INLINE void
-add_to_j(struct pdem *d, size_t j, const double F[3], const double cr[3])
+add_to_j(struct engine *d, size_t j, const double F[3], const double cr[3])
 {
 	int a;
 
@@ -174,9 +174,9 @@ add_to_j(struct pdem *d, size_t j, const double F[3], const double cr[3])
 	}
 }
 
-/* A pair into the block's sums: pdem_count's, or, in a plain pass (packgen's: no glue, no
+/* A pair into the block's sums: engine_count's, or, in a plain pass (packgen's: no glue, no
  * stress sums), its force magnitude alone, the counts it would add (an interaction, an
- * element, two ends on free grains) made up per block in pdem_sphere_forces; a wall's there
+ * element, two ends on free grains) made up per block in engine_sphere_forces; a wall's there
  * too, after its elastic force (on_wall). */
 CONTACT_INLINE void
 pair_count(struct sphere_walk *w, const struct contact *c, const double F[3])
@@ -186,7 +186,7 @@ pair_count(struct sphere_walk *w, const struct contact *c, const double F[3])
 		w->s.sum_f += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
 		return;
 	}
-	pdem_count(w->d, c->i, c->j, c->dx, F, 0, 1, &w->s);
+	engine_count(w->d, c->i, c->j, c->dx, F, 0, 1, &w->s);
 }
 
 /* A computed pair's force into both grains and the block's sums. */
@@ -216,7 +216,7 @@ CONTACT_INLINE int
 on_pair(const struct contact *c, void *vw)
 {
 	struct sphere_walk *w = vw;
-	struct pdem *d = w->d;
+	struct engine *d = w->d;
 	size_t j = (size_t)c->j;
 
 #if LANES_OK
@@ -245,7 +245,7 @@ on_pair(const struct contact *c, void *vw)
 		sphere_force(d, c, F, cr, &fel);
 		pair_add(w, c, F, cr);
 	} else {
-		const struct pdem_xrec *x = &d->xrec[d->xslot[contact_pair_index(&d->ce, c)]];
+		const struct engine_xrec *x = &d->xrec[d->xslot[contact_pair_index(&d->ce, c)]];
 
 		pend_flush(w);
 		add_to_i(d, c->i, x->F, x->cr);
@@ -258,7 +258,7 @@ CONTACT_INLINE int
 on_wall(const struct contact *c, void *vw)
 {
 	struct sphere_walk *w = vw;
-	struct pdem *d = w->d;
+	struct engine *d = w->d;
 	double F[3], cr[3], fel;
 
 	pend_flush(w);
@@ -272,7 +272,7 @@ on_wall(const struct contact *c, void *vw)
 		w->s.sum_f += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
 		return 0;
 	}
-	pdem_count(d, c->i, c->j, NULL, F, fel, 1, &w->s);
+	engine_count(d, c->i, c->j, NULL, F, fel, 1, &w->s);
 	return 0;
 }
 
@@ -281,7 +281,7 @@ CONTACT_INLINE int
 on_cross_pair(const struct contact *c, void *vw)
 {
 	struct sphere_walk *w = vw;
-	struct pdem_xrec *x;
+	struct engine_xrec *x;
 	double fel;
 
 	if ((size_t)c->j < w->jend)
@@ -304,7 +304,7 @@ on_no_wall(const struct contact *c, void *vw)
  * gathered by grain j, xin_first[j] .. xin_first[j + 1] - 1, in ascending i (rows are walked
  * in ascending i), which is the order in which the one-pass walk scatters into j. */
 static int
-cross_slots(struct pdem *d, size_t T)
+cross_slots(struct engine *d, size_t T)
 {
 	const struct nlist *nl = &d->ce.nl;
 	size_t n = d->n, bl = par_block(n), nb = (n + bl - 1) / bl, t, i, k, *fill;
@@ -319,7 +319,7 @@ cross_slots(struct pdem *d, size_t T)
 	if (!d->xslot || !d->xin_first || !fill)
 		goto oom;
 	for (t = 0; t < T; t++) {
-		size_t g0 = pdem_blocks_share(nl, bl, nb, T, t) * bl, g1 = pdem_blocks_share(nl, bl, nb, T, t + 1) * bl;
+		size_t g0 = engine_blocks_share(nl, bl, nb, T, t) * bl, g1 = engine_blocks_share(nl, bl, nb, T, t + 1) * bl;
 		g0 = g0 < n ? g0 : n, g1 = g1 < n ? g1 : n;
 		for (i = g0; i < g1; i++)
 			for (k = nl->first[i]; k < nl->first[i + 1]; k++)
@@ -333,7 +333,7 @@ cross_slots(struct pdem *d, size_t T)
 	for (k = 0; k <= d->xin_first[n]; k++)
 		d->xrec[k].stamp = -1;
 	for (t = 0; t < T; t++) {
-		size_t g0 = pdem_blocks_share(nl, bl, nb, T, t) * bl, g1 = pdem_blocks_share(nl, bl, nb, T, t + 1) * bl;
+		size_t g0 = engine_blocks_share(nl, bl, nb, T, t) * bl, g1 = engine_blocks_share(nl, bl, nb, T, t + 1) * bl;
 		g0 = g0 < n ? g0 : n, g1 = g1 < n ? g1 : n;
 		for (i = g0; i < g1; i++)
 			for (k = nl->first[i]; k < nl->first[i + 1]; k++) {
@@ -372,14 +372,14 @@ sphere_row_any(const struct contact_enum *e, const double *x, size_t i, int per,
 	         : contact_foreach_row(e, x, i, CONTACT_TOUCHING, 0, 3, pf, wf, ctx, calls))
 
 int
-pdem_sphere_forces(struct pdem *d)
+engine_sphere_forces(struct engine *d)
 {
 	struct contact_enum *e = &d->ce;
 	size_t n = d->n, bl = par_block(n), nb = (n + bl - 1) / bl;
 	int per = e->any_periodic;
 
 	d->threads = n >= PAR_MIN && par_threads() > 1;
-	if (contact_enum_update(e, d->x, 0) || pdem_sums_fit(d, nb))
+	if (contact_enum_update(e, d->x, 0) || engine_sums_fit(d, nb))
 		return -1;
 	if (d->threads && cross_slots(d, (size_t)par_threads()))
 		return -1;
@@ -387,7 +387,7 @@ pdem_sphere_forces(struct pdem *d)
 #pragma omp parallel if (d->threads)
 	{
 		size_t T = (size_t)par_team(), t = (size_t)par_tid(), b, i, s;
-		size_t b0 = pdem_blocks_share(&e->nl, bl, nb, T, t), b1 = pdem_blocks_share(&e->nl, bl, nb, T, t + 1);
+		size_t b0 = engine_blocks_share(&e->nl, bl, nb, T, t), b1 = engine_blocks_share(&e->nl, bl, nb, T, t + 1);
 		size_t g0 = b0 * bl < n ? b0 * bl : n, g1 = b1 * bl < n ? b1 * bl : n;
 		long calls = 0;
 
@@ -423,6 +423,6 @@ pdem_sphere_forces(struct pdem *d)
 			d->sums[b] = dw.s;
 		}
 	}
-	pdem_sums_total(d, nb);
+	engine_sums_total(d, nb);
 	return 0;
 }

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* platedem: explicit DEM of spheroplates (see platedem.h). */
-#include "dem/platedem.h"
+/* engine: the explicit DEM of every shape under every contact law (see engine.h). */
+#include "dem/engine.h"
 #include "contact/law.h"
 #include "contact/hertz.h"
 #include "contact/linear.h"
@@ -19,7 +19,7 @@
 #include <string.h>
 
 void
-pdem_params_default(struct pdem_params *pp)
+engine_params_default(struct engine_params *pp)
 {
 	pp->law = &contact_law_linear;	/* P's */
 	pp->kn = pp->kt = 1.5e3;	/* P §II C: 1.5e-3 N/um */
@@ -38,7 +38,7 @@ pdem_params_default(struct pdem_params *pp)
 }
 
 void
-pdem_free(struct pdem *d)
+engine_free(struct engine *d)
 {
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
 	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
@@ -82,7 +82,7 @@ zeta_of_restitution(double e)
 }
 
 int
-pdem_alloc(struct pdem *d, size_t n)
+engine_alloc(struct engine *d, size_t n)
 {
 	memset(d, 0, sizeof *d);
 	d->n = n;
@@ -95,7 +95,7 @@ pdem_alloc(struct pdem *d, size_t n)
 	d->wl = calloc(3 * n, sizeof *d->wl);
 	d->mob = calloc(2 * n, sizeof *d->mob);
 	d->mob_dt = NAN;	/* made at the first step, whatever its length */
-	d->cache_margin = PDEM_CACHE_MARGIN;
+	d->cache_margin = ENGINE_CACHE_MARGIN;
 	d->rec_builds = d->x_builds = -1;
 	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
 	    !d->rb || !d->wl || !d->mob) {
@@ -106,7 +106,7 @@ pdem_alloc(struct pdem *d, size_t n)
 }
 
 double
-pdem_shear_cache_margin(const struct pdem *d)
+engine_shear_cache_margin(const struct engine *d)
 {
 	double h = 0;
 	size_t i, np = 0;
@@ -115,19 +115,19 @@ pdem_shear_cache_margin(const struct pdem *d)
 		if (d->half[i] > 0)
 			h += d->half[i], np++;
 	if (!np)
-		return PDEM_CACHE_MARGIN;
-	return fmin(PDEM_CACHE_MARGIN, fmax(0.005, 0.0075 * h / (double)np));
+		return ENGINE_CACHE_MARGIN;
+	return fmin(ENGINE_CACHE_MARGIN, fmax(0.005, 0.0075 * h / (double)np));
 }
 
-static void refresh_rotations(struct pdem *d);
+static void refresh_rotations(struct engine *d);
 
-/* The list's pair test at its build (struct pdem's prune): two spheres are their bounding
+/* The list's pair test at its build (struct engine's prune): two spheres are their bounding
  * spheres; otherwise the cores' gap bound against r_i + r_j + skin, the skin the list is
  * being built with. */
 static int
 cores_may_meet(void *ctx, size_t i, size_t j, const double dx[3])
 {
-	const struct pdem *d = ctx;
+	const struct engine *d = ctx;
 	struct plate_body a, b;
 	int q;
 
@@ -149,7 +149,7 @@ cores_may_meet(void *ctx, size_t i, size_t j, const double dx[3])
 static void
 list_prepare(void *ctx)
 {
-	struct pdem *d = ctx;
+	struct engine *d = ctx;
 
 	refresh_rotations(d);
 	memset(d->turn_list, 0, d->n * sizeof *d->turn_list);
@@ -157,7 +157,7 @@ list_prepare(void *ctx)
 
 /* A new enumerator over the bounding radii, pruned at each build when there are plates. */
 static int
-list_start(struct pdem *d, double skin)
+list_start(struct engine *d, double skin)
 {
 	if (contact_enum_init(&d->ce, d->n, d->rb, d->lo, d->hi, d->periodic, skin, d->law->history))
 		return -1;
@@ -172,7 +172,7 @@ list_start(struct pdem *d, double skin)
 }
 
 int
-pdem_start(struct pdem *d, double skin)
+engine_start(struct engine *d, double skin)
 {
 	size_t i, n = d->n;
 
@@ -200,7 +200,7 @@ pdem_start(struct pdem *d, double skin)
 }
 
 void
-pdem_params_law(struct pdem_params *pp, const struct contact_law *law)
+engine_params_law(struct engine_params *pp, const struct contact_law *law)
 {
 	pp->law = law;
 	if (law->stiffness == LAW_MODULI)
@@ -208,33 +208,33 @@ pdem_params_law(struct pdem_params *pp, const struct contact_law *law)
 }
 
 double
-pdem_mean_Estar(const struct pack *p)
+engine_mean_Estar(const struct pack *p)
 {
 	return hertz_mean_Estar(p);
 }
 
 double
-pdem_kappa(const struct pack *p, const struct pdem_params *pp, double sigma)
+engine_kappa(const struct pack *p, const struct engine_params *pp, double sigma)
 {
 	return pp->law->kappa(pp->law, p, pp->kn, sigma);
 }
 
 double
-pdem_kappa_stress(const struct pack *p, const struct pdem_params *pp, double kappa)
+engine_kappa_stress(const struct pack *p, const struct engine_params *pp, double kappa)
 {
 	return pp->law->kappa_stress(pp->law, p, pp->kn, kappa);
 }
 
 int
-pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
+engine_init(struct engine *d, const struct pack *p, const struct engine_params *pp)
 {
 	double r0, rho0 = 0, mmin = INFINITY, rbmin = INFINITY, rmin = INFINITY, k0;
 	size_t i, n = p->n;
 	int a;
 
 	memset(d, 0, sizeof *d);
-	if (n == 0 || pdem_alloc(d, n))
-		return n == 0 ? (msg_seterr("no grains"), -1) : (pdem_free(d), -1);
+	if (n == 0 || engine_alloc(d, n))
+		return n == 0 ? (msg_seterr("no grains"), -1) : (engine_free(d), -1);
 	d->law = pp->law;
 	r0 = law_mean_radius(p);
 	for (i = 0; i < n; i++)
@@ -283,8 +283,8 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 	 * law's k_n = 1 at any overlap) */
 	d->dt = pp->dt_factor * sqrt(mmin / d->law->stiffest(d->law, &d->lp_wall, rmin, pp->hertz_overlap * rmin));
 	/* the skin: a tenth of the smallest bounding radius, so the list lasts many steps */
-	if (pdem_start(d, 0.1 * rbmin)) {
-		pdem_free(d);
+	if (engine_start(d, 0.1 * rbmin)) {
+		engine_free(d);
 		return -1;
 	}
 	return 0;
@@ -293,7 +293,7 @@ pdem_init(struct pdem *d, const struct pack *p, const struct pdem_params *pp)
 /* Velocity of grain i's material point p (lab frame): v + w x (p - x), w the lab-frame
  * angular velocity (refresh_rotations). */
 static void
-point_velocity(const struct pdem *d, size_t i, const double *xi, const double p[3], double v[3])
+point_velocity(const struct engine *d, size_t i, const double *xi, const double p[3], double v[3])
 {
 	double arm[3] = {p[0] - xi[0], p[1] - xi[1], p[2] - xi[2]}, c[3];
 	int a;
@@ -323,8 +323,8 @@ apply(const double *xi, const double p[3], const double Fk[3], double F[3], doub
  * (the opposite force, rec->F = F, and the torque about its centre); the block's sums; hist
  * is the tangential spring. */
 static void
-interaction_force(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it,
-    double *hist, double F[3], double Ti[3], struct pdem_rec *rec, struct pdem_sums *sums)
+interaction_force(const struct engine *d, size_t i, long j, const double *xj, const struct plate_interaction *it,
+    double *hist, double F[3], double Ti[3], struct engine_rec *rec, struct engine_sums *sums)
 {
 	const double *n = it->n, *xi = d->x + 3 * i;
 	int wall = PACK_IS_WALL(j), M = it->m, k, a;
@@ -395,7 +395,7 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
 			if (!wall)
 				br[a] = xi[a] - xj[a];
 		}
-		pdem_count(d, i, j, br, Fc, fel, M, sums);
+		engine_count(d, i, j, br, Fc, fel, M, sums);
 	}
 }
 
@@ -403,7 +403,7 @@ interaction_force(const struct pdem *d, size_t i, long j, const double *xj, cons
  * centre (its nearest image) into xj for a pair: its element count, 0 when the bounding
  * spheres overlap but the grains do not touch. */
 static int
-interaction_of(const struct pdem *d, const struct contact *c, struct plate_interaction *it, double xj[3])
+interaction_of(const struct engine *d, const struct contact *c, struct plate_interaction *it, double xj[3])
 {
 	const struct plate_grains g = {d->x, d->R, d->half, d->r, d->lo, d->hi};
 
@@ -413,10 +413,10 @@ interaction_of(const struct pdem *d, const struct contact *c, struct plate_inter
 /* A pair's interaction through its cache (remade when it may have gone stale), with
  * j's centre (its nearest image) into xj. */
 static int
-pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_interaction *it, double xj[3])
+pair_interaction_cached(struct engine *d, const struct contact *c, struct plate_interaction *it, double xj[3])
 {
 	size_t k = contact_pair_index(&d->ce, c), i = c->i, j = (size_t)c->j;
-	struct pdem_cache *pc = &d->pcache[k];
+	struct engine_cache *pc = &d->pcache[k];
 	struct plate_body a, b;
 	double turns = d->turn[i] + d->turn[j];
 	int build = pc->list != d->ce.rebuilds, m, q;
@@ -452,7 +452,7 @@ pair_interaction_cached(struct pdem *d, const struct contact *c, struct plate_in
 
 /* Where pair c's record is: its place in the list's columns, the order the gather reads. */
 static size_t
-pair_record(const struct pdem *d, const struct contact *c)
+pair_record(const struct engine *d, const struct contact *c)
 {
 	return d->ce.col_pos[contact_pair_index(&d->ce, c)];
 }
@@ -460,8 +460,8 @@ pair_record(const struct pdem *d, const struct contact *c)
 /* One walk of a block of rows: its sums, and the force and torque the row's grain has got
  * so far from its own pairs and walls. */
 struct force_walk {
-	struct pdem *d;
-	struct pdem_sums s;
+	struct engine *d;
+	struct engine_sums s;
 	double F[3], T[3];
 };
 
@@ -471,9 +471,9 @@ static int
 on_contact(const struct contact *c, void *vw)
 {
 	struct force_walk *fw = vw;
-	struct pdem *d = fw->d;
+	struct engine *d = fw->d;
 	struct plate_interaction it;
-	struct pdem_rec jrec;
+	struct engine_rec jrec;
 	double xj[3], F[3], T[3];
 	int wall = PACK_IS_WALL(c->j), m, a;
 	size_t k = 0;
@@ -503,7 +503,7 @@ on_contact(const struct contact *c, void *vw)
 
 /* Grain i's rotation matrix and its angular velocity in the lab's frame. */
 static inline void
-rotation_refresh(struct pdem *d, size_t i)
+rotation_refresh(struct engine *d, size_t i)
 {
 	const double *R = d->R + 9 * i, *wb = d->w + 3 * i;
 	int a;
@@ -514,7 +514,7 @@ rotation_refresh(struct pdem *d, size_t i)
 }
 
 static void
-refresh_rotations(struct pdem *d)
+refresh_rotations(struct engine *d)
 {
 	size_t i;
 
@@ -527,7 +527,7 @@ refresh_rotations(struct pdem *d)
  * (the nearer of q0 and -q0, q0 the orientation at the last pass) times the core's radius
  * half sqrt 2. */
 static double
-core_turn(const struct pdem *d, size_t i)
+core_turn(const struct engine *d, size_t i)
 {
 	const double *q = d->q + 4 * i, *q0 = d->q0 + 4 * i;
 	double dp = 0, dm = 0;
@@ -545,12 +545,12 @@ core_turn(const struct pdem *d, size_t i)
  * the branch vector and the turns, not the list); the others are of no list yet.  A list
  * built twice since the last pass, or caches of none, carry nothing.  0 or -1. */
 static int
-cache_carry(struct pdem *d)
+cache_carry(struct engine *d)
 {
 	const struct contact_enum *e = &d->ce;
 	const struct nlist *old = &e->prev, *nl = &e->nl;
 	size_t i, k, np = nl->npairs, cap = np + np / 4 + 16;
-	struct pdem_cache *pc = malloc(cap * sizeof *pc);
+	struct engine_cache *pc = malloc(cap * sizeof *pc);
 	int carry = d->cache_list > 0 && d->cache_list == e->rebuilds - 1 && old->first && d->pcache;
 
 	if (!pc) {
@@ -588,7 +588,7 @@ cache_carry(struct pdem *d)
  * the turns afresh.  One loop over the grains for both: each parallel region costs two
  * threads a wake-up.  A pack of spheres: the rotations alone. */
 static void
-rotations_and_turns(struct pdem *d)
+rotations_and_turns(struct engine *d)
 {
 	size_t i;
 
@@ -614,11 +614,11 @@ rotations_and_turns(struct pdem *d)
 }
 
 /* The list brought up to date for the current positions and orientations (pruned at its
- * builds, struct pdem's prune), and with the narrow phase kept, the caches' room and list
+ * builds, struct engine's prune), and with the narrow phase kept, the caches' room and list
  * (cache_carry).  A run's first pass, or one after its state was read (cache_list 0), makes
  * every cache anew.  0 or -1. */
 static int
-list_update(struct pdem *d, int force)
+list_update(struct engine *d, int force)
 {
 	rotations_and_turns(d);
 	if (contact_enum_update(&d->ce, d->x, force))
@@ -632,7 +632,7 @@ list_update(struct pdem *d, int force)
  * columns (contact_enum_columns: the pairs (m, j), m < j, of each grain j by ascending m, and
  * their entries), for the gather.  0 or -1. */
 static int
-records_fit(struct pdem *d)
+records_fit(struct engine *d)
 {
 	size_t np = d->ce.nl.npairs;
 
@@ -640,7 +640,7 @@ records_fit(struct pdem *d)
 		return 0;
 	if (np + 1 > d->rcap) {
 		size_t cap = np + np / 4 + 16;
-		struct pdem_rec *r = realloc(d->prec, cap * sizeof *r);
+		struct engine_rec *r = realloc(d->prec, cap * sizeof *r);
 		unsigned char *t;
 
 		if (!r)
@@ -662,10 +662,10 @@ oom:
 }
 
 int
-pdem_sums_fit(struct pdem *d, size_t nb)
+engine_sums_fit(struct engine *d, size_t nb)
 {
 	if (nb > d->sums_cap) {
-		struct pdem_sums *ns = realloc(d->sums, nb * sizeof *ns);
+		struct engine_sums *ns = realloc(d->sums, nb * sizeof *ns);
 		if (!ns) {
 			msg_seterr("out of memory");
 			return -1;
@@ -677,7 +677,7 @@ pdem_sums_fit(struct pdem *d, size_t nb)
 }
 
 void
-pdem_sums_total(struct pdem *d, size_t nb)
+engine_sums_total(struct engine *d, size_t nb)
 {
 	size_t b;
 	int w, a;
@@ -688,7 +688,7 @@ pdem_sums_total(struct pdem *d, size_t nb)
 	d->ninter = d->nwall = d->nelem = d->zends = 0;
 	d->sum_f = 0;
 	for (b = 0; b < nb; b++) {
-		const struct pdem_sums *s = &d->sums[b];
+		const struct engine_sums *s = &d->sums[b];
 
 		for (w = 0; w < NWALLS; w++) {
 			d->wallf[w] += s->wallf[w];
@@ -708,7 +708,7 @@ pdem_sums_total(struct pdem *d, size_t nb)
  * set-up) made two threads 4-14 % slower on the pruned list at 8000 plates (least wall times
  * of three alternating runs at eta 0.14, 0.5, 0.8). */
 size_t
-pdem_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t)
+engine_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t t)
 {
 	size_t n = nl->n, b;
 	double want = (double)nl->first[n] * (double)t / (double)T;
@@ -730,23 +730,23 @@ pdem_blocks_share(const struct nlist *nl, size_t bl, size_t nb, size_t T, size_t
  * order: the pairs (m, i) by ascending m, then i's own pairs and walls.  The block sums are
  * added in block order.  So no sum depends on which thread did what. */
 int
-pdem_forces(struct pdem *d)
+engine_forces(struct engine *d)
 {
 	struct contact_enum *e = &d->ce;
 	size_t n = d->n, bl = par_block(n), nb = (n + bl - 1) / bl;
 	int err = 0;
 
 	if (d->spheres)
-		return pdem_sphere_forces(d);
+		return engine_sphere_forces(d);
 	d->threads = par_threads() > 1 && nb > 1;
-	if (list_update(d, 0) || records_fit(d) || pdem_sums_fit(d, nb))
+	if (list_update(d, 0) || records_fit(d) || engine_sums_fit(d, nb))
 		return -1;
 #pragma omp parallel if (d->threads)
 	{
 		size_t team = (size_t)par_team(), tid = (size_t)par_tid();
-		size_t b0 = pdem_blocks_share(&e->nl, bl, nb, team, tid), b1 = pdem_blocks_share(&e->nl, bl, nb, team, tid + 1), bb;
+		size_t b0 = engine_blocks_share(&e->nl, bl, nb, team, tid), b1 = engine_blocks_share(&e->nl, bl, nb, team, tid + 1), bb;
 
-		/* each thread a run of blocks, of about equal work (pdem_blocks_share): so the records,
+		/* each thread a run of blocks, of about equal work (engine_blocks_share): so the records,
 		 * rotations and rows it writes stay mostly in its own core's cache (blocks taken
 		 * as they come cost two threads 10 % more CPU at 8000 plates; equal runs of grains,
 		 * a third more time on the first thread than on the second) */
@@ -782,7 +782,7 @@ pdem_forces(struct pdem *d)
 
 			for (q = e->col_first[i]; q < e->col_first[i + 1]; q++)
 				if (d->ptouch[q]) {
-					const struct pdem_rec *r = &d->prec[q];
+					const struct engine_rec *r = &d->prec[q];
 					for (a = 0; a < 3; a++)
 						F[a] -= r->F[a], T[a] += r->Tj[a];
 					d->ptouch[q] = 0;	/* for the next pass */
@@ -795,13 +795,13 @@ pdem_forces(struct pdem *d)
 	}
 	if (err)
 		return -1;
-	pdem_sums_total(d, nb);
+	engine_sums_total(d, nb);
 	return 0;
 }
 
 struct interaction_pass {
-	struct pdem *d;
-	pdem_interaction_fn fn;
+	struct engine *d;
+	engine_interaction_fn fn;
 	void *ctx;
 };
 
@@ -819,7 +819,7 @@ on_interaction(const struct contact *c, void *v)
 }
 
 int
-pdem_foreach_interaction(struct pdem *d, int rebuild, pdem_interaction_fn fn, void *ctx)
+engine_foreach_interaction(struct engine *d, int rebuild, engine_interaction_fn fn, void *ctx)
 {
 	struct interaction_pass ip = {d, fn, ctx};
 
@@ -882,7 +882,7 @@ translate(double *x, double *vel, const double *force, const double *mob, size_t
 }
 
 /* A sphere's step: translate's, and its spin, component by component (one pass over its
- * numbers: packgen's hot loop).  Its frame is the lab's (pdem_start) and its inertia
+ * numbers: packgen's hot loop).  Its frame is the lab's (engine_start) and its inertia
  * isotropic, so Euler's equations are w' = t / J. */
 static inline void
 step_sphere(double *x, double *v, double *w, const double *f, const double *t, const double *mob, size_t i, double dt,
@@ -902,7 +902,7 @@ step_sphere(double *x, double *v, double *w, const double *f, const double *t, c
 }
 
 void
-pdem_integrate(struct pdem *d)
+engine_integrate(struct engine *d)
 {
 	double dt = d->dt, al = d->damping, keep = 1 - d->viscous;
 	long ii;
@@ -964,7 +964,7 @@ pdem_integrate(struct pdem *d)
 }
 
 double
-pdem_kinetic(const struct pdem *d, double L[3])
+engine_kinetic(const struct engine *d, double L[3])
 {
 	double e = 0, Lt[3] = {0, 0, 0}, R[9];
 	size_t i;
@@ -991,19 +991,19 @@ pdem_kinetic(const struct pdem *d, double L[3])
 }
 
 double
-pdem_unbalanced(const struct pdem *d)
+engine_unbalanced(const struct engine *d)
 {
 	return dem_unbalanced(d->f, d->n, d->sum_f, d->ninter);
 }
 
 void
-pdem_wrap(struct pdem *d)
+engine_wrap(struct engine *d)
 {
 	pack_wrap_centres(d->x, d->n, d->lo, d->hi, d->periodic);
 }
 
 int
-pdem_make_periodic(struct pdem *d, const int periodic[3])
+engine_make_periodic(struct engine *d, const int periodic[3])
 {
 	double skin = d->ce.skin, rbmax = 0;
 	size_t i;
@@ -1021,7 +1021,7 @@ pdem_make_periodic(struct pdem *d, const int periodic[3])
 		}
 	for (a = 0; a < 3; a++)
 		d->periodic[a] = d->periodic[a] || periodic[a];
-	pdem_wrap(d);
+	engine_wrap(d);
 	contact_enum_free(&d->ce);
 	d->rec_builds = d->x_builds = -1;	/* a new list: new entries */
 	for (i = 0; i < d->pcap; i++)
@@ -1042,7 +1042,7 @@ struct history_pass {
 /* The pair constants (R* set) and the elements' overlaps of interaction it of grain i with
  * j, for the law's history conversions. */
 static void
-history_elems(const struct pdem *d, size_t i, long j, const struct plate_interaction *it, struct law_pair *lp,
+history_elems(const struct engine *d, size_t i, long j, const struct plate_interaction *it, struct law_pair *lp,
     struct law_dem_elems *in)
 {
 	int k;
@@ -1058,7 +1058,7 @@ history_elems(const struct pdem *d, size_t i, long j, const struct plate_interac
 }
 
 static int
-on_history(const struct pdem *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist,
+on_history(const struct engine *d, size_t i, long j, const double *xj, const struct plate_interaction *it, double *hist,
     void *vh)
 {
 	struct history_pass *hp = vh;
@@ -1101,7 +1101,7 @@ on_history(const struct pdem *d, size_t i, long j, const double *xj, const struc
 }
 
 int
-pdem_read_history(struct pdem *d, struct pack *p)
+engine_read_history(struct engine *d, struct pack *p)
 {
 	struct history_pass hp = {p, NULL, 0};
 	long *keys;
@@ -1112,13 +1112,13 @@ pdem_read_history(struct pdem *d, struct pack *p)
 	if (!(keys = pack_history_keys(p)))
 		return -1;
 	hp.keys = keys;
-	status = pdem_foreach_interaction(d, 1, on_history, &hp);
+	status = engine_foreach_interaction(d, 1, on_history, &hp);
 	free(keys);
 	return status;
 }
 
 int
-pdem_write_back(struct pdem *d, struct pack *p)
+engine_write_back(struct engine *d, struct pack *p)
 {
 	struct history_pass hp = {p, NULL, 0};
 	size_t i;
@@ -1127,7 +1127,7 @@ pdem_write_back(struct pdem *d, struct pack *p)
 	for (i = 0; i < d->n; i++) {
 		for (a = 0; a < 3; a++)
 			p->x[3 * i + a] = d->x[3 * i + a] * d->u_len;
-		if (p->q && d->half[i] > 0)	/* a sphere keeps the pack's (pdem_start) */
+		if (p->q && d->half[i] > 0)	/* a sphere keeps the pack's (engine_start) */
 			memcpy(p->q + 4 * i, d->q + 4 * i, 4 * sizeof *p->q);
 	}
 	for (a = 0; a < 3; a++) {
@@ -1141,7 +1141,7 @@ pdem_write_back(struct pdem *d, struct pack *p)
 		memcpy(p->glue, d->glue, d->n);
 	}
 	p->nc = 0;
-	if (pdem_foreach_interaction(d, 0, on_history, &hp) < 0 || hp.err) {
+	if (engine_foreach_interaction(d, 0, on_history, &hp) < 0 || hp.err) {
 		msg_seterr("out of memory for the contact lines");
 		return -1;
 	}
@@ -1183,7 +1183,7 @@ spring_before(const long *a, const long *b)
 }
 
 int
-pdem_state_write(const struct pdem *d, FILE *fp)
+engine_state_write(const struct engine *d, FILE *fp)
 {
 	size_t i, m = contact_enum_history_get(&d->ce, NULL, NULL), hs = d->ce.hsize;
 	long *ij = malloc((m ? m : 1) * 2 * sizeof *ij);
@@ -1228,7 +1228,7 @@ pdem_state_write(const struct pdem *d, FILE *fp)
 }
 
 int
-pdem_state_read(struct pdem *d, struct lines *in)
+engine_state_read(struct engine *d, struct lines *in)
 {
 	double v[NWALLS * 3 + 3], *h = NULL;
 	long *ij = NULL, hdr[3];

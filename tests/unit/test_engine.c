@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* test_platedem: the spheroplate DEM (lib/dem/platedem.c) against conservation laws and
+/* test_engine: the spheroplate DEM (lib/dem/engine.c) against conservation laws and
  * closed forms: the shape's volume and inertia by Monte Carlo, a torque-free spinning plate,
  * head-on collisions' restitution, a plate pressed on a wall, a pack at rest. */
 #include "unit.h"
-#include "dem/platedem.h"
+#include "dem/engine.h"
 #include "dem/platepack.h"
 #include "contact/law.h"
 #include "base/msg.h"
@@ -91,14 +91,14 @@ one_plate_pack(struct pack *p, double eta, double boxhalf)
  * being the mean of the half steps before and after (the leapfrog's w lags by dt/2, which
  * would show as an O(dt) error in L's direction that is only a matter of when L is read). */
 static void
-synced_L(struct pdem *d, double L[3])
+synced_L(struct engine *d, double L[3])
 {
 	double q[4], w0[3], w[3], R[9], Jw[3];
 	int a;
 
 	memcpy(q, d->q, sizeof q);
 	memcpy(w0, d->w, sizeof w0);
-	pdem_integrate(d);
+	engine_integrate(d);
 	quat_to_matrix(q, R);
 	for (a = 0; a < 3; a++)
 		w[a] = 0.5 * (w0[a] + d->w[a]), Jw[a] = d->J[a] * w[a];
@@ -112,26 +112,26 @@ static double
 spin(double rate, long nsteps, double *de, double *dl)
 {
 	struct pack p;
-	struct pdem d;
-	struct pdem_params pp;
+	struct engine d;
+	struct engine_params pp;
 	double L0[3], L1[3], e0, e1, c;
 	long s;
 
 	one_plate_pack(&p, 0.5, 100);
-	pdem_params_default(&pp);
-	if (pdem_init(&d, &p, &pp))
+	engine_params_default(&pp);
+	if (engine_init(&d, &p, &pp))
 		return NAN;
 	d.w[0] = 0.3 * rate / d.dt, d.w[1] = -0.2 * rate / d.dt, d.w[2] = 1.0 * rate / d.dt;
-	e0 = pdem_kinetic(&d, NULL);
+	e0 = engine_kinetic(&d, NULL);
 	synced_L(&d, L0);
 	for (s = 1; s < nsteps; s++)
-		pdem_integrate(&d);
+		engine_integrate(&d);
 	synced_L(&d, L1);
-	e1 = pdem_kinetic(&d, NULL);
+	e1 = engine_kinetic(&d, NULL);
 	c = vec3_dot(L0, L1) / (vec3_norm(L0) * vec3_norm(L1));
 	*de = e1 / e0 - 1;
 	*dl = vec3_norm(L1) / vec3_norm(L0) - 1;
-	pdem_free(&d);
+	engine_free(&d);
 	p.side = p.q = NULL;
 	pack_free(&p);
 	return acos(fmin(1, c));
@@ -187,18 +187,18 @@ static double
 collide(const struct contact_law *law, double eta, int wall, double e_asked, double dtf, double *maxh)
 {
 	struct pack p;
-	struct pdem d;
-	struct pdem_params pp;
+	struct engine d;
+	struct engine_params pp;
 	double v0, v1;
 	long s;
 
 	two_grains(&p, eta, wall);
-	pdem_params_default(&pp);
-	pdem_params_law(&pp, law);
+	engine_params_default(&pp);
+	engine_params_law(&pp, law);
 	pp.restitution = e_asked;
 	pp.dt_factor = dtf;
 	pp.mu = pp.wall_mu = 0.58;
-	if (pdem_init(&d, &p, &pp))
+	if (engine_init(&d, &p, &pp))
 		return NAN;
 	/* unit closing speed in the scaled units */
 	d.v[2] = wall ? -1e-3 : 0.5e-3;
@@ -207,15 +207,15 @@ collide(const struct contact_law *law, double eta, int wall, double e_asked, dou
 	v0 = 1e-3;
 	*maxh = 0;
 	for (s = 0; s < 2000000; s++) {
-		if (pdem_forces(&d))
+		if (engine_forces(&d))
 			return NAN;
 		if (d.ninter == 0 && s > 10 && (wall ? d.v[2] > 0 : d.v[5] > d.v[2]))
 			break;
-		pdem_integrate(&d);
+		engine_integrate(&d);
 		*maxh = fmax(*maxh, (double)d.nelem);
 	}
 	v1 = wall ? d.v[2] : d.v[5] - d.v[2];
-	pdem_free(&d);
+	engine_free(&d);
 	p.side = p.q = NULL;
 	pack_free(&p);
 	return v1 / v0;
@@ -260,54 +260,54 @@ test_restitution(void)
 	}
 }
 
-/* The stiffness number of either law (pdem_kappa): two grains of E 1e9 Pa, nu 0.2 (E* of
+/* The stiffness number of either law (engine_kappa): two grains of E 1e9 Pa, nu 0.2 (E* of
  * two of them E / (2 (1 - nu^2)) = 5.2083e8 Pa) and spheroradius r = 1 at sigma 1e3 Pa:
  * Hertz (E* / sigma)^(2/3) = 6473.4; linear k_n / (sigma r) = 100 at k_n 1e5 N/m; and
- * pdem_kappa_stress its inverse. */
+ * engine_kappa_stress its inverse. */
 static void
 test_kappa(void)
 {
 	struct pack p;
-	struct pdem_params pp;
+	struct engine_params pp;
 	double Es = 1e9 / (2 * (1 - 0.04)), k;
 
 	two_grains(&p, 0, 0);
-	pdem_params_default(&pp);
-	pdem_params_law(&pp, &contact_law_hertz_mindlin);
-	CHECK(fabs(pdem_mean_Estar(&p) / Es - 1) < 1e-15, "kappa: E* of the mean grains %.6g Pa (want %.6g)",
-	    pdem_mean_Estar(&p), Es);
-	k = pdem_kappa(&p, &pp, 1e3);
+	engine_params_default(&pp);
+	engine_params_law(&pp, &contact_law_hertz_mindlin);
+	CHECK(fabs(engine_mean_Estar(&p) / Es - 1) < 1e-15, "kappa: E* of the mean grains %.6g Pa (want %.6g)",
+	    engine_mean_Estar(&p), Es);
+	k = engine_kappa(&p, &pp, 1e3);
 	CHECK(fabs(k / pow(Es / 1e3, 2.0 / 3.0) - 1) < 1e-14 && fabs(k - 6473.4) < 0.1,
 	    "kappa: Hertz (E*/sigma)^(2/3) = %.1f", k);
-	CHECK(fabs(pdem_kappa_stress(&p, &pp, k) / 1e3 - 1) < 1e-14, "kappa: Hertz, the stress of its kappa is the stress");
-	CHECK(pp.kt / pp.kn == contact_law_hertz_mindlin.kt_ratio, "kappa: pdem_params_law sets Hertz's kt / kn");
-	pdem_params_default(&pp);
+	CHECK(fabs(engine_kappa_stress(&p, &pp, k) / 1e3 - 1) < 1e-14, "kappa: Hertz, the stress of its kappa is the stress");
+	CHECK(pp.kt / pp.kn == contact_law_hertz_mindlin.kt_ratio, "kappa: engine_params_law sets Hertz's kt / kn");
+	engine_params_default(&pp);
 	pp.kn = 1e5;
-	k = pdem_kappa(&p, &pp, 1e3);
+	k = engine_kappa(&p, &pp, 1e3);
 	CHECK(fabs(k - 100) < 1e-12, "kappa: linear k_n / (sigma r) = %.6g", k);
-	CHECK(fabs(pdem_kappa_stress(&p, &pp, 100) - 1e3) < 1e-9, "kappa: linear, the stress of its kappa is the stress");
+	CHECK(fabs(engine_kappa_stress(&p, &pp, 100) - 1e3) < 1e-9, "kappa: linear, the stress of its kappa is the stress");
 	p.side = p.q = NULL;
 	pack_free(&p);
 }
 
-/* The shear's cache margin (pdem_shear_cache_margin): 0.0075 of the plates' mean core
- * half-side (spheres left out), within [0.005, PDEM_CACHE_MARGIN]. */
+/* The shear's cache margin (engine_shear_cache_margin): 0.0075 of the plates' mean core
+ * half-side (spheres left out), within [0.005, ENGINE_CACHE_MARGIN]. */
 static void
 test_shear_margin(void)
 {
 	double half[4] = {0, 1, 3, 0};
-	struct pdem d;
+	struct engine d;
 
 	memset(&d, 0, sizeof d);
 	d.half = half, d.n = 4;
-	CHECK(fabs(pdem_shear_cache_margin(&d) - 0.015) < 1e-15, "shear margin: half-sides 1 and 3 (and spheres): %g, want 0.015",
-	    pdem_shear_cache_margin(&d));
+	CHECK(fabs(engine_shear_cache_margin(&d) - 0.015) < 1e-15, "shear margin: half-sides 1 and 3 (and spheres): %g, want 0.015",
+	    engine_shear_cache_margin(&d));
 	half[1] = half[2] = 0.163;	/* eta 0.14's cores */
-	CHECK(pdem_shear_cache_margin(&d) == 0.005, "shear margin: small cores take the floor 0.005");
+	CHECK(engine_shear_cache_margin(&d) == 0.005, "shear margin: small cores take the floor 0.005");
 	half[1] = half[2] = 4;	/* eta 0.8's */
-	CHECK(pdem_shear_cache_margin(&d) == PDEM_CACHE_MARGIN, "shear margin: large cores take the default");
+	CHECK(engine_shear_cache_margin(&d) == ENGINE_CACHE_MARGIN, "shear margin: large cores take the default");
 	half[1] = half[2] = 0;
-	CHECK(pdem_shear_cache_margin(&d) == PDEM_CACHE_MARGIN, "shear margin: spheres only, the default");
+	CHECK(engine_shear_cache_margin(&d) == ENGINE_CACHE_MARGIN, "shear margin: spheres only, the default");
 }
 
 /* Both laws on both shapes: an elastic head-on collision (restitution 1: no damping) of two
@@ -319,37 +319,37 @@ static double
 impact(const struct contact_law *law, double eta, int *m, double *e, double *ms, double *es, double *rs)
 {
 	struct pack p;
-	struct pdem d;
-	struct pdem_params pp;
+	struct engine d;
+	struct engine_params pp;
 	double hmax = 0;
 	long s;
 
 	two_grains(&p, eta, 0);
-	pdem_params_default(&pp);
+	engine_params_default(&pp);
 	pp.law = law;
 	pp.restitution = 1;
 	pp.dt_factor = law == &contact_law_linear ? 0.002 : 0.01;	/* a collision: 2000 steps or more */
 	*m = 0;
 	*e = NAN;
-	if (pdem_init(&d, &p, &pp))
+	if (engine_init(&d, &p, &pp))
 		return NAN;
 	d.v[2] = 0.5e-3;
 	d.v[5] = -0.5e-3;
 	for (s = 0; s < 4000000; s++) {
-		if (pdem_forces(&d))
+		if (engine_forces(&d))
 			break;
 		if (d.ninter == 0 && s > 10 && d.v[5] > d.v[2]) {
 			*e = (d.v[5] - d.v[2]) / 1e-3;
 			break;
 		}
-		pdem_integrate(&d);
+		engine_integrate(&d);
 		hmax = fmax(hmax, 2 * d.r[0] - (d.x[5] - d.x[2]));
 		*m = *m > (int)d.nelem ? *m : (int)d.nelem;
 	}
 	*ms = d.m[0] / 2;
 	*es = d.lp_grain.Es;
 	*rs = d.r[0] / 2;
-	pdem_free(&d);
+	engine_free(&d);
 	p.side = p.q = NULL;
 	pack_free(&p);
 	return hmax;
@@ -390,9 +390,9 @@ static void
 test_pressed_plate(void)
 {
 	struct pack p;
-	struct pdem d;
-	struct pdem_params pp;
-	/* r = 1 m and rho = 1 make the scaled units of platedem.h metres and seconds (k_n = 1) */
+	struct engine d;
+	struct engine_params pp;
+	/* r = 1 m and rho = 1 make the scaled units of engine.h metres and seconds (k_n = 1) */
 	double eta = 0.5, R = 1 / (1 - eta), r = shape_spheroradius(R, eta), L = shape_plate_side(R, eta, SHAPE_R_EDGE);
 	double h = 0.01;
 	double x[3] = {0, 0, -10 + r - h}, a = 0.005, qt[4] = {cos(a / 2), sin(a / 2), 0, 0};
@@ -404,18 +404,18 @@ test_pressed_plate(void)
 	side[0] = L;
 	p.side = side, p.q = q;
 	p.box[0] = p.box[1] = p.box[2] = -10, p.box[3] = p.box[4] = p.box[5] = 10;
-	pdem_params_default(&pp);
-	if (pdem_init(&d, &p, &pp)) {
-		CHECK(0, "pressed plate: pdem_init failed");
+	engine_params_default(&pp);
+	if (engine_init(&d, &p, &pp)) {
+		CHECK(0, "pressed plate: engine_init failed");
 		return;
 	}
-	pdem_forces(&d);
+	engine_forces(&d);
 	fz = d.f[2];
 	CHECK(unit_close(fz, 4 * h, 1e-12, 0) && fabs(d.f[0]) + fabs(d.f[1]) < 1e-15 && vec3_norm(d.t) < 1e-14 &&
 	    d.nelem == 4, "pressed plate: face down at h carries 4 k_n h = %.6g (got %.6g, %zu elements), no couple",
 	    4 * h, fz, d.nelem);
 	memcpy(d.q, qt, sizeof qt);
-	pdem_forces(&d);
+	engine_forces(&d);
 	{
 		/* corners at y = +-L/2 sit at z = x_z -+ ... : depth h + (L/2) sin a for y < 0 */
 		double s = L / 2 * sin(a), c = L / 2 * cos(a), hp = h - s, hm = h + s;
@@ -426,7 +426,7 @@ test_pressed_plate(void)
 	}
 	CHECK(unit_close(fz, want_f, 1e-12, 0) && unit_close(tx, want_t, 1e-9, 0),
 	    "pressed plate: tilted by 0.005 rad, force %.6g (want %.6g), couple %.6g (want %.6g)", fz, want_f, tx, want_t);
-	pdem_free(&d);
+	engine_free(&d);
 	p.side = p.q = NULL;
 	pack_free(&p);
 }
@@ -434,26 +434,26 @@ test_pressed_plate(void)
 /* The largest move of any grain (over r) in nsteps undamped steps from pack p, with or without
  * the tangential springs of its contact lines. */
 static double
-largest_move(struct pack *p, const struct pdem_params *dyn, int history, long nsteps)
+largest_move(struct pack *p, const struct engine_params *dyn, int history, long nsteps)
 {
-	struct pdem d;
+	struct engine d;
 	double *x0, moved = 0;
 	size_t k;
 	long s;
 
-	if (pdem_init(&d, p, dyn) || (history && pdem_read_history(&d, p)))
+	if (engine_init(&d, p, dyn) || (history && engine_read_history(&d, p)))
 		return NAN;
 	x0 = malloc(3 * d.n * sizeof *x0);
 	memcpy(x0, d.x, 3 * d.n * sizeof *x0);
-	pdem_forces(&d);
+	engine_forces(&d);
 	for (s = 0; s < nsteps; s++) {
-		pdem_integrate(&d);
-		pdem_forces(&d);
+		engine_integrate(&d);
+		engine_forces(&d);
 	}
 	for (k = 0; k < 3 * d.n; k++)
 		moved = fmax(moved, fabs(d.x[k] - x0[k]));
 	free(x0);
-	pdem_free(&d);
+	engine_free(&d);
 	return moved;
 }
 
@@ -513,8 +513,8 @@ run_box(double eta, double margin, int prune, int threads, long steps, double *s
     size_t *nelem, size_t *listed)
 {
 	struct pack p;
-	struct pdem d;
-	struct pdem_params pp;
+	struct engine d;
+	struct engine_params pp;
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
 	double R = 1, x[3], q[4], u[3], g = eta > 0.5 ? 2.6 : 1.9;
 	size_t i, n = 6 * 6 * 8, k;
@@ -534,11 +534,11 @@ run_box(double eta, double margin, int prune, int threads, long steps, double *s
 	for (a = 0; a < 3; a++)
 		p.box[a] = -1.1 * R, p.box[3 + a] = g * R * (a == 2 ? 8 : 6) - (g - 1.1) * R;
 	p.periodic[0] = p.periodic[2] = 1;
-	pdem_params_default(&pp);
+	engine_params_default(&pp);
 	pp.kn = pp.kt = 1;
 	par_set_threads(threads);
-	if (pdem_init(&d, &p, &pp)) {
-		CHECK(0, "cached DEM: pdem_init: %s", msg_geterr());
+	if (engine_init(&d, &p, &pp)) {
+		CHECK(0, "cached DEM: engine_init: %s", msg_geterr());
 		return -1;
 	}
 	d.cache_margin = margin;
@@ -551,14 +551,14 @@ run_box(double eta, double margin, int prune, int threads, long steps, double *s
 	}
 	*nelem = *listed = 0;
 	for (s = 0; s < steps; s++) {
-		if (pdem_forces(&d)) {
-			CHECK(0, "cached DEM: pdem_forces: %s", msg_geterr());
+		if (engine_forces(&d)) {
+			CHECK(0, "cached DEM: engine_forces: %s", msg_geterr());
 			return -1;
 		}
 		*nelem += d.nelem;
 		*listed += d.ce.nl.npairs;
-		pdem_integrate(&d);
-		pdem_wrap(&d);
+		engine_integrate(&d);
+		engine_wrap(&d);
 	}
 	memcpy(state, d.x, 3 * n * sizeof *state);
 	memcpy(state + 3 * n, d.q, 4 * n * sizeof *state);
@@ -568,7 +568,7 @@ run_box(double eta, double margin, int prune, int threads, long steps, double *s
 	memcpy(state + 16 * n, d.t, 3 * n * sizeof *state);
 	*cache_builds = d.cache_builds;
 	*lists = d.ce.rebuilds;
-	pdem_free(&d);
+	engine_free(&d);
 	pack_free(&p);
 	gsl_rng_free(rng);
 	par_set_threads(0);
@@ -585,8 +585,8 @@ static void
 run_spinning_pair(int prune, long steps, double *state, size_t *nelem, long *lists)
 {
 	struct pack p;
-	struct pdem d;
-	struct pdem_params pp;
+	struct engine d;
+	struct engine_params pp;
 	double eta = 0.8, R = 1 / (1 - eta), r = shape_spheroradius(R, eta), L = shape_plate_side(R, eta, SHAPE_R_EDGE);
 	double skin = 0.1 * (r + L / 2 * M_SQRT2), x[3] = {0, 0, 0};
 	static double side[2], q[8] = {1, 0, 0, 0, 1, 0, 0, 0};
@@ -599,10 +599,10 @@ run_spinning_pair(int prune, long steps, double *state, size_t *nelem, long *lis
 	side[0] = side[1] = L;
 	p.side = side, p.q = q;
 	p.box[0] = p.box[1] = p.box[2] = -4 * L, p.box[3] = p.box[4] = p.box[5] = 4 * L;
-	pdem_params_default(&pp);
+	engine_params_default(&pp);
 	*nelem = 0;
-	if (pdem_init(&d, &p, &pp)) {
-		CHECK(0, "spinning pair: pdem_init: %s", msg_geterr());
+	if (engine_init(&d, &p, &pp)) {
+		CHECK(0, "spinning pair: engine_init: %s", msg_geterr());
 		p.side = p.q = NULL;
 		pack_free(&p);
 		return;
@@ -613,7 +613,7 @@ run_spinning_pair(int prune, long steps, double *state, size_t *nelem, long *lis
 	}
 	d.w[2] = 0.35 / (400 * d.dt);	/* 20 degrees in 400 steps, about its normal (body axis 3) */
 	for (s = 0; s < steps; s++) {
-		if (pdem_forces(&d))
+		if (engine_forces(&d))
 			break;
 		*nelem += d.nelem;
 		memcpy(state + 19 * 2 * s, d.x, 6 * sizeof *state);
@@ -621,10 +621,10 @@ run_spinning_pair(int prune, long steps, double *state, size_t *nelem, long *lis
 		memcpy(state + 19 * 2 * s + 14, d.f, 6 * sizeof *state);
 		memcpy(state + 19 * 2 * s + 20, d.t, 6 * sizeof *state);
 		memcpy(state + 19 * 2 * s + 26, d.w, 6 * sizeof *state);
-		pdem_integrate(&d);
+		engine_integrate(&d);
 	}
 	*lists = d.ce.rebuilds;
-	pdem_free(&d);
+	engine_free(&d);
 	p.side = p.q = NULL;
 	pack_free(&p);
 }
@@ -666,8 +666,8 @@ test_cache_and_threads(void)
 
 	for (k = 0; k < 2; k++) {
 		if (run_box(etas[k], 0, 0, 1, steps, s0, &b0, &p0, &e0, &l0) < 0 ||
-		    run_box(etas[k], PDEM_CACHE_MARGIN, 1, 1, steps, s1, &b1, &p1, &e1, &l1) < 0 ||
-		    run_box(etas[k], PDEM_CACHE_MARGIN, 1, 2, steps, s2, &b2, &p2, &e2, &l2) < 0)
+		    run_box(etas[k], ENGINE_CACHE_MARGIN, 1, 1, steps, s1, &b1, &p1, &e1, &l1) < 0 ||
+		    run_box(etas[k], ENGINE_CACHE_MARGIN, 1, 2, steps, s2, &b2, &p2, &e2, &l2) < 0)
 			break;
 		CHECK(!memcmp(s0, s1, len * sizeof *s0) && e0 == e1 && e1 > (size_t)steps * 10 && b1 > 1000 && p1 > 10,
 		    "cached DEM eta %.2f: %ld steps with the narrow phase cached on the pruned list (%ld caches made, %ld "
