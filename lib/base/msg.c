@@ -107,3 +107,20 @@ msg_gsl_handler_install(void)
 {
 	gsl_set_error_handler(gsl_handler);
 }
+
+void
+msg_list_add(char *buf, size_t size, const char *fmt, ...)
+{
+	size_t at = strlen(buf);
+	va_list ap;
+
+	if (at + 1 >= size)
+		return;
+	if (at)
+		at += (size_t)snprintf(buf + at, size - at, ", ");
+	if (at + 1 >= size)
+		return;
+	va_start(ap, fmt);
+	vsnprintf(buf + at, size - at, fmt, ap);
+	va_end(ap);
+}

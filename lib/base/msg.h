@@ -17,6 +17,7 @@
 #define QUSGM_MSG_H
 
 #include <stdarg.h>
+#include <stddef.h>
 
 /* A function that does not return, in C (_Noreturn) and in C++ ([[noreturn]]): the installed
  * headers compile as both (share/doc/library.md, "Using the library"). */
@@ -52,6 +53,10 @@ void msg_info(int level, const char *fmt, ...) __attribute__((format(printf, 2, 
 /* Library-side error slot: a function that fails fills it and returns nonzero; the tool
  * prints it with msg_die_err().  Keeps the library from printing. */
 void msg_seterr(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Append an item to a list of names for a message ("a, b, c"): ", " and the printf of fmt
+ * after what buf holds (nothing before the first), truncated to size.  The lists of a
+ * table's rows (laws, methods) in their error messages. */
+void msg_list_add(char *buf, size_t size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 const char *msg_geterr(void);
 QUSGM_NORETURN void msg_die_err(int status);
 

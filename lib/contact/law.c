@@ -44,20 +44,15 @@ void
 contact_law_names(char *buf, size_t size)
 {
 	const struct contact_law *const *l;
-	size_t at = 0;
 
 	if (size == 0)
 		return;
 	buf[0] = 0;
-	for (l = contact_laws; *l && at < size; l++) {
-		int k = (*l)->pack_key && strcmp((*l)->pack_key, (*l)->name) ?
-		    snprintf(buf + at, size - at, "%s%s (%s)", at ? ", " : "", (*l)->name, (*l)->pack_key) :
-		    snprintf(buf + at, size - at, "%s%s", at ? ", " : "", (*l)->name);
-
-		if (k < 0)
-			break;
-		at += (size_t)k;
-	}
+	for (l = contact_laws; *l; l++)
+		if ((*l)->pack_key && strcmp((*l)->pack_key, (*l)->name))
+			msg_list_add(buf, size, "%s (%s)", (*l)->name, (*l)->pack_key);
+		else
+			msg_list_add(buf, size, "%s", (*l)->name);
 }
 
 const struct contact_law *
@@ -91,18 +86,12 @@ contact_law_require(const struct pack *p, const char *who, const struct contact_
 {
 	const struct contact_law *law = contact_law_of_pack(p), *const *l;
 	char names[256];
-	size_t at = 0;
 
 	if (!law || contact_law_in(law, laws))
 		return law;
 	names[0] = 0;
-	for (l = laws; *l && at < sizeof names; l++) {
-		int k = snprintf(names + at, sizeof names - at, "%s%s", at ? ", " : "", (*l)->name);
-
-		if (k < 0)
-			break;
-		at += (size_t)k;
-	}
+	for (l = laws; *l; l++)
+		msg_list_add(names, sizeof names, "%s", (*l)->name);
 	msg_seterr("the pack's contact law is %s (meta contact-law); %s runs %s", law->name, who, names);
 	return NULL;
 }

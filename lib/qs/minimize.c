@@ -59,18 +59,12 @@ void
 qs_method_names(char *buf, size_t size)
 {
 	const struct qs_method_type *const *t;
-	size_t at = 0;
 
 	if (size == 0)
 		return;
 	buf[0] = 0;
-	for (t = qs_methods; *t && at < size; t++) {
-		int k = snprintf(buf + at, size - at, "%s%s", at ? ", " : "", (*t)->name);
-
-		if (k < 0)
-			break;
-		at += (size_t)k;
-	}
+	for (t = qs_methods; *t; t++)
+		msg_list_add(buf, size, "%s", (*t)->name);
 }
 
 /* --- the shared machinery ---------------------------------------------------------- */
