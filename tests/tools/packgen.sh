@@ -134,7 +134,7 @@ expect_num "spheroplates: side 60 nm" "$(rel "$(info_value pinfo.txt side_mean)"
 # random placement, looser than close packing of spheres
 expect_num "spheroplates: packing above 0.35" "$(info_value pinfo.txt packing_fraction)" ">" 0.35
 expect_num "spheroplates: packing below 0.64" "$(info_value pinfo.txt packing_fraction)" "<" 0.64
-grep -q '^columns id x y z r E nu rho side qw qx qy qz$' p.pack && pass "spheroplates: shape columns" || fail "spheroplates: shape columns" "$(grep ^columns p.pack)"
+grep -q '^columns id x y z r E nu rho shape side qw qx qy qz$' p.pack && pass "spheroplates: shape columns" || fail "spheroplates: shape columns" "$(grep ^columns p.pack)"
 for k in plate-radius contact-law kn kt restitution sigma0 kappa; do
 	grep -q "^meta $k " p.pack && pass "spheroplates: meta $k" || fail "spheroplates: meta $k" "missing"
 done
