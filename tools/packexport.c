@@ -26,7 +26,7 @@ static struct cli_opt opts[] = {
 };
 
 static const struct cli_tool tool = {
-	"packexport", "--vtk|--lammps|--lammps-data|--xyzr|--tsv-grains|--tsv-contacts [--periodic] [-o FILE] [FILE]",
+	"packexport", "--vtk | --lammps | --lammps-data | --xyzr | --tsv-grains | --tsv-contacts [--periodic] [-o FILE] [FILE]",
 	"Write a pack in the formats of ParaView and OVITO (VTK), LAMMPS and YADE; spheroplates for ParaView and OVITO.",
 	opts, 1,
 };

@@ -109,40 +109,87 @@ format_value(const struct cli_opt *o, char *buf, size_t len)
 	}
 }
 
+/* The width --help is wrapped to, and the column an option's text starts at. */
+#define HELP_WIDTH 80
+#define HELP_TEXT_COL 31
+/* Within a word of print_wrapped, printed as a space: "[default: X]" stays on one line. */
+#define HELP_NBSP '\001'
+
+/* text from column col (the cursor's), wrapped at HELP_WIDTH between words, continuation
+ * lines starting at column indent; a word longer than a line stands alone on its own. */
+static void
+print_wrapped(const char *text, int col, int indent)
+{
+	const char *w = text;
+
+	while (*w) {
+		const char *e = w;
+		int len;
+
+		while (*e && *e != ' ')
+			e++;
+		len = (int)(e - w);
+		if (col > indent && col + 1 + len > HELP_WIDTH) {
+			printf("\n%*s", indent, "");
+			col = indent;
+		} else if (w != text) {
+			putchar(' ');
+			col++;
+		}
+		for (; w < e; w++)	/* HELP_NBSP: a space the line does not break at */
+			putchar(*w == HELP_NBSP ? ' ' : *w);
+		col += len;
+		while (*e == ' ')
+			e++;
+		w = e;
+	}
+	putchar('\n');
+}
+
 static void
 print_opt(const struct cli_opt *o, int show_default)
 {
-	char left[96], def[128];
+	char left[96], def[128], text[1024];
+	size_t at;
 
 	if (o->shortname)
 		snprintf(left, sizeof left, "-%c, --%s%s%s", o->shortname, o->name,
 		    o->arg ? " " : "", o->arg ? o->arg : "");
 	else
 		snprintf(left, sizeof left, "    --%s%s%s", o->name, o->arg ? " " : "", o->arg ? o->arg : "");
-	printf("  %-28s %s", left, o->help);
-	if (o->unit)
-		printf(" (%s)", o->unit);
+	at = (size_t)snprintf(text, sizeof text, "%s", o->help);
+	if (o->unit && at < sizeof text)
+		at += (size_t)snprintf(text + at, sizeof text - at, " (%s)", o->unit);
 	/* One statement of the default: a help text that says it ("(default: the pack's)",
 	 * "(default 1e-3)") gets no bracket, whatever the variable holds before the tool
 	 * resolves it; a nan double is "not given", which is none unless the text says more. */
-	if (!show_default || strstr(o->help, "(default")) {
+	if (!show_default || strstr(o->help, "(default") || at >= sizeof text) {
 		/* said, or not to be said */
 	} else if (o->type == CLI_DOUBLE && isnan(*(double *)o->dest)) {
-		printf(" [default: none]");
+		snprintf(text + at, sizeof text - at, " [default:%cnone]", HELP_NBSP);
 	} else if (o->type != CLI_FLAG) {
 		format_value(o, def, sizeof def);
 		if (def[0])
-			printf(" [default: %s]", def);
+			snprintf(text + at, sizeof text - at, " [default:%c%s]", HELP_NBSP, def);
 	}
-	putchar('\n');
+	/* an option name too long for its column gets a line of its own */
+	if (strlen(left) > HELP_TEXT_COL - 3) {
+		printf("  %s\n%*s", left, HELP_TEXT_COL, "");
+	} else {
+		printf("  %-28s ", left);
+	}
+	print_wrapped(text, HELP_TEXT_COL, HELP_TEXT_COL);
 }
 
 static void
 print_help(const struct cli_tool *t)
 {
 	size_t i, n = count_opts(t->opts);
+	int col = printf("Usage: %s ", t->name);
 
-	printf("Usage: %s %s\n%s\n\nOptions:\n", t->name, t->usage, t->purpose);
+	print_wrapped(t->usage, col, col);
+	print_wrapped(t->purpose, 0, 0);
+	printf("\nOptions:\n");
 	for (i = 0; i < n; i++)
 		print_opt(&t->opts[i], 1);
 	for (i = 0; common_opts[i].type != CLI_END; i++) {

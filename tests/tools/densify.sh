@@ -310,7 +310,7 @@ expect_fail "--method bfgs" 2 "^densify: --method: no such method 'bfgs' \\(the 
 # line is: every method it lists is in the help line and is accepted, and the list is no
 # shorter than the four methods there were when it was written
 methods=$(sed -n "s/.*(the methods: \([^)]*\)).*/\1/p" err.err | tr -d ,)
-densify --help | grep -- '--method NAME' >mhelp.txt
+help_joined densify | grep -- '--method NAME' >mhelp.txt
 bad="" count=0
 for m in $methods; do
 	count=$((count + 1))

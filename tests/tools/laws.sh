@@ -15,7 +15,7 @@
 # tools keep the pack's law.  About 12 s; the matrix alone in the sanitizer build.
 . "$TOP/tests/tools/lib.sh"
 
-laws=$(shear --help | sed -n 's/.*--law NAME *contact law: \(.*\) (default:.*/\1/p' | sed 's/ ([^)]*)//g; s/,//g')
+laws=$(help_joined shear | sed -n 's/.*--law NAME *contact law: \(.*\) (default:.*/\1/p' | sed 's/ ([^)]*)//g; s/,//g')
 [ -n "$laws" ] && pass "laws: the table's laws from shear --help ($laws)" || fail "laws: shear --help names the laws" "none"
 
 packgen --shape spheroplate --platyness 0 -n 64 --seed 2 -o sp.pack 2>/dev/null
@@ -31,7 +31,7 @@ for law in $laws; do
 		fi
 		key=$(awk '$1 == "meta" && $2 == "contact-law" { print $3 }' "$o.pack")
 		[ -z "$key" ] && key=hertz-mindlin	# the default, without the key
-		if shear --help | grep -q -- "$law ($key)" || [ "$key" = "$law" ]; then
+		if help_joined shear | grep -q -- "$law ($key)" || [ "$key" = "$law" ]; then
 			pass "$law on $shape: the output pack records its law ($key)"
 		else
 			fail "$law on $shape: the output pack records its law" "meta contact-law $key"

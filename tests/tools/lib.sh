@@ -118,3 +118,10 @@ expect_refused() {
 	done
 	if [ -z "$er_left" ] && ! ls -a | grep -q '^\.nothing'; then pass "$n: $er_check"; else fail "$n: $er_check" "$(ls -a | tr '\n' ' ')"; fi
 }
+
+# help_joined CMD...: CMD --help with each option's entry on one line (--help wraps at 80
+# columns, an entry's text going on at column 32), for the checks that read an entry.
+help_joined() {
+	"$@" --help | awk '/^                               [^ ]/ { sub(/^ +/, ""); line = line " " $0; next }
+	    { if (NR > 1) print line; line = $0 } END { print line }'
+}

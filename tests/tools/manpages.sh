@@ -80,7 +80,10 @@ for t in "$BIN"/*; do
 	ntools=$((ntools + 1))
 	page="$TOP/share/man/man1/$tool.1"
 	expect_ok "$tool-help-exits-0" "$t" --help
-	"$t" --help >help.txt 2>/dev/null
+	help_joined "$t" >help.txt 2>/dev/null
+	# --help fits a terminal of 80 columns
+	wide=$("$t" --help 2>/dev/null | awk 'length($0) > 80 { n++ } END { print n + 0 }')
+	expect_num "$tool --help: no line over 80 columns" "$wide" == 0
 	expect_ok "$tool-version-exits-0" "$t" --version
 	if "$t" --version 2>/dev/null | grep -q "^$tool "; then
 		pass "$tool-version-names-tool"
