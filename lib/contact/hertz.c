@@ -65,14 +65,23 @@ hertz_mindlin_dem_interaction(const struct contact_law *law, const struct law_pa
 	return hertz_dem_interaction(lp, in, hist, fk, ft, fel);
 }
 
+/* The pack's mean Young's modulus and Poisson ratio: the mean grain of the DEM's units. */
+static void
+mean_material(const struct pack *p, double *Em, double *num)
+{
+	size_t i, n = p->n;
+
+	*Em = *num = 0;
+	for (i = 0; i < n; i++)
+		*Em += p->E[i] / n, *num += p->nu[i] / n;
+}
+
 double
 hertz_mean_Estar(const struct pack *p)
 {
-	double Em = 0, num = 0;
-	size_t i, n = p->n;
+	double Em, num;
 
-	for (i = 0; i < n; i++)
-		Em += p->E[i] / n, num += p->nu[i] / n;
+	mean_material(p, &Em, &num);
 	return hertz_Estar(Em, num, Em, num);
 }
 
@@ -82,12 +91,10 @@ static double
 hertz_dem_units(const struct contact_law *law, const struct pack *p, double r0, double kn, struct law_pair *g,
     struct law_pair *w)
 {
-	double Em = 0, num = 0, Eg;
-	size_t i, n = p->n;
+	double Em, num, Eg;
 
 	(void)law, (void)kn;
-	for (i = 0; i < n; i++)
-		Em += p->E[i] / n, num += p->nu[i] / n;
+	mean_material(p, &Em, &num);
 	Eg = hertz_Estar(Em, num, Em, num);
 	g->kn = w->kn = 1;
 	g->Es = 1;

@@ -318,6 +318,15 @@ apply(const double *xi, const double p[3], const double Fk[3], double F[3], doub
 }
 
 
+/* The scaled pair constants of grain i with grain j or a wall (j < 0), R* of the two
+ * spheroradii (of the grain's, on a wall). */
+static inline void
+pair_constants(const struct engine *d, size_t i, long j, struct law_pair *lp)
+{
+	*lp = PACK_IS_WALL(j) ? d->lp_wall : d->lp_grain;
+	lp->Rs = PACK_IS_WALL(j) ? d->r[i] : hertz_Rstar(d->r[i], d->r[(size_t)j]);
+}
+
 /* The forces of interaction it between grain i and grain j (j < 0: a wall), with j's centre
  * xj (its nearest image): the force F and torque Ti on i, and for a pair into rec what j gets
  * (the opposite force, rec->F = F, and the torque about its centre); the block's sums; hist
@@ -329,7 +338,7 @@ interaction_force(const struct engine *d, size_t i, long j, const double *xj, co
 	const double *n = it->n, *xi = d->x + 3 * i;
 	int wall = PACK_IS_WALL(j), M = it->m, k, a;
 	struct law_dem_elems in;
-	struct law_pair lp = wall ? d->lp_wall : d->lp_grain;
+	struct law_pair lp;
 	double fk[LAW_DEM_ELEMENTS], fel, fsum, hsum = 0, pc[3] = {0, 0, 0};
 	double vi[3], vj[3] = {0, 0, 0}, vn, ft[3], Fk[3], c[3];
 
@@ -340,7 +349,7 @@ interaction_force(const struct engine *d, size_t i, long j, const double *xj, co
 	in.meff = wall ? d->m[i] : d->m[i] * d->m[j] / (d->m[i] + d->m[j]);
 	in.dt = d->dt, in.zeta = d->zeta, in.kt_ratio = d->kt_ratio;
 	memcpy(in.n, n, sizeof in.n);
-	lp.Rs = wall ? d->r[i] : hertz_Rstar(d->r[i], d->r[j]);
+	pair_constants(d, i, j, &lp);
 	/* the elements: their overlaps and normal velocities, and the overlap-weighted point at
 	 * which the interaction's one tangential force acts (P eqs. 3-4) */
 	for (k = 0; k < M; k++) {
@@ -1047,8 +1056,7 @@ history_elems(const struct engine *d, size_t i, long j, const struct plate_inter
 {
 	int k;
 
-	*lp = PACK_IS_WALL(j) ? d->lp_wall : d->lp_grain;
-	lp->Rs = PACK_IS_WALL(j) ? d->r[i] : hertz_Rstar(d->r[i], d->r[j]);
+	pair_constants(d, i, j, lp);
 	memset(in, 0, sizeof *in);
 	in->m = it->m;
 	in->kt_ratio = d->kt_ratio, in->zeta = d->zeta, in->dt = d->dt;
