@@ -553,6 +553,46 @@ test_law_table(gsl_rng *rng)
 	pack_free(&p);
 }
 
+/* Every law's normal term against its own derivatives (table-driven): the force P the
+ * central difference of the energy, the stiffness k that of P, over overlaps 1e-8 to 1e-6
+ * of a pair of E* 5e10 Pa, R* 6e-5 m (k_n 1e5 N/m for a spring law).  The step is 1e-4 h:
+ * the central difference's relative error is d^2/6 times the third derivative over the
+ * first: for Hertz (U ~ h^2.5) (1e-4)^2 x 1.5 x 0.5 / 6 = 1.25e-9 (measured 1.3e-9), for a
+ * spring 0, above the rounding of U's difference, about 1e-16 U / (1e-4 h P) = 1e-12;
+ * tolerance 1e-7.  And
+ * the frozen tangential state within the Coulomb limit: 0 <= q_max <= mu P. */
+static void
+test_law_normal_fd(void)
+{
+	const struct contact_law *const *l;
+
+	for (l = contact_laws; *l; l++) {
+		const struct contact_law *law = *l;
+		struct law_pair lp = {5e10, 6e-5, 3e-11, 2e-11, 0.3, 1e5};
+		struct law_tangent t;
+		double worst = 0, h;
+		int bad_t = 0;
+
+		for (h = 1e-8; h <= 1e-6; h *= 1.7) {
+			double d = 1e-4 * h, P, k, Pp, Pm, kk, Up, Um;
+
+			law->normal(law, &lp, h, &P, &k);
+			Up = law->normal(law, &lp, h + d, &Pp, &kk);
+			Um = law->normal(law, &lp, h - d, &Pm, &kk);
+			worst = fmax(worst, fabs((Up - Um) / (2 * d) - P) / P);
+			worst = fmax(worst, fabs((Pp - Pm) / (2 * d) - k) / k);
+			law->tangent(law, &lp, h, P, &t);
+			bad_t += !(t.qmax >= 0 && t.qmax <= 0.3 * P * (1 + 1e-15) && t.k >= 0 && t.kt >= 0 && t.mmax >= 0);
+		}
+		CHECK(worst < 1e-7, "%s: P = dU/dh and k = dP/dh by central differences (worst relative %.2g)", law->name, worst);
+		CHECK(bad_t == 0, "%s: the tangential state within the Coulomb limit, stiffnesses >= 0 (%d off)", law->name, bad_t);
+		{	/* no force apart */
+			double P = 1, k = 1, U = law->normal(law, &lp, -1e-9, &P, &k);
+			CHECK(U == 0 && P == 0 && k == 0, "%s: no energy, force or stiffness at a gap", law->name);
+		}
+	}
+}
+
 /* Every law's history against its DEM force (table-driven: a new row is tested as it is
  * added): a step that slides (v_t != 0) loads the spring, a second at rest (v = 0: no
  * dashpot, the spring unchanged) gives the tangential force ft, which history_force must read
@@ -1018,6 +1058,7 @@ main(void)
 	test_hertz_coefficients(rng);
 	test_law_table(rng);
 	test_law_history(rng);
+	test_law_normal_fd();
 	test_linear_elements(rng);
 	gsl_rng_free(rng);
 	return unit_summary();

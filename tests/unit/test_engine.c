@@ -246,6 +246,13 @@ test_restitution(void)
 		double h, e = collide(&contact_law_linear, 0.5, 0, 0.9, 0.002, &h);
 		CHECK(fabs(e - 0.9) < 1e-3, "restitution: plate-plate returns %.4f (asked 0.9)", e);
 	}
+	/* harmonic's normal force is the linear law's damped spring, with no tangential force
+	 * (nothing to take in a head-on collision): the same closed form of e */
+	for (k = 0; k < 2; k++) {
+		double h, e = collide(&contact_law_harmonic, k ? 0.5 : 0, 0, 0.6, 0.002, &h);
+		CHECK(fabs(e - 0.6) < 1e-3, "restitution: harmonic %s returns %.4f (asked 0.6)",
+		    k ? "plate-plate face to face" : "sphere-sphere", e);
+	}
 	/* Hertz-Mindlin takes the damping ratio of the linear law's e; its damping on the tangent
 	 * stiffness, 2 zeta sqrt(m* 2 E* sqrt(R* h)), makes its restitution a function of zeta
 	 * alone, which a separate integration of m* h'' = -(4/3 E* sqrt(R*) h^1.5 + that damping
@@ -262,7 +269,7 @@ test_restitution(void)
 
 /* The stiffness number of either law (engine_kappa): two grains of E 1e9 Pa, nu 0.2 (E* of
  * two of them E / (2 (1 - nu^2)) = 5.2083e8 Pa) and spheroradius r = 1 at sigma 1e3 Pa:
- * Hertz (E* / sigma)^(2/3) = 6473.4; linear k_n / (sigma r) = 100 at k_n 1e5 N/m; and
+ * Hertz (E* / sigma)^(2/3) = 6473.4; linear and harmonic k_n / (sigma r) = 100 at k_n 1e5 N/m; and
  * engine_kappa_stress its inverse. */
 static void
 test_kappa(void)
@@ -286,6 +293,9 @@ test_kappa(void)
 	k = engine_kappa(&p, &pp, 1e3);
 	CHECK(fabs(k - 100) < 1e-12, "kappa: linear k_n / (sigma r) = %.6g", k);
 	CHECK(fabs(engine_kappa_stress(&p, &pp, 100) - 1e3) < 1e-9, "kappa: linear, the stress of its kappa is the stress");
+	engine_params_law(&pp, &contact_law_harmonic);	/* a spring law: the caller's k_n stays */
+	k = engine_kappa(&p, &pp, 1e3);
+	CHECK(pp.kn == 1e5 && fabs(k - 100) < 1e-12, "kappa: harmonic k_n / (sigma r) = %.6g", k);
 	p.side = p.q = NULL;
 	pack_free(&p);
 }
