@@ -685,6 +685,7 @@ struct plate_pass {
 	struct plate_grains g;
 	const long *keys;	/* the pack's history keys, or NULL */
 	const struct contact_law *law;	/* the pack's, or NULL: no forces (a spring law without meta kn) */
+	struct law_pack lk;		/* law's pair setup's, bound once */
 	unsigned *z;		/* interactions per grain */
 	size_t zends_free;	/* interactions' ends on free grains */
 	double *F;		/* net force per grain (3n) */
@@ -820,7 +821,7 @@ on_plate_record(const struct contact *c, void *v)
 			return -1;
 		return described ? fabric_add(pp, n, arm, zero, 0) : 0;
 	}
-	pp->law->pair(pp->law, pp->p, i, j, &lp);
+	pp->law->pair(pp->law, &pp->lk, i, j, &lp);
 	for (k = 0; k < it.m; k++) {
 		double h = fmax(it.e[k].h, 0), Pk = 0;
 
@@ -931,6 +932,8 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 		goto out;
 	if (!law_pack_knows_stiffness(pass.law, p))
 		pass.law = NULL;
+	else
+		law_pack_bind(pass.law, p, &pass.lk);
 	pass.z = calloc(p->n, sizeof *pass.z);
 	pass.F = calloc(3 * p->n, sizeof *pass.F);
 	if (!R || !half || !rb || !pass.z || !pass.F) {

@@ -12,6 +12,7 @@
  * It is also the recipe's example (share/doc/library.md, "How to add a law"): one file and one
  * row of CONTACT_LAWS, with the spring laws' policy from law.h. */
 #include "contact/law.h"
+#include "contact/hertz.h"
 #include "contact/linear.h"
 
 static double
@@ -53,7 +54,7 @@ harmonic_dem_interaction(const struct contact_law *law, const struct law_pair *l
 
 const struct contact_law contact_law_harmonic = {
 	.name = "harmonic", .history = 0, .kn = 1e5, .kt_ratio = 0, .zeta = 0.3,
-	.pair = law_spring_pair, .normal = harmonic_normal, .tangent = harmonic_tangent,
+	.pair = hertz_mindlin_pair, .normal = harmonic_normal, .tangent = harmonic_tangent,
 	.dem_interaction = harmonic_dem_interaction, .pack_key = "harmonic", .stiffness = LAW_SPRING,
 	.dem_units = law_spring_dem_units, .stiffest = law_spring_stiffest, .kappa = law_spring_kappa,
 	.kappa_stress = law_spring_kappa_stress, .history_force = law_history_none, .history_set = law_history_set_none,

@@ -14,8 +14,9 @@ shear_modulus(double E, double nu)
 }
 
 void
-hertz_mindlin_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp)
+hertz_mindlin_pair(const struct contact_law *law, const struct law_pack *lk, size_t i, long j, struct law_pair *lp)
 {
+	const struct pack *p = lk->p;
 	double Gi = shear_modulus(p->E[i], p->nu[i]), Gj, nuj;
 
 	hertz_pair_moduli(p, i, j, &lp->Es, &lp->Rs);
@@ -29,7 +30,8 @@ hertz_mindlin_pair(const struct contact_law *law, const struct pack *p, size_t i
 	lp->Ct = (2 - p->nu[i]) / Gi + (2 - nuj) / Gj;
 	lp->Ctor = 1 / Gi + 1 / Gj;
 	lp->mu = pack_contact_mu(p, j);
-	lp->kn = law->kn;
+	(void)law;
+	lp->kn = lk->kn;
 }
 
 static double

@@ -81,7 +81,7 @@ hertz_pair_moduli(const struct pack *p, size_t i, long j, double *Es, double *Rs
 
 /* The pair setup of Hertz-Mindlin (struct contact_law's pair; the linear law's too): E* and R*
  * (hertz_pair_moduli), the Mindlin compliances Ct and Ctor, and mu (pack_contact_mu). */
-void hertz_mindlin_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
+void hertz_mindlin_pair(const struct contact_law *law, const struct law_pack *lk, size_t i, long j, struct law_pair *lp);
 
 /* The contact radius a = sqrt(R* h) at overlap h >= 0. */
 LAW_INLINE double

@@ -114,6 +114,13 @@ law_pack_kn(const struct contact_law *law, const struct pack *p)
 	return pack_get_meta_double(p, "kn", &kn) == 0 && kn > 0 && isfinite(kn) ? kn : law->kn;
 }
 
+void
+law_pack_bind(const struct contact_law *law, const struct pack *p, struct law_pack *lk)
+{
+	lk->p = p;
+	lk->kn = law->stiffness == LAW_SPRING ? law_pack_kn(law, p) : law->kn;
+}
+
 int
 law_pack_knows_stiffness(const struct contact_law *law, const struct pack *p)
 {

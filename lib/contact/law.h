@@ -56,6 +56,13 @@ struct law_pair {
 	double kn;	/* linear law: normal stiffness (N/m; the law's kn, or the DEM's scaled 1) */
 };
 
+/* What a law's pair setup needs of a pack, resolved once (law_pack_bind) rather than per
+ * pair: the pack, and a spring law's k_n (its meta kn: a string to parse). */
+struct law_pack {
+	const struct pack *p;
+	double kn;		/* N/m: a spring law's (law_pack_kn), else the law's own kn */
+};
+
 /* The frozen tangential state of a contact at its reference overlap. */
 struct law_tangent {
 	double k, qmax;		/* stick stiffness (N/m), sliding limit (N) */
@@ -91,8 +98,9 @@ struct contact_law {
 	double kn;		/* linear law: normal stiffness (N/m) */
 	double kt_ratio;	/* DEM: tangential spring over normal stiffness */
 	double zeta;		/* DEM: viscous normal damping ratio */
-	/* The pair's physics, of grain i and grain j, or wall w when j = PACK_WALL(w). */
-	void (*pair)(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
+	/* The pair's physics, of grain i and grain j, or wall w when j = PACK_WALL(w), of the
+	 * pack lk binds (law_pack_bind). */
+	void (*pair)(const struct contact_law *law, const struct law_pack *lk, size_t i, long j, struct law_pair *lp);
 	/* Energy at overlap h > 0; the force dU/dh into *P and the stiffness dP/dh into *k
 	 * unless NULL. */
 	double (*normal)(const struct contact_law *law, const struct law_pair *lp, double h, double *P, double *k);
@@ -145,6 +153,8 @@ struct contact_law {
  * and shear record the one they ran), else the law's default law->kn.  The one reader of
  * meta kn. */
 double law_pack_kn(const struct contact_law *law, const struct pack *p);
+/* lk bound to pack p for law's pair setup: a spring law's k_n read once (law_pack_kn). */
+void law_pack_bind(const struct contact_law *law, const struct pack *p, struct law_pack *lk);
 /* Whether pack p records what law's forces need: always for LAW_MODULI (the grains' E and
  * nu), the pack's meta kn for a spring law (a pack without one has unknown forces). */
 int law_pack_knows_stiffness(const struct contact_law *law, const struct pack *p);

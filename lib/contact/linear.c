@@ -4,13 +4,6 @@
 #include "contact/linear.h"
 #include "contact/hertz.h"
 
-void
-law_spring_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp)
-{
-	hertz_mindlin_pair(law, p, i, j, lp);
-	lp->kn = law_pack_kn(law, p);
-}
-
 static double
 linear_normal(const struct contact_law *law, const struct law_pair *lp, double h, double *P, double *k)
 {
@@ -47,11 +40,11 @@ linear_law_dem_interaction(const struct contact_law *law, const struct law_pair 
 	return linear_dem_interaction(lp, in, hist, fk, ft, fel);
 }
 
-/* The pair setup: Hertz-Mindlin's moduli (unused), mu, and k_n of the pack (law_pack_kn);
+/* The pair setup: Hertz-Mindlin's (the moduli unused; mu; k_n the pack's, law_pack_bind);
  * the spring laws' policy (law.h); the history is the force the spring keeps. */
 const struct contact_law contact_law_linear = {
 	.name = "linear", .history = 3, .kn = 1e5, .kt_ratio = 0.888888888888889, .zeta = 0.3,
-	.pair = law_spring_pair, .normal = linear_normal, .tangent = linear_tangent,
+	.pair = hertz_mindlin_pair, .normal = linear_normal, .tangent = linear_tangent,
 	.dem_interaction = linear_law_dem_interaction, .pack_key = "linear", .stiffness = LAW_SPRING,
 	.dem_units = law_spring_dem_units, .stiffest = law_spring_stiffest, .kappa = law_spring_kappa,
 	.kappa_stress = law_spring_kappa_stress, .history_force = law_history_force_kept,

@@ -25,10 +25,6 @@
 #include "base/vec3.h"
 #include "contact/law.h"
 
-/* The pair setup of the spring laws (linear.c): hertz_mindlin_pair's E*, R*, compliances and
- * mu, and k_n of law_pack_kn. */
-void law_spring_pair(const struct contact_law *law, const struct pack *p, size_t i, long j, struct law_pair *lp);
-
 /* Normal force k_n h of an overlap h > 0. */
 LAW_INLINE double
 linear_force(double kn, double h)

@@ -76,6 +76,7 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	int wall = PACK_IS_WALL(g->j), k;
 	struct law_pair lp;
 	struct law_tangent t;
+	struct law_pack lk;
 
 	/* every field is set below (no memset: 224 bytes of stores a contact and pass) */
 	c->qp[0] = c->qp[1] = c->qp[2] = 0;
@@ -83,7 +84,8 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	c->i = i;
 	c->j = g->j;
 	memcpy(c->n, g->n, sizeof c->n);
-	law->pair(law, p, i, g->j, &lp);
+	law_pack_bind(law, p, &lk);	/* the frictional chain's laws read no meta line */
+	law->pair(law, &lk, i, g->j, &lp);
 	c->Es = lp.Es;
 	c->Rs = lp.Rs;
 	contact_lever_lengths(wall, p->r[i], wall ? 0 : p->r[g->j], g->d, g->h, &li, &lj);

@@ -106,6 +106,13 @@ struct normal_acc {
 	size_t jend;		/* grains from here on belong to another thread: no scatter */
 };
 
+/* The walks of a law through its interface: the sums, and the pack bound for its pair setup
+ * (law_pack_bind, once a walk).  Hertz's fast paths keep their accumulator as it is. */
+struct law_acc {
+	struct normal_acc a;
+	struct law_pack lk;
+};
+
 /* The larger of a grain's largest contact force so far and P, without a branch: whether a
  * pair's force is its grain's largest so far is a coin toss in a pack, and a mispredicted
  * branch throws away the next pairs' square roots already in flight (2x the walk's time at
@@ -172,11 +179,11 @@ normal_add(struct normal_acc *a, const struct contact *c, double P, double U)
 /* Contact c through s's law's interface: its energy, normal force *P and, unless k is NULL,
  * stiffness *k (every law; Hertz's fast paths below give the same bytes). */
 static double
-law_normal_at(const struct qs_system *s, const struct contact *c, double *P, double *k)
+law_normal_at(const struct qs_system *s, const struct law_pack *lk, const struct contact *c, double *P, double *k)
 {
 	struct law_pair lp;
 
-	s->law->pair(s->law, s->p, c->i, c->j, &lp);
+	s->law->pair(s->law, lk, c->i, c->j, &lp);
 	return s->law->normal(s->law, &lp, c->h, P, k);
 }
 
@@ -184,10 +191,10 @@ law_normal_at(const struct qs_system *s, const struct contact *c, double *P, dou
 static int
 on_law(const struct contact *c, void *vacc)
 {
-	struct normal_acc *a = vacc;
-	double P, U = law_normal_at(a->s, c, &P, NULL);
+	struct law_acc *la = vacc;
+	double P, U = law_normal_at(la->a.s, &la->lk, c, &P, NULL);
 
-	normal_add(a, c, P, U);
+	normal_add(&la->a, c, P, U);
 	return 0;
 }
 
@@ -378,12 +385,13 @@ normal_energy_hertz(struct qs_system *s, const double *x, double *g, double *fma
 static double
 normal_energy_law(struct qs_system *s, const double *x, double *g, double *fmax)
 {
-	struct normal_acc a = {s, x, g, fmax, NULL, 0, 0, 0, {0}, s->n};
+	struct law_acc la = {{s, x, g, fmax, NULL, 0, 0, 0, {0}, s->n}, {NULL, 0}};
 
-	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_law, &a);
-	s->ncontacts = a.nc;
-	s->sum_force = a.sumf;
-	return a.E;
+	law_pack_bind(s->law, s->p, &la.lk);
+	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_law, &la);
+	s->ncontacts = la.a.nc;
+	s->sum_force = la.a.sumf;
+	return la.a.E;
 }
 
 static double
@@ -407,7 +415,7 @@ on_stiffness(const struct contact *c, void *vacc)
 	if (s->law != &contact_law_hertz_mindlin) {
 		double P, kk;
 
-		law_normal_at(s, c, &P, &kk);
+		law_normal_at(s, &((struct law_acc *)vacc)->lk, c, &P, &kk);
 		a->k[c->i] += PACK_IS_WALL(c->j) ? kk : 1.5 * kk;
 		if (!PACK_IS_WALL(c->j))
 			a->k[c->j] += 1.5 * kk;
@@ -426,10 +434,11 @@ on_stiffness(const struct contact *c, void *vacc)
 static void
 normal_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double *k)
 {
-	struct normal_acc a = {s, x, NULL, NULL, k, 0, 0, 0, {0}, s->n};
+	struct law_acc la = {{s, x, NULL, NULL, k, 0, 0, 0, {0}, s->n}, {NULL, 0}};
 
 	(void)t;
-	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_stiffness, &a);
+	law_pack_bind(s->law, s->p, &la.lk);	/* on_stiffness takes the law's walk's accumulator */
+	contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_stiffness, &la);
 }
 
 /* The normal term's second derivatives (hessian.h), through the law's stiffness: assembled
@@ -437,6 +446,7 @@ normal_stiffness(struct qs_term *t, struct qs_system *s, const double *x, double
 struct hessian_acc {
 	struct qs_system *s;
 	struct qs_hessian *H;
+	struct law_pack lk;
 };
 
 /* A contact's block from its normal force P and stiffness k into H. */
@@ -476,7 +486,7 @@ on_hessian(const struct contact *c, void *vacc)
 	struct hessian_acc *a = vacc;
 	double P, k;
 
-	law_normal_at(a->s, c, &P, &k);
+	law_normal_at(a->s, &a->lk, c, &P, &k);
 	return hessian_add(a, c, P, k);
 }
 
@@ -505,9 +515,10 @@ on_hessian_hertz(const struct contact *c, void *vacc)
 static int
 normal_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct qs_hessian *H)
 {
-	struct hessian_acc a = {s, H};
+	struct hessian_acc a = {s, H, {NULL, 0}};
 
 	(void)t;
+	law_pack_bind(s->law, s->p, &a.lk);
 	if (s->law == &contact_law_hertz_mindlin)
 		return contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_hessian_hertz, &a) < 0 ? -1 : 0;
 	return contact_foreach(&s->ce, x, CONTACT_TOUCHING, on_hessian, &a) < 0 ? -1 : 0;

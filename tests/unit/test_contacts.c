@@ -538,12 +538,14 @@ test_law_table(gsl_rng *rng)
 	}
 	for (l = contact_laws; *l; l++) {
 		double Es, Rs;
+		struct law_pack lk;
 
-		(*l)->pair(*l, &p, 3, 7, &lp);
+		law_pack_bind(*l, &p, &lk);
+		(*l)->pair(*l, &lk, 3, 7, &lp);
 		hertz_pair_moduli(&p, 3, 7, &Es, &Rs);
 		CHECK(lp.mu == 0.3 && lp.mu == pack_contact_mu(&p, 7) && lp.Es == Es && lp.Rs == Rs,
 		    "%s pair setup: a pair's mu, E*, R*", (*l)->name);
-		(*l)->pair(*l, &p, 3, PACK_WALL(WALL_ZHI), &lp);
+		(*l)->pair(*l, &lk, 3, PACK_WALL(WALL_ZHI), &lp);
 		hertz_pair_moduli(&p, 3, PACK_WALL(WALL_ZHI), &Es, &Rs);
 		CHECK(lp.mu == 0.1 && lp.mu == pack_contact_mu(&p, PACK_WALL(WALL_ZHI)) && lp.Es == Es && lp.Rs == p.r[3],
 		    "%s pair setup: a wall's mu, E*, R* = r_i", (*l)->name);
