@@ -7,7 +7,7 @@
 #include "analysis/fabric.h"
 #include "contact/hertz.h"
 #include "contact/law.h"
-#include "contact/plate.h"
+#include "contact/narrow.h"
 #include "pack/shape.h"
 
 #include <gsl/gsl_eigen.h>
@@ -682,7 +682,7 @@ grain_forces_link(struct grain_forces *g, size_t i, long j)
 /* What measure_plate_contacts sums over the interactions, in SI. */
 struct plate_pass {
 	const struct pack *p;
-	struct plate_grains g;
+	struct narrow_grains g;
 	const long *keys;	/* the pack's history keys, or NULL */
 	const struct contact_law *law;	/* the pack's, or NULL: no forces (a spring law without meta kn) */
 	struct law_pack lk;		/* law's pair setup's, bound once */
@@ -799,7 +799,7 @@ on_plate_record(const struct contact *c, void *v)
 	int wall = PACK_IS_WALL(j), k, a, gi = pack_grain_glued(pp->p, i), gj = !wall && pack_grain_glued(pp->p, (size_t)j);
 	int described = !wall && !gi && !gj;	/* a pair of free grains: in the descriptors */
 
-	if (plate_record_interaction(&pp->g, c, 0, &it, xj) == 0)
+	if (narrow_record_interaction(&pp->g, c, 0, &it, xj) == 0)
 		return 0;
 	if (pp->gf && grain_forces_link(pp->gf, i, j))
 		return -1;
@@ -912,7 +912,7 @@ plate_fabric(const struct pack *p, struct plate_pass *pp, double V, struct plate
 }
 
 /* The interaction measures of measure_plates (measure.h): the enumerator over the bounding
- * spheres, each record's element contacts by plate_record_interaction, as dem/engine finds
+ * spheres, each record's element contacts by narrow_record_interaction, as dem/engine finds
  * them; with list, the interactions one by one too (measure_plate_contact_list). */
 static int
 measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct grain_forces *gf, struct plate_contact **list,
@@ -921,6 +921,7 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 	struct contact_enum ce;
 	struct plate_pass pass;
 	double *R = malloc(9 * p->n * sizeof *R), *half = malloc(p->n * sizeof *half), *rb = malloc(p->n * sizeof *rb);
+	unsigned char *kind = malloc(p->n * sizeof *kind);
 	double V = pack_box_volume(p->box), s = 0;
 	size_t i, ni;
 	int a, status = -1, have_ce = 0;
@@ -936,19 +937,21 @@ measure_plate_contacts(const struct pack *p, struct plate_measures *m, struct gr
 		law_pack_bind(pass.law, p, &pass.lk);
 	pass.z = calloc(p->n, sizeof *pass.z);
 	pass.F = calloc(3 * p->n, sizeof *pass.F);
-	if (!R || !half || !rb || !pass.z || !pass.F) {
+	if (!R || !half || !rb || !kind || !pass.z || !pass.F) {
 		msg_seterr("out of memory");
 		goto out;
 	}
 	for (i = 0; i < p->n; i++) {
 		double L = p->has_shapes ? p->side[i] : 0;
 		const double one[4] = {1, 0, 0, 0};
+		const struct shape_ops *sh = shape_of(pack_grain_shape(p, i));
 
 		quat_to_matrix(p->q ? p->q + 4 * i : one, R + 9 * i);
 		half[i] = L / 2;
-		rb[i] = shape_of(pack_grain_shape(p, i))->bounding_radius(p->r[i], L);
+		kind[i] = (unsigned char)sh->kind;
+		rb[i] = sh->bounding_radius(p->r[i], L);
 	}
-	pass.g = (struct plate_grains){p->x, R, half, p->r, p->box, p->box + 3};
+	pass.g = (struct narrow_grains){p->x, R, half, p->r, kind, p->box, p->box + 3};
 	if (p->nc && !(pass.keys = pack_history_keys(p)))
 		goto out;
 	if (contact_enum_init(&ce, p->n, rb, p->box, p->box + 3, p->periodic, 0, 0))
@@ -1013,6 +1016,7 @@ out:
 	free(pass.fab);
 	free(R);
 	free(half);
+	free(kind);
 	free(rb);
 	return status;
 }

@@ -631,36 +631,6 @@ overlap_find(const struct pair *g, double gap, struct plate_interaction *out)
 	out->m = 1;
 }
 
-static void
-contact_point(struct plate_element *e, const double n[3], double ri, double rj)
-{
-	int k;
-
-	for (k = 0; k < 3; k++)
-		e->p[k] = 0.5 * (e->pi[k] + e->pj[k]) + 0.5 * (rj - ri) * n[k];
-}
-
-static int
-spheres(const struct plate_body *a, const struct plate_body *b, double gap, struct plate_interaction *out)
-{
-	double e[3] = {a->x[0] - b->x[0], a->x[1] - b->x[1], a->x[2] - b->x[2]}, d = vec3_norm(e);
-	struct plate_element *el = &out->e[0];
-	int k;
-
-	out->d = d;
-	for (k = 0; k < 3; k++)
-		out->n[k] = d > 0 ? e[k] / d : k == 2;
-	out->m = 0;
-	el->h = a->r + b->r - d;
-	if (!(el->h > -gap))
-		return 0;
-	memcpy(el->pi, a->x, sizeof el->pi);
-	memcpy(el->pj, b->x, sizeof el->pj);
-	contact_point(el, out->n, a->r, b->r);
-	el->kind = PLATE_SPHERE;
-	return out->m = 1;
-}
-
 /* A lower bound on the distance of the two cores from the six axes of their frames (the
  * face normals and the edge directions): along a unit axis the cores' projections are
  * intervals, and the gap between them bounds the distance from below.  Most pairs whose
@@ -713,7 +683,7 @@ interaction_finish(struct pair *g, const struct plate_body *a, const struct plat
 			out->n[k] = (g->pa[k] - g->pb[k]) / g->d;
 		elements_find(g, out->n, gap, feet, out);
 		for (j = 0; j < out->m; j++)
-			contact_point(&out->e[j], out->n, a->r, b->r);
+			plate_element_point(&out->e[j], out->n, a->r, b->r);
 	}
 	for (j = 0; j < out->m; j++)
 		for (k = 0; k < 3; k++) {
@@ -729,8 +699,6 @@ plate_interaction(const struct plate_body *a, const struct plate_body *b, double
 {
 	struct pair g;
 
-	if (a->half == 0 && b->half == 0)
-		return spheres(a, b, gap, out);
 	out->d = axes_separation(a, b);
 	if (out->d >= a->r + b->r + gap) {
 		out->m = 0;
@@ -808,10 +776,6 @@ plate_interaction_cached(const struct plate_body *a, const struct plate_body *b,
 	unsigned c = 0;
 	int i, j;
 
-	if (a->half == 0 && b->half == 0) {
-		*cache = 0;
-		return spheres(a, b, 0, out);
-	}
 	if (build) {
 		double lim = a->r + b->r + margin, lim2 = lim * lim;
 
@@ -872,40 +836,9 @@ plate_wall_interaction(const struct plate_body *a, const double w0[3], const dou
 			e->pi[k] = q.V[j][k];
 			e->pj[k] = q.V[j][k] - sd * wn[k];
 		}
-		contact_point(e, wn, a->r, 0);
+		plate_element_point(e, wn, a->r, 0);
 		e->kind = q.nv == 1 ? PLATE_SPHERE : PLATE_VERTEX_FACE;
 		out->m++;
 	}
 	return out->m;
-}
-
-static void
-grain_body(const struct plate_grains *g, size_t i, const double *x, struct plate_body *b)
-{
-	memcpy(b->x, x, sizeof b->x);
-	memcpy(b->R, g->R + 9 * i, sizeof b->R);
-	b->half = g->half[i];
-	b->r = g->r[i];
-}
-
-int
-plate_record_interaction(const struct plate_grains *g, const struct contact *c, double gap,
-    struct plate_interaction *out, double xj[3])
-{
-	struct plate_body a, b;
-	int k;
-
-	grain_body(g, c->i, g->x + 3 * c->i, &a);
-	if (PACK_IS_WALL(c->j)) {
-		int w = PACK_WALL_INDEX(c->j), ax = w / 2;
-		double w0[3] = {0, 0, 0}, wn[3] = {0, 0, 0};
-
-		w0[ax] = w % 2 ? g->hi[ax] : g->lo[ax];
-		wn[ax] = w % 2 ? -1 : 1;
-		return plate_wall_interaction(&a, w0, wn, gap, out);
-	}
-	for (k = 0; k < 3; k++)
-		xj[k] = g->x[3 * c->i + k] - c->dx[k];
-	grain_body(g, (size_t)c->j, xj, &b);
-	return plate_interaction(&a, &b, gap, out);
 }

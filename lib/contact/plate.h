@@ -24,7 +24,9 @@
  * element, the centre against the square (PLATE_FACE_VERTEX, PLATE_EDGE_VERTEX or
  * PLATE_VERTEX_VERTEX when j is the sphere; the mirrored kinds when i is); two spheres give
  * one PLATE_SPHERE element with exactly h = r_i + r_j - |x_i - x_j| and n along x_i - x_j
- * (e3 when the centres coincide).
+ * (e3 when the centres coincide): contact/sphere.c's, to which contact/narrow.h's table of shape
+ * pairs, the consumers' way here, gives two spheres (plate_interaction on two cores of side 0
+ * finds that element too, to round-off, by the rules for cores).
  *
  * Everything is in the caller's length unit.  No allocation; thread-safe. */
 #ifndef QUSGM_PLATE_H
@@ -59,6 +61,17 @@ struct plate_element {
 	int kind;	/* enum plate_element_kind, i's element first */
 };
 
+/* Element e's contact point along n, halfway between the two surfaces:
+ * (pi + pj)/2 + (r_j - r_i)/2 n (r_j = 0 for a wall); every shape's narrow phase sets it so. */
+static inline void
+plate_element_point(struct plate_element *e, const double n[3], double ri, double rj)
+{
+	int k;
+
+	for (k = 0; k < 3; k++)
+		e->p[k] = 0.5 * (e->pi[k] + e->pj[k]) + 0.5 * (rj - ri) * n[k];
+}
+
 struct plate_interaction {
 	double n[3];	/* unit normal, from j to i (out of the wall for a wall) */
 	double d;	/* distance of the two cores (0 when they intersect); for a wall, the signed
@@ -83,8 +96,7 @@ int plate_interaction(const struct plate_body *a, const struct plate_body *b, do
  * r_a + r_b + margin.  Without, only the cached features are computed, which gives
  * plate_interaction's elements (gap 0) to the bit as long as no point of either core has
  * moved, since the cache was made, by more than margin in all (the caller's bound: centre
- * displacement plus the turn's; plate.c says why).  Two spheres: plate_interaction's exact
- * element, no cache.  Returns m. */
+ * displacement plus the turn's; plate.c says why).  Returns m. */
 #define PLATE_CACHE_FEATURES 0xffffffu
 #define PLATE_CACHE_CROSS (1u << 24)
 int plate_interaction_cached(const struct plate_body *a, const struct plate_body *b, double margin, unsigned *cache,
@@ -97,21 +109,6 @@ int plate_interaction_cached(const struct plate_body *a, const struct plate_body
  * a sphere gives its centre, kind PLATE_SPHERE.  n = wn.  Returns m. */
 int plate_wall_interaction(const struct plate_body *a, const double w0[3], const double wn[3], double gap,
     struct plate_interaction *out);
-
-/* Grains as the contact enumerator (contacts.h) sees them through their bounding spheres, in
- * one length unit: centres x (3n), rotations R (9n, body -> lab), half sides and spheroradii
- * (n), the box lo, hi whose walls are the planes x_a = lo_a, hi_a. */
-struct plate_grains {
-	const double *x, *R, *half, *r;
-	const double *lo, *hi;
-};
-
-/* The interaction of contact record c (a pair, or a grain and a wall, from an enumerator over
- * the bounding radii) among grains g: plate_interaction with j's centre at x_i - c->dx (its
- * nearest image), into xj for a pair, or plate_wall_interaction with the wall's plane;
- * gap as there.  Returns m, 0 when the bounding spheres meet but the grains do not. */
-int plate_record_interaction(const struct plate_grains *g, const struct contact *c, double gap,
-    struct plate_interaction *out, double xj[3]);
 
 /* A lower bound on the distance between the cores of a and b, from the six axes of their
  * frames (each face normal and edge direction: the gap between the cores' projections on

@@ -16,12 +16,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define E_GRAIN 1.0			/* the scaled grain-grain E* (dem.h) */
-#define E_WALL 2.0			/* grain-wall E* over grain-grain E* for rigid walls */
 /* The contact law of the settling: Hertz-Mindlin's DEM force (law.h: tangential spring
  * 2(1-nu)/(2-nu) = 0.889 of the normal stiffness at nu = 0.2, viscous damping ratio 0.3),
- * with the scaled E* of dem.h and the settling's friction coefficient dem_params.mu for
- * pairs and walls alike. */
+ * in the law's DEM units (its dem_units: E* = 1 between two mean grains) with rigid walls
+ * (settle_units), and the settling's friction coefficient dem_params.mu for pairs and walls
+ * alike. */
 #define DEM_LAW (&contact_law_hertz_mindlin)
 
 /* What the compaction keeps beside the engine: the largest radius, the unloading stage,
@@ -201,14 +200,30 @@ max_overlap(const struct dem *d, double *coord)
 
 /* Time step from the stiffest likely contact: the two smallest grains (R* = rmin / 2), or
  * the smallest grain on a wall (R* = rmin), at overlap h rmin (h relative to the radius).
- * hertz_stiffness_t's sqrt(R* overlap) as (R* h) rmin, the product in the order of the
- * steps packgen has always taken. */
+ * The law's stiffest (Hertz's 2 E* sqrt(R* overlap)) with R* overlap as (R* h) rmin, the
+ * product in the order of the steps packgen has always taken. */
 static void
 dt_for_overlap(struct dem *d, double mmin, double rmin, double h)
 {
-	double k = fmax(hertz_stiffness_t(E_GRAIN, 0.5 * rmin * h, rmin), hertz_stiffness_t(E_WALL, rmin * h, rmin));
+	const struct contact_law *law = d->e.law;
+	double k = fmax(law->stiffest(law, &d->e.lp_grain, 0.5 * rmin * h, rmin),
+	    law->stiffest(law, &d->e.lp_wall, rmin * h, rmin));
 
 	d->e.dt = d->dt_safety * sqrt(0.5 * mmin / k);
+}
+
+/* The settling's pair constants from the law's DEM units (grain-grain E* 1): the walls rigid
+ * whatever the pack's wall material, since the settling makes geometry only and its stresses
+ * only set the overlap scale (for rigid walls Hertz's wall E* is 2 to the bit: 1/c over
+ * 1/(2c)). */
+static void
+settle_units(struct dem *d, const struct pack *p)
+{
+	struct pack rigid = *p;	/* a view of p's materials, its walls rigid */
+
+	rigid.wall_E = 0;
+	d->e.law = DEM_LAW;
+	DEM_LAW->dem_units(DEM_LAW, &rigid, 1, 1, &d->e.lp_grain, &d->e.lp_wall);
 }
 
 /* Scaled copies of the grains (mean radius 1, density 1), in the order of placement:
@@ -416,8 +431,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 		d.e.rb[i] = d.e.r[i];
 		d.e.J[3 * i] = d.e.J[3 * i + 1] = d.e.J[3 * i + 2] = 0.4 * d.e.m[i] * d.e.r[i] * d.e.r[i];
 	}
-	d.e.law = DEM_LAW;
-	d.e.lp_grain.Es = E_GRAIN, d.e.lp_wall.Es = E_WALL;
+	settle_units(&d, p);
 	d.e.mu = d.e.wall_mu = d.e.lp_grain.mu = d.e.lp_wall.mu = dp->mu;
 	d.e.zeta = DEM_LAW->zeta;
 	d.e.kt_ratio = DEM_LAW->kt_ratio;
@@ -436,7 +450,7 @@ dem_loose_pack(struct pack *p, const struct dem_params *dp, gsl_rng *rng, dem_pr
 	 * first jammed at a stress 'preload' times larger (mean overlap ~ 30x) and then
 	 * unloaded to the target: unloading is nearly elastic and the frictional contact
 	 * network, hence the loose structure, survives it. */
-	pfinal = 4.5 * 0.6 * (hertz_coef(E_GRAIN, sqrt(0.5)) * pow(dp->overlap, 1.5)) / (4 * M_PI);
+	pfinal = 4.5 * 0.6 * (hertz_coef(d.e.lp_grain.Es, sqrt(0.5)) * pow(dp->overlap, 1.5)) / (4 * M_PI);
 	if (dem_settle(&d, dp, pfinal, vol, mmin, rmin, fn, ctx, st) || dem_write_back(&d, p, order, rmean))
 		goto out;
 	status = 0;

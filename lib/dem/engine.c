@@ -41,7 +41,7 @@ void
 engine_free(struct engine *d)
 {
 	free(d->x), free(d->v), free(d->q), free(d->w), free(d->f), free(d->t), free(d->R);
-	free(d->m), free(d->J), free(d->r), free(d->half), free(d->rb), free(d->glue);
+	free(d->m), free(d->J), free(d->r), free(d->half), free(d->kind), free(d->rb), free(d->glue);
 	free(d->pcache), free(d->q0), free(d->turn), free(d->turn_list), free(d->wl);
 	free(d->prec), free(d->sums), free(d->ptouch), free(d->frow), free(d->mob);
 	free(d->xrec), free(d->xslot), free(d->xin_first);
@@ -92,13 +92,14 @@ engine_alloc(struct engine *d, size_t n)
 	d->R = calloc(9 * n, sizeof *d->R), d->m = calloc(n, sizeof *d->m);
 	d->J = calloc(3 * n, sizeof *d->J), d->r = calloc(n, sizeof *d->r);
 	d->half = calloc(n, sizeof *d->half), d->rb = calloc(n, sizeof *d->rb);
+	d->kind = calloc(n, sizeof *d->kind);	/* 0: SHAPE_SPHERE, the first row */
 	d->wl = calloc(3 * n, sizeof *d->wl);
 	d->mob = calloc(2 * n, sizeof *d->mob);
 	d->mob_dt = NAN;	/* made at the first step, whatever its length */
 	d->cache_margin = ENGINE_CACHE_MARGIN;
 	d->rec_builds = d->x_builds = -1;
 	if (!d->x || !d->v || !d->q || !d->w || !d->f || !d->t || !d->R || !d->m || !d->J || !d->r || !d->half ||
-	    !d->rb || !d->wl || !d->mob) {
+	    !d->kind || !d->rb || !d->wl || !d->mob) {
 		msg_seterr("out of memory for %zu grains", n);
 		return -1;
 	}
@@ -128,10 +129,11 @@ static int
 cores_may_meet(void *ctx, size_t i, size_t j, const double dx[3])
 {
 	const struct engine *d = ctx;
+	const struct narrow_pair *np = narrow_pair_of(d->kind[i], d->kind[j]);
 	struct plate_body a, b;
 	int q;
 
-	if (d->half[i] == 0 && d->half[j] == 0)
+	if (np->bounds_exact)
 		return 1;
 	for (q = 0; q < 3; q++) {
 		a.x[q] = d->x[3 * i + q];
@@ -141,7 +143,7 @@ cores_may_meet(void *ctx, size_t i, size_t j, const double dx[3])
 	memcpy(b.R, d->R + 9 * j, sizeof b.R);
 	a.half = d->half[i], a.r = d->r[i];
 	b.half = d->half[j], b.r = d->r[j];
-	return plate_core_gap_bound(&a, &b) < a.r + b.r + d->ce.skin;
+	return np->gap_bound(&a, &b) < a.r + b.r + d->ce.skin;
 }
 
 /* Before a build: the frames cores_may_meet reads, at the orientations of the build, and the
@@ -178,12 +180,12 @@ engine_start(struct engine *d, double skin)
 
 	d->spheres = 1;
 	for (i = 0; i < n; i++)
-		if (d->half[i] > 0)
+		if (d->kind[i] != SHAPE_SPHERE)
 			d->spheres = 0;
 	/* a sphere's orientation is not observable and its Euler equations have no gyroscopic
 	 * term: its frame is kept as the lab's, so its body-frame spin is the lab's too */
 	for (i = 0; i < n; i++)
-		if (d->half[i] == 0) {
+		if (!shape_table[d->kind[i]]->oriented) {
 			memset(d->q + 4 * i, 0, 4 * sizeof *d->q);
 			d->q[4 * i] = 1;
 		}
@@ -252,6 +254,7 @@ engine_init(struct engine *d, const struct pack *p, const struct engine_params *
 
 		d->r[i] = p->r[i] / r0;
 		d->half[i] = L / 2;
+		d->kind[i] = (unsigned char)sh->kind;
 		d->rb[i] = sh->bounding_radius(d->r[i], L);
 		d->m[i] = rho * sh->volume(d->r[i], L);
 		sh->inertia(d->r[i], L, &In, &Ip);
@@ -414,9 +417,9 @@ interaction_force(const struct engine *d, size_t i, long j, const double *xj, co
 static int
 interaction_of(const struct engine *d, const struct contact *c, struct plate_interaction *it, double xj[3])
 {
-	const struct plate_grains g = {d->x, d->R, d->half, d->r, d->lo, d->hi};
+	const struct narrow_grains g = {d->x, d->R, d->half, d->r, d->kind, d->lo, d->hi};
 
-	return plate_record_interaction(&g, c, 0, it, xj);
+	return narrow_record_interaction(&g, c, 0, it, xj);
 }
 
 /* A pair's interaction through its cache (remade when it may have gone stale), with
@@ -426,6 +429,7 @@ pair_interaction_cached(struct engine *d, const struct contact *c, struct plate_
 {
 	size_t k = contact_pair_index(&d->ce, c), i = c->i, j = (size_t)c->j;
 	struct engine_cache *pc = &d->pcache[k];
+	const struct narrow_pair *np = narrow_pair_of(d->kind[i], d->kind[j]);
 	struct plate_body a, b;
 	double turns = d->turn[i] + d->turn[j];
 	int build = pc->list != d->ce.rebuilds, m, q;
@@ -435,8 +439,8 @@ pair_interaction_cached(struct engine *d, const struct contact *c, struct plate_
 		double room = d->cache_margin - (turns - pc->turn);
 		build = !(room > 0 && e0 * e0 + e1 * e1 + e2 * e2 < room * room);
 	}
-	/* cores that cannot touch yet (two spheres keep no cache) */
-	if (!build && !(pc->word & PLATE_CACHE_FEATURES) && (d->half[i] > 0 || d->half[j] > 0))
+	/* cores that cannot touch yet (a pair of exact bounds keeps no cache) */
+	if (!build && !(pc->word & PLATE_CACHE_FEATURES) && !np->bounds_exact)
 		return 0;
 	for (q = 0; q < 3; q++) {	/* xj written as it is made: a copy of b.x read back 16 bytes at
 					 * a time what was just stored 8 at a time, a stall per pair */
@@ -445,11 +449,11 @@ pair_interaction_cached(struct engine *d, const struct contact *c, struct plate_
 	}
 	a.half = d->half[i], a.r = d->r[i];
 	b.half = d->half[j], b.r = d->r[j];
-	if (a.half > 0 || b.half > 0) {	/* two spheres need no frame */
+	if (!np->bounds_exact) {	/* shapes that are their bounding spheres need no frame */
 		memcpy(a.R, d->R + 9 * i, sizeof a.R);
 		memcpy(b.R, d->R + 9 * j, sizeof b.R);
 	}
-	m = plate_interaction_cached(&a, &b, d->cache_margin, &pc->word, build, it);
+	m = np->cached(&a, &b, d->cache_margin, &pc->word, build, it);
 	if (build) {
 		memcpy(pc->dx, c->dx, sizeof pc->dx);
 		pc->turn = turns;
@@ -952,7 +956,7 @@ engine_integrate(struct engine *d)
 			}
 			continue;
 		}
-		if (d->half[i] == 0) {
+		if (!shape_table[d->kind[i]]->oriented) {
 			step_sphere(d->x, d->v, d->w, d->f, d->t, d->mob, i, dt, keep, al);
 			continue;
 		}
@@ -1135,7 +1139,7 @@ engine_write_back(struct engine *d, struct pack *p)
 	for (i = 0; i < d->n; i++) {
 		for (a = 0; a < 3; a++)
 			p->x[3 * i + a] = d->x[3 * i + a] * d->u_len;
-		if (p->q && d->half[i] > 0)	/* a sphere keeps the pack's (engine_start) */
+		if (p->q && shape_table[d->kind[i]]->oriented)	/* a sphere keeps the pack's (engine_start) */
 			memcpy(p->q + 4 * i, d->q + 4 * i, 4 * sizeof *p->q);
 	}
 	for (a = 0; a < 3; a++) {

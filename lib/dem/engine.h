@@ -4,8 +4,8 @@
  * for spheres, dem/platepack.h for plates) and the shear test (dem/plateshear.h) run on it.
  * The platy-particle paper's engine (P §II B, App. A; physics.md §12).
  *
- * An interaction is the element contacts of contact/plate.h (one for a pair of spheres or a
- * sphere and a wall), sharing its normal.  The law gives them their forces (its
+ * An interaction is the element contacts of contact/plate.h, found by contact/narrow.h's table
+ * of shape pairs (one for a pair of spheres or a sphere and a wall), sharing its normal.  The law gives them their forces (its
  * dem_interaction: each element's normal force at its own contact point, never attractive,
  * and the interaction's one tangential force at the overlap-weighted centre of the
  * elements), and keeps law->history doubles per interaction in the enumerator's slot (a
@@ -51,7 +51,7 @@
 #include <stdio.h>
 #include "contact/contacts.h"
 #include "contact/law.h"
-#include "contact/plate.h"
+#include "contact/narrow.h"
 #include "pack/pack.h"
 
 struct engine_params {
@@ -97,6 +97,7 @@ struct engine {
 	double *R;		/* rotation matrices of q (9n), refreshed by engine_forces */
 	double *m, *J;		/* masses (n), principal moments (3n: in-plane, in-plane, normal) */
 	double *r, *half;	/* spheroradii, half sides (n) */
+	unsigned char *kind;	/* shape kinds (n, enum shape_kind: the narrow phase's table, narrow.h) */
 	double *rb;		/* bounding radii (n): what the enumerator sees */
 	double lo[3], hi[3];
 	int periodic[3];

@@ -60,7 +60,7 @@ grains_volume(const struct engine *d)
 	size_t i;
 
 	for (i = 0; i < d->n; i++)
-		v += shape_volume(d->r[i], 2 * d->half[i]);
+		v += shape_table[d->kind[i]]->volume(d->r[i], 2 * d->half[i]);
 	return v;
 }
 

@@ -269,7 +269,7 @@ shear_begin(struct engine *d, struct pack *p, const struct shear_params *sp, str
 	}
 	*vol = 0;
 	for (i = 0; i < d->n; i++)
-		*vol += shape_volume(d->r[i], 2 * d->half[i]);
+		*vol += shape_table[d->kind[i]]->volume(d->r[i], 2 * d->half[i]);
 	*A = (d->hi[0] - d->lo[0]) * (d->hi[2] - d->lo[2]);
 	res->inertial = ss->vw / ss->H0 / sqrt(sigma_s);
 	res->v_w = ss->vw * d->u_len / d->u_time;

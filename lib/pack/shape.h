@@ -28,9 +28,8 @@
  * take by testing a grain's side: its name in a pack's shape column (pack-format.md), its
  * volume, principal moments, bounding radius, the body-frame box that holds it (drawing), and
  * whether its orientation is observable.  A grain's kind is pack_grain_shape (pack/pack.h);
- * the consumers ask shape_of(kind).  The narrow phase is not in the table yet: the DEM engine
- * (dem/engine.c) and the measures run contact/plate.h's on every pair, a sphere being a
- * core of side 0. */
+ * the consumers ask shape_of(kind).  The narrow phase, a function of two shapes, is the
+ * contact layer's table by shape pair (contact/narrow.h), indexed by these kinds. */
 #ifndef QUSGM_SHAPE_H
 #define QUSGM_SHAPE_H
 
