@@ -322,7 +322,19 @@ struct balance {
 	const unsigned char *rat;
 	double Psum, fsum;
 	size_t cnr;		/* contact ends on non-rattlers */
+	const struct contact_law *law;	/* the pack's: the history lines' limits */
+	struct law_pack lk;
 };
+
+/* b's law: pack p's (contact_law_of_pack), bound.  0, or -1 for a key no law has. */
+static int
+balance_bind_law(struct balance *b, const struct pack *p)
+{
+	if (!(b->law = contact_law_of_pack(p)))
+		return -1;
+	law_pack_bind(b->law, p, &b->lk);
+	return 0;
+}
 
 static void
 add_fabric(struct pack_measures *m, const double n[3])
@@ -389,10 +401,13 @@ measure_contact(const struct pack *p, const struct geo_contact *c, struct pack_m
 		 * a line above them where its normal force fell, and the pack transmits only the
 		 * limit there.  Without the clamp a settled pack read 1.1e-4 here while loadtest
 		 * found 9.5e-5 on it (a 200-grain frictionalized pack). */
-		double qlim = law_coulomb_limit(pack_contact_mu(p, c->j), c->P), qn, Es, Rs, mlim;
+		struct law_pair lp;
+		struct law_tangent t;
+		double qlim, mlim, qn;
 
-		hertz_pair_moduli(p, i, c->j, &Es, &Rs);
-		mlim = mindlin_twist_ratio(hertz_radius(Rs, fmax(c->h, 0))) * qlim;
+		b->law->pair(b->law, &b->lk, i, c->j, &lp);
+		b->law->tangent(b->law, &lp, c->h, c->P, &t);
+		qlim = t.qmax, mlim = t.mmax;
 
 		pack_contact_q0_on(&p->c[c->hist], i, Q);
 		Mt = p->c[c->hist].M0;
@@ -515,7 +530,7 @@ measure_forces(const struct pack *p, size_t nct, const struct balance *b, struct
 
 /* The sliding ratio of the history: lines at their limit mu P0, over the contacts. */
 static void
-measure_sliding(const struct pack *p, const struct geo_contacts *gc, struct pack_measures *m)
+measure_sliding(const struct pack *p, const struct geo_contacts *gc, const struct balance *b, struct pack_measures *m)
 {
 	size_t k, nsl = 0, nfr = 0;
 
@@ -523,7 +538,7 @@ measure_sliding(const struct pack *p, const struct geo_contacts *gc, struct pack
 	for (k = 0; k < gc->n; k++)
 		if (gc->c[k].hist >= 0) {
 			nfr++;
-			if (pack_contact_at_limit(p, &p->c[gc->c[k].hist]))
+			if (law_contact_at_limit(b->law, &b->lk, &p->c[gc->c[k].hist]))
 				nsl++;
 		}
 	m->stale_history = p->nc - nfr;
@@ -569,6 +584,8 @@ measure_pack_in(const struct pack *p, struct contact_enum *e, struct geo_contact
 	m->sliding_ratio = NAN;
 	m->bulk_margin = NAN;
 	bulk_absent(m);
+	if (balance_bind_law(&b, p))
+		return -1;
 	if (e ? contacts_find_in(p, e, gc) : contacts_find(p, gc))
 		return -1;
 	cnt = malloc(p->n * sizeof *cnt);
@@ -605,7 +622,7 @@ measure_pack_in(const struct pack *p, struct contact_enum *e, struct geo_contact
 	m->has_forces = gc->n > 0 && m->P_max > 0;
 	if (m->has_forces)
 		measure_forces(p, gc->n, &b, m);
-	measure_sliding(p, gc, m);
+	measure_sliding(p, gc, &b, m);
 	free(cnt), free(rat), free(b.F), free(b.M), free(b.fbig), free(b.res);
 	return 0;
 }
@@ -1109,7 +1126,7 @@ sphere_grain_forces(const struct pack *p, struct grain_forces *g)
 		msg_seterr("out of memory");
 		goto out;
 	}
-	if (contacts_find(p, &gc))
+	if (balance_bind_law(&b, p) || contacts_find(p, &gc))
 		goto out;
 	measure_coordination(p, &gc, g->z);
 	for (k = 0; k < gc.n; k++) {

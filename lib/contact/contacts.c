@@ -464,6 +464,8 @@ match_history(const struct pack *p, struct geo_contacts *gc)
  * collected first and the grain-wall ones after them, which is the order of the network. */
 struct find_ctx {
 	const struct pack *p;
+	const struct contact_law *law;	/* the pack's: each contact's normal force */
+	struct law_pack lk;
 	struct geo_contacts *gc, walls;
 };
 
@@ -472,7 +474,7 @@ on_contact(const struct contact *c, void *vctx)
 {
 	struct find_ctx *ctx = vctx;
 	struct geo_contact g;
-	double Es, Rs;
+	struct law_pair lp;
 
 	/* a contact of the network carries a positive overlap and has a normal */
 	if (!(c->h > 0) || c->d == 0)
@@ -483,8 +485,8 @@ on_contact(const struct contact *c, void *vctx)
 	g.d = c->d;
 	contact_normal(c, g.n);
 	g.hist = -1;
-	hertz_pair_moduli(ctx->p, g.i, g.j, &Es, &Rs);
-	g.P = hertz_force(Es, Rs, g.h);
+	ctx->law->pair(ctx->law, &ctx->lk, g.i, g.j, &lp);
+	ctx->law->normal(ctx->law, &lp, g.h, &g.P, NULL);
 	return push(PACK_IS_WALL(c->j) ? &ctx->walls : ctx->gc, &g);
 }
 
@@ -498,6 +500,9 @@ contacts_find_in(const struct pack *p, struct contact_enum *e, struct geo_contac
 	gc->n = 0;
 	ctx.p = p;
 	ctx.gc = gc;
+	if (!(ctx.law = contact_law_of_pack(p)))
+		return -1;
+	law_pack_bind(ctx.law, p, &ctx.lk);
 	contacts_init(&ctx.walls);
 	if (contact_enum_update(e, p->x, 0) || contact_foreach(e, p->x, CONTACT_TOUCHING, on_contact, &ctx) < 0)
 		goto out;

@@ -449,15 +449,15 @@ contact_Rstar(const struct contact *c, const double *r)
 
 /* The contact network at the pack's own positions: every contact with h > 0, grain-grain
  * first (i < j, ascending), then grain-wall in grain order, each with its unit normal, its
- * Hertz normal force (hertz.h: hertz_pair_moduli, hertz_force) and the pack's history line
- * for the pair. */
+ * normal force by the pack's law (law.h: its pair setup and normal; a spring law at the pack's
+ * meta kn) and the pack's history line for the pair. */
 struct geo_contact {
 	size_t i;
 	long j;		/* grain index or PACK_WALL(w) */
 	double h;	/* overlap (m) */
 	double d;	/* centre distance; for a wall, distance centre-wall */
 	double n[3];	/* unit normal, on i, from j to i */
-	double P;	/* Hertz normal force (N) */
+	double P;	/* normal force by the pack's law (N; contact_law_of_pack) */
 	long hist;	/* index into pack.c[] or -1 */
 };
 
@@ -475,7 +475,8 @@ int contacts_find(const struct pack *p, struct geo_contacts *gc);
  * without building a new list each time (a frictional increment finds its contacts at every
  * start and commit of its settle passes; the functional's own enumerator serves).  0 or -1. */
 int contacts_find_in(const struct pack *p, struct contact_enum *e, struct geo_contacts *gc);
-/* Replace p->c by a line per touching contact with P0 from Hertz at the current positions;
+/* Replace p->c by a line per touching contact with P0 the pack's law's normal force at the
+ * current positions;
  * Q0 and M0 are carried over from the line of the same pair when keep_history is set (lines
  * of pairs that no longer touch are dropped), zero otherwise.  0 or -1. */
 int contacts_store(struct pack *p, int keep_history);

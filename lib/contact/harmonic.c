@@ -54,7 +54,8 @@ harmonic_dem_interaction(const struct contact_law *law, const struct law_pair *l
 
 const struct contact_law contact_law_harmonic = {
 	.name = "harmonic", .history = 0, .kn = 1e5, .kt_ratio = 0, .zeta = 0.3,
-	.pair = hertz_mindlin_pair, .normal = harmonic_normal, .tangent = harmonic_tangent,
+	.pair = hertz_mindlin_pair, .normal = harmonic_normal, .overlap = law_spring_overlap,
+	.coulomb = law_coulomb_none, .tangent = harmonic_tangent,
 	.dem_interaction = harmonic_dem_interaction, .pack_key = "harmonic", .stiffness = LAW_SPRING,
 	.dem_units = law_spring_dem_units, .stiffest = law_spring_stiffest, .kappa = law_spring_kappa,
 	.kappa_stress = law_spring_kappa_stress, .history_force = law_history_none, .history_set = law_history_set_none,

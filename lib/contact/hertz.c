@@ -47,6 +47,13 @@ hertz_normal(const struct contact_law *law, const struct law_pair *lp, double h,
 	return hertz_energy_P(f, h);
 }
 
+static double
+hertz_overlap_of(const struct contact_law *law, const struct law_pair *lp, double P)
+{
+	(void)law;
+	return hertz_overlap(lp->Es, lp->Rs, P);
+}
+
 static void
 mindlin_tangent(const struct contact_law *law, const struct law_pair *lp, double h, double P, struct law_tangent *t)
 {
@@ -174,7 +181,8 @@ hertz_law_stress_in_range(const struct contact_law *law, const struct pack *p, d
  * DEM settling of packgen's loose packs (dem.h) */
 const struct contact_law contact_law_hertz_mindlin = {
 	.name = "hertz-mindlin", .history = 3, .kn = 0, .kt_ratio = 0.888888888888889, .zeta = 0.3,
-	.pair = hertz_mindlin_pair, .normal = hertz_normal, .tangent = mindlin_tangent,
+	.pair = hertz_mindlin_pair, .normal = hertz_normal, .overlap = hertz_overlap_of, .coulomb = law_coulomb_mu,
+	.tangent = mindlin_tangent,
 	.dem_interaction = hertz_mindlin_dem_interaction, .pack_key = "hertz", .stiffness = LAW_MODULI,
 	.dem_units = hertz_dem_units, .stiffest = hertz_stiffest, .kappa = hertz_kappa, .kappa_stress = hertz_kappa_stress,
 	.history_force = hertz_history_force, .history_set = hertz_history_set,

@@ -2,6 +2,7 @@
 /* law: the table of the contact laws (see law.h), and the policy the spring laws share; each
  * law is its own file (hertz.c, linear.c, harmonic.c). */
 #include "contact/law.h"
+#include "base/vec3.h"
 #include "base/msg.h"
 
 #include <math.h>
@@ -148,6 +149,56 @@ law_spring_dem_units(const struct contact_law *law, const struct pack *p, double
 	g->kn = w->kn = 1;
 	g->Es = w->Es = 1;
 	return kn;
+}
+
+double
+law_spring_overlap(const struct contact_law *law, const struct law_pair *lp, double P)
+{
+	(void)law;
+	return P > 0 ? P / lp->kn : 0.0;
+}
+
+void
+law_contact_limits(const struct contact_law *law, const struct law_pair *lp, double P, double *qmax, double *mmax)
+{
+	struct law_tangent t;
+
+	law->tangent(law, lp, law->overlap(law, lp, P), P, &t);
+	if (qmax)
+		*qmax = t.qmax;
+	if (mmax)
+		*mmax = t.mmax;
+}
+
+int
+law_line_at_limit(const struct contact_law *law, const struct law_pair *lp, const struct pack_contact *c)
+{
+	double qlim = law->coulomb(law, lp, c->P0);
+
+	return qlim > 0 && vec3_norm(c->Q0) >= qlim * (1 - 1e-9);
+}
+
+int
+law_contact_at_limit(const struct contact_law *law, const struct law_pack *lk, const struct pack_contact *c)
+{
+	struct law_pair lp;
+
+	law->pair(law, lk, c->i, c->j, &lp);
+	return law_line_at_limit(law, &lp, c);
+}
+
+double
+law_coulomb_mu(const struct contact_law *law, const struct law_pair *lp, double P)
+{
+	(void)law;
+	return law_coulomb_limit(lp->mu, P);
+}
+
+double
+law_coulomb_none(const struct contact_law *law, const struct law_pair *lp, double P)
+{
+	(void)law, (void)lp, (void)P;
+	return 0;
 }
 
 double

@@ -104,7 +104,15 @@ struct contact_law {
 	/* Energy at overlap h > 0; the force dU/dh into *P and the stiffness dP/dh into *k
 	 * unless NULL. */
 	double (*normal)(const struct contact_law *law, const struct law_pair *lp, double h, double *P, double *k);
-	/* The tangential state at overlap h carrying normal force P, with the pair's mu. */
+	/* The overlap h > 0 that carries normal force P > 0 (normal's inverse; 0 for P <= 0):
+	 * what a limit at a committed force P0 is measured at (law_contact_limits). */
+	double (*overlap)(const struct contact_law *law, const struct law_pair *lp, double P);
+	/* The sliding limit at normal force P (mu P for a frictional law, 0 for a frictionless
+	 * one): the tangent's qmax, which needs no overlap, for the checks of every history line
+	 * at every commit. */
+	double (*coulomb)(const struct contact_law *law, const struct law_pair *lp, double P);
+	/* The tangential state at overlap h carrying normal force P, with the pair's mu: its
+	 * stiffnesses and its Coulomb and twist limits (qmax, mmax), every consumer's limits. */
 	void (*tangent)(const struct contact_law *law, const struct law_pair *lp, double h, double P, struct law_tangent *t);
 	/* DEM: the forces of one interaction (struct law_dem_elems): each element's normal
 	 * force magnitude into fk[k] (>= 0, damping included), their sum returned, its elastic
@@ -162,6 +170,11 @@ int law_pack_knows_stiffness(const struct contact_law *law, const struct pack *p
  * stiffest 1 (k_n); kappa = k_n / (sigma r0), r0 the mean spheroradius (P eq. 6); a stress
  * is in range when its stiffness number is at least LAW_SPRING_KAPPA_MIN. */
 #define LAW_SPRING_KAPPA_MIN 100.0
+double law_spring_overlap(const struct contact_law *law, const struct law_pair *lp, double P);	/* P / k_n */
+/* The Coulomb limit law_coulomb_limit(lp->mu, P) (Hertz-Mindlin's and the linear law's
+ * coulomb), and a frictionless law's 0. */
+double law_coulomb_mu(const struct contact_law *law, const struct law_pair *lp, double P);
+double law_coulomb_none(const struct contact_law *law, const struct law_pair *lp, double P);
 double law_spring_dem_units(const struct contact_law *law, const struct pack *p, double r0, double kn, struct law_pair *g,
     struct law_pair *w);
 double law_spring_stiffest(const struct contact_law *law, const struct law_pair *w, double r, double h);
@@ -191,6 +204,17 @@ void law_history_set_force_kept(const struct contact_law *law, const struct law_
 #define CONTACT_LAW_EXTERN(id) extern const struct contact_law contact_law_##id;
 CONTACT_LAWS(CONTACT_LAW_EXTERN)
 #undef CONTACT_LAW_EXTERN
+
+/* The sliding and twist limits of a contact of pair constants lp at normal force P (the
+ * law's tangent at its overlap), into *qmax and *mmax unless NULL: a history line's limits at
+ * its P0, the frictional chain's history checks and commit clamp. */
+void law_contact_limits(const struct contact_law *law, const struct law_pair *lp, double P, double *qmax,
+    double *mmax);
+/* Whether history line c of the pack lk binds sits at its sliding limit: |Q0| at the law's
+ * limit at P0 (its coulomb), to 1e-9 (a frictionless law's limit is 0: never).  The sliding
+ * ratio's count; law_line_at_limit with the line's pair constants lp already made. */
+int law_contact_at_limit(const struct contact_law *law, const struct law_pack *lk, const struct pack_contact *c);
+int law_line_at_limit(const struct contact_law *law, const struct law_pair *lp, const struct pack_contact *c);
 
 /* The laws of the table, in its order, NULL-terminated. */
 extern const struct contact_law *const contact_laws[];

@@ -44,7 +44,8 @@ linear_law_dem_interaction(const struct contact_law *law, const struct law_pair 
  * the spring laws' policy (law.h); the history is the force the spring keeps. */
 const struct contact_law contact_law_linear = {
 	.name = "linear", .history = 3, .kn = 1e5, .kt_ratio = 0.888888888888889, .zeta = 0.3,
-	.pair = hertz_mindlin_pair, .normal = linear_normal, .tangent = linear_tangent,
+	.pair = hertz_mindlin_pair, .normal = linear_normal, .overlap = law_spring_overlap, .coulomb = law_coulomb_mu,
+	.tangent = linear_tangent,
 	.dem_interaction = linear_law_dem_interaction, .pack_key = "linear", .stiffness = LAW_SPRING,
 	.dem_units = law_spring_dem_units, .stiffest = law_spring_stiffest, .kappa = law_spring_kappa,
 	.kappa_stress = law_spring_kappa_stress, .history_force = law_history_force_kept,

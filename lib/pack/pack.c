@@ -223,14 +223,6 @@ pack_add_grain(struct pack *p, long id, const double x[3], double r, double E, d
 }
 
 int
-pack_contact_at_limit(const struct pack *p, const struct pack_contact *c)
-{
-	double qlim = pack_contact_mu(p, c->j) * c->P0;
-
-	return qlim > 0 && vec3_norm(c->Q0) >= qlim * (1 - 1e-9);
-}
-
-int
 pack_add_contact(struct pack *p, const struct pack_contact *c)
 {
 	if (p->nc == p->ccap) {

@@ -205,10 +205,6 @@ pack_contact_mu(const struct pack *p, long j)
 {
 	return PACK_IS_WALL(j) ? p->wall_mu : p->mu;
 }
-/* Whether history line c is at its Coulomb limit: |Q0| >= mu P0 (1 - 1e-9) with mu P0 > 0 (the
- * wall friction for a wall line).  The paper's sliding count (fr_commit) and packinfo's
- * sliding_ratio_lines both count these. */
-int pack_contact_at_limit(const struct pack *p, const struct pack_contact *c);
 /* The history lines as sorted keys: three longs per line, (a, b, line) with a < b for a grain
  * pair (either order in the file: 'i j' and 'j i' name one pair) and (grain, wall) for a wall,
  * ascending in a, then b, then line.  For finding a pair's line and a pair named twice.

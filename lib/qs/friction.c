@@ -30,6 +30,7 @@ void
 fr_free(struct qs_friction *f)
 {
 	free(f->c);
+	free(f->lp);
 	free(f->x0);
 	free(f->gs);
 	free(f->row_first), free(f->wall_first), free(f->col_first), free(f->col_k), free(f->blk);
@@ -86,8 +87,7 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	memcpy(c->n, g->n, sizeof c->n);
 	law_pack_bind(law, p, &lk);	/* the frictional chain's laws read no meta line */
 	law->pair(law, &lk, i, g->j, &lp);
-	c->Es = lp.Es;
-	c->Rs = lp.Rs;
+	f->lp[c - f->c] = lp;	/* for its limit at the commit (fr_commit_evaluated) */
 	contact_lever_lengths(wall, p->r[i], wall ? 0 : p->r[g->j], g->d, g->h, &li, &lj);
 	c->li = li;
 	c->lj = wall ? 0 : lj;
@@ -133,22 +133,6 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	c->M = c->mp;
 }
 
-/* M_max of a contact of moduli Es, Rs at normal force P (physics.md §5): a = sqrt(R* h(P)). */
-static double
-mmax_at(double Es, double Rs, double mu, double P)
-{
-	return mindlin_twist_limit(hertz_radius(Rs, hertz_overlap(Es, Rs, P)), mu, P);
-}
-
-/* M_max of a history line's contact at normal force P. */
-static double
-line_mmax(const struct pack *p, const struct pack_contact *c, double mu, double P)
-{
-	double Es, Rs;
-
-	hertz_pair_moduli(p, c->i, c->j, &Es, &Rs);
-	return mmax_at(Es, Rs, mu, P);
-}
 
 /* The mean committed normal force over p's history lines (0 without lines). */
 static double
@@ -162,13 +146,17 @@ history_mean_P(const struct pack *p)
 	return Pmean;
 }
 
-/* A floor under M_max(Pmean) of every pair and wall contact of p: M_max grows with R* and
- * falls with E*, so it is the limit at the largest E* and the smallest R* (r_min / 2) with
- * the smaller friction coefficient, less 0.1 % for the rounding of the per-contact forms. */
+/* A floor under M_max(Pmean) of every pair and wall contact of p, by the law at the pair
+ * constants that make it least: Mindlin's grows with R* and falls with E*, so the largest E*
+ * and the smallest R* (r_min / 2), with the smaller friction coefficient (the chain's laws,
+ * contact_laws_qs_friction, are Mindlin's), less 0.1 % for the rounding of the per-contact
+ * forms. */
 static double
-history_mmax_floor(const struct pack *p, double Pmean)
+history_mmax_floor(const struct contact_law *law, const struct law_pack *lk, double Pmean)
 {
-	double cmin = INFINITY, rmin = INFINITY, wall_comp = hertz_compliance(p->wall_E, p->wall_nu);
+	const struct pack *p = lk->p;
+	double cmin = INFINITY, rmin = INFINITY, wall_comp = hertz_compliance(p->wall_E, p->wall_nu), mmax;
+	struct law_pair lp;
 	size_t i;
 
 	for (i = 0; i < p->n; i++) {
@@ -177,55 +165,68 @@ history_mmax_floor(const struct pack *p, double Pmean)
 	}
 	if (!(Pmean > 0) || !(cmin > 0) || !(rmin > 0))
 		return 0;
-	return 0.999 * mmax_at(hertz_Estar_c(cmin, wall_comp > 0 ? fmin(cmin, wall_comp) : cmin), rmin / 2,
-	    fmin(p->mu, p->wall_mu), Pmean);
+	law->pair(law, lk, 0, 0, &lp);	/* the law's other constants, of any pair */
+	lp.Es = hertz_Estar_c(cmin, wall_comp > 0 ? fmin(cmin, wall_comp) : cmin);
+	lp.Rs = rmin / 2;
+	lp.mu = fmin(p->mu, p->wall_mu);
+	law_contact_limits(law, &lp, Pmean, NULL, &mmax);
+	return 0.999 * mmax;
 }
 
 /* Whether history line c lies beyond what a commit of an equilibrium can leave: |Q0| above
- * mu (P0 + Pmean), or |M0| above M_max(P0) + M_max(Pmean) (the slip the normal force's fall in
- * one increment calls for is far below the limit of an average contact).  1 for Q0, 2 for
- * M0, 0 within.  mfloor: history_mmax_floor's, under which a couple needs no check. */
+ * the sliding limit at P0 + Pmean (mu (P0 + Pmean)), or |M0| above M_max(P0) + M_max(Pmean)
+ * (the slip the normal force's fall in one increment calls for is far below the limit of an
+ * average contact), the limits the law's (line_limits).  1 for Q0, 2 for M0, 0 within.
+ * mfloor: history_mmax_floor's, under which a couple needs no check. */
 static int
-line_beyond_commit(const struct pack *p, const struct pack_contact *c, double Pmean, double mfloor)
+line_beyond_commit(const struct contact_law *law, const struct law_pair *lp, const struct pack_contact *c,
+    double Pmean, double mfloor)
 {
-	double mu = pack_contact_mu(p, c->j), Es, Rs;
-	double qlim = law_coulomb_limit(mu, c->P0 + Pmean) * (1 + 1e-9);
+	double m0, mmean;
 
 	/* every commit checks every line: the torsional limits (two cube roots) only when the
 	 * force is within its bound and the couple is above the floor of every contact's */
-	if (vec3_norm(c->Q0) > qlim)
+	if (vec3_norm(c->Q0) > law->coulomb(law, lp, c->P0 + Pmean) * (1 + 1e-9))
 		return 1;
 	if (fabs(c->M0) < mfloor)
 		return 0;
-	hertz_pair_moduli(p, c->i, c->j, &Es, &Rs);
-	return fabs(c->M0) > (mmax_at(Es, Rs, mu, c->P0) + mmax_at(Es, Rs, mu, Pmean)) * (1 + 1e-9) ? 2 : 0;
+	law_contact_limits(law, lp, c->P0, NULL, &m0);
+	law_contact_limits(law, lp, Pmean, NULL, &mmean);
+	return fabs(c->M0) > (m0 + mmean) * (1 + 1e-9) ? 2 : 0;
 }
 
 int
-fr_check_history(const struct pack *p)
+fr_check_history(const struct contact_law *law, const struct pack *p)
 {
-	double Pmean = history_mean_P(p), mfloor = history_mmax_floor(p, Pmean);
+	struct law_pack lk;
+	double Pmean, mfloor;
 	size_t k;
 
+	law_pack_bind(law, p, &lk);
+	Pmean = history_mean_P(p), mfloor = history_mmax_floor(law, &lk, Pmean);
 	for (k = 0; k < p->nc; k++) {
 		const struct pack_contact *c = &p->c[k];
-		double mu = pack_contact_mu(p, c->j), qn = vec3_norm(c->Q0);
-		int beyond = line_beyond_commit(p, c, Pmean, mfloor);
+		double mu = pack_contact_mu(p, c->j), qn = vec3_norm(c->Q0), q0, m0, qmean;
+		struct law_pair lp;
 		char jn[32];
+		int beyond;
 
-		if (!beyond)
+		law->pair(law, &lk, c->i, c->j, &lp);
+		if (!(beyond = line_beyond_commit(law, &lp, c, Pmean, mfloor)))
 			continue;
 		if (PACK_IS_WALL(c->j))
 			snprintf(jn, sizeof jn, "%s", pack_wall_names[PACK_WALL_INDEX(c->j)]);
 		else
 			snprintf(jn, sizeof jn, "%ld", p->id[c->j]);
+		law_contact_limits(law, &lp, c->P0, &q0, &m0);
+		law_contact_limits(law, &lp, Pmean, &qmean, NULL);
 		if (beyond == 1)
 			msg_seterr("contact %ld %s: |Q0| = %.6g N is far above its sliding limit mu P0 = %.6g N (mu %g; "
 			           "a committed pack exceeds it by less than mu times the mean normal force, %.6g N)",
-			    p->id[c->i], jn, qn, law_coulomb_limit(mu, c->P0), mu, law_coulomb_limit(mu, Pmean));
+			    p->id[c->i], jn, qn, q0, mu, qmean);
 		else
 			msg_seterr("contact %ld %s: |M0| = %.6g N m is far above its torsional limit %.6g N m (mu %g)",
-			    p->id[c->i], jn, fabs(c->M0), line_mmax(p, c, mu, c->P0), mu);
+			    p->id[c->i], jn, fabs(c->M0), m0, mu);
 		return -1;
 	}
 	return 0;
@@ -297,12 +298,15 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 	}
 	if (gc.n > f->cap) {
 		struct fr_contact *c = realloc(f->c, gc.n * sizeof *c);
-		if (!c) {
+		struct law_pair *lp = c ? realloc(f->lp, gc.n * sizeof *lp) : NULL;
+		if (c)
+			f->c = c;
+		if (!c || !lp) {
 			contacts_free(&gc);
 			msg_seterr("out of memory for contacts");
 			return -1;
 		}
-		f->c = c;
+		f->lp = lp;
 		f->cap = gc.n;
 	}
 	if (f->ngrains != p->n || !f->x0 || !f->gs) {
@@ -865,14 +869,18 @@ friction_hessian(struct qs_term *t, struct qs_system *s, const double *x, struct
 	return st ? -1 : 0;
 }
 
-/* Hertz normal force of contact c at the pack's current positions (0 when it has opened). */
+/* The sliding limit of reference contact c, of pair constants lp, at its normal force by the
+ * law at the pack's current positions (0 when it has opened). */
 static double
-normal_force_now(const struct pack *p, const struct fr_contact *c)
+sliding_limit_now(const struct contact_law *law, const struct pack *p, const struct fr_contact *c,
+    const struct law_pair *lp)
 {
 	struct contact now;
+	double P;
 
 	contact_between(p, p->x, c->i, c->j, &now);
-	return hertz_force(c->Es, c->Rs, now.h);
+	law->normal(law, lp, now.h, &P, NULL);
+	return law->coulomb(law, lp, P);
 }
 
 int
@@ -887,6 +895,8 @@ int
 fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x)
 {
 	struct pack *p = s->p;
+	const struct contact_law *law = s->law;
+	struct law_pack lk;
 	size_t k, n3 = 3 * s->n;
 
 	/* the final forces become history lines; contacts_store keeps those still touching */
@@ -911,23 +921,29 @@ fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x)
 	 * P0 now, as the next increment's start (fr_begin's clamp) would do anyway.  A commit of
 	 * an equilibrium never reaches that bound, so its lines are kept exactly. */
 	f->ncommit_slipped = 0;
+	f->nlimit = 0;	/* and the paper's count: the committed lines at their limit mu P0 */
+	law_pack_bind(law, p, &lk);
 	{
-		double Pmean = history_mean_P(p), mfloor = history_mmax_floor(p, Pmean);
+		double Pmean = history_mean_P(p), mfloor = history_mmax_floor(law, &lk, Pmean);
 
-		for (k = 0; k < p->nc; k++) {
+		for (k = 0; k < p->nc; k++) {	/* each line's limits by the law, its pair made once */
 			struct pack_contact *c = &p->c[k];
-			double mu = pack_contact_mu(p, c->j), qn, qm, mm;
+			struct law_pair lp;
+			double qn, qm, mm;
 			int a;
 
-			if (!line_beyond_commit(p, c, Pmean, mfloor))
-				continue;
-			qn = vec3_norm(c->Q0), qm = law_coulomb_limit(mu, c->P0), mm = line_mmax(p, c, mu, c->P0);
-			if (qn > qm)
-				for (a = 0; a < 3; a++)
-					c->Q0[a] *= qm / qn;
-			if (fabs(c->M0) > mm)
-				c->M0 = c->M0 > 0 ? mm : -mm;
-			f->ncommit_slipped++;
+			law->pair(law, &lk, c->i, c->j, &lp);
+			if (line_beyond_commit(law, &lp, c, Pmean, mfloor)) {
+				qn = vec3_norm(c->Q0);
+				law_contact_limits(law, &lp, c->P0, &qm, &mm);
+				if (qn > qm)
+					for (a = 0; a < 3; a++)
+						c->Q0[a] *= qm / qn;
+				if (fabs(c->M0) > mm)
+					c->M0 = c->M0 > 0 ? mm : -mm;
+				f->ncommit_slipped++;
+			}
+			f->nlimit += (size_t)law_line_at_limit(law, &lp, c);
 		}
 	}
 	/* the slip count: the trial force of each reference contact against the limit of its
@@ -935,15 +951,10 @@ fr_commit_evaluated(struct qs_friction *f, struct qs_system *s, double *x)
 	f->ntrial_slip = 0;
 	for (k = 0; k < f->n; k++) {
 		const struct fr_contact *c = &f->c[k];
-		double qlim = law_coulomb_limit(pack_contact_mu(p, c->j), normal_force_now(p, c));
+		double qlim = sliding_limit_now(law, p, c, &f->lp[k]);
 		if (qlim > 0 && c->qtrial >= qlim * (1 - 1e-9))
 			f->ntrial_slip++;
 	}
-	/* the paper's count: the committed lines at their limit mu P0 */
-	f->nlimit = 0;
-	for (k = 0; k < p->nc; k++)
-		if (pack_contact_at_limit(p, &p->c[k]))
-			f->nlimit++;
 	return 0;
 }
 

@@ -54,12 +54,12 @@ struct fr_contact {
 	double pp, mpp;		/* |Q^p|^2 and (M^p)^2, for the energy */
 	double Q[3], M;		/* force and couple on i at the last evaluation */
 	double qtrial;		/* |Q^p - k* u_s| at the last evaluation (the elastic trial) */
-	double Es, Rs;		/* Hertz E* and R* of the pair (for its normal force at the commit) */
 };
 
 struct qs_friction {
 	size_t n, cap;
 	struct fr_contact *c;
+	struct law_pair *lp;	/* each contact's pair constants (n; out of c, whose walks are hot) */
 	double *x0;		/* reference centres (3N) */
 	double *gs;		/* per grain at an evaluation, FR_GS apart: x - x0, then w = R Omega */
 	/* the index of the contacts (fr_begin), for the threads: per grain i the range of the
@@ -94,13 +94,14 @@ void fr_free(struct qs_friction *f);
 int fr_rule_parse(const char *name, enum fr_rule *rule);
 const char *fr_rule_name(enum fr_rule rule);
 
-/* Check a pack's history against its friction coefficients.  A committed line can exceed its
+/* Check a pack's history against its friction coefficients, by law's limits (its tangent at
+ * the line's normal force: law_contact_limits).  A committed line can exceed its
  * sliding limit mu P0 by the slip its normal force's fall in the last increment calls for
  * (see fr_commit), which is small against the limit of an average contact; a line with
  * |Q0| > mu (P0 + P_mean) (or |M0| above M_max(P0) + M_max(P_mean)) cannot come from a
  * commit and is refused as corrupt.  Lines below that are repaired by fr_begin's clamp.
  * Returns 0, or -1 with msg_seterr naming the first offending contact by grain ids. */
-int fr_check_history(const struct pack *p);
+int fr_check_history(const struct contact_law *law, const struct pack *p);
 
 /* Start an increment from the pack's positions p->x and contact history p->c (friction
  * coefficients p->mu, p->wall_mu), with the stiffnesses of s->law.  Adds f's term to s's

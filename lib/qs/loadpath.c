@@ -308,6 +308,7 @@ control_strain(const struct path_seg *sg, const double eps[3])
 int
 path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale)
 {
+	const struct contact_law *law;
 	struct geo_contacts gc;
 	struct pack_measures m;
 	int r;
@@ -316,7 +317,7 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 		return -1;
 	if (pack_require_spheres(p, who))
 		return 1;
-	if (!contact_law_require(p, who, contact_laws_qs_friction))
+	if (!(law = contact_law_require(p, who, contact_laws_qs_friction)))
 		return 1;
 	if (p->n < 5) {
 		msg_seterr("%zu grains: %s needs at least 5", p->n, who);
@@ -328,7 +329,7 @@ path_read_pack(const char *input, const char *who, struct pack *p, size_t *stale
 	}
 	/* History written by a tool satisfies the sliding limit of the pack's own coefficients:
 	 * a line far above it is corrupt, not something to repair silently. */
-	if (fr_check_history(p))
+	if (fr_check_history(law, p))
 		return 1;
 	contacts_init(&gc);
 	r = measure_pack(p, &gc, &m);

@@ -65,6 +65,19 @@ for law in $laws; do
 		key=$(awk '$1 == "meta" && $2 == "contact-law" { print $3 }' kd.pack)
 		[ "$key" = "$law" ] && pass "$law: densify runs it and keeps the key" ||
 		    fail "$law: densify keeps the pack's law" "meta contact-law '$key'"
+		# its contact lines carry the law's normal forces: the x walls' P0 over their area
+		# is packinfo's wall stress sig_xx, measured by the law (densify wrote Hertz's P0
+		# for every law, 9.8 times the linear law's here)
+		packinfo kd.pack >kd.info 2>/dev/null
+		ratio=$(awk 'NR == FNR { if ($1 == "sig_xx") s = $2; if ($1 == "ly") ly = $2; if ($1 == "lz") lz = $2; next }
+		    NF == 7 && ($2 == "xlo" || $2 == "xhi") { f += $3 }
+		    END { if (s > 0) printf "%.6f", f / 2 / (s * ly * lz); else print "none" }' kd.info kd.pack)
+		# the two walls' forces differ by the equilibrium's residual (1e-4 of a force at most)
+		if is_number "$ratio" && awk -v r="$ratio" 'BEGIN { exit !(r > 0.999 && r < 1.001) }'; then
+			pass "$law: densify's contact lines carry the law's forces (x walls' P0 over sig_xx: $ratio)"
+		else
+			fail "$law: densify's contact lines carry the law's forces" "x walls' P0 over sig_xx $ratio"
+		fi
 		for t in frictionalize loadtest dissociate; do
 			$t kd.pack >t.out 2>t.err
 			rc=$?

@@ -491,7 +491,7 @@ test_law_table(gsl_rng *rng)
 	for (l = contact_laws; *l; l++) {	/* every row: found by its name and key, its policy complete */
 		nl++;
 		CHECK(contact_law_find((*l)->name) == *l && (!(*l)->pack_key || contact_law_find((*l)->pack_key) == *l) &&
-		    (*l)->pair && (*l)->normal && (*l)->tangent && (*l)->dem_interaction && (*l)->dem_units && (*l)->stiffest &&
+		    (*l)->pair && (*l)->normal && (*l)->overlap && (*l)->coulomb && (*l)->tangent && (*l)->dem_interaction && (*l)->dem_units && (*l)->stiffest &&
 		    (*l)->kappa && (*l)->kappa_stress && (*l)->history_force && (*l)->history_set && (*l)->stress_in_range &&
 		    (*l)->history <= 8, "law table: %s is found by its name and key and answers every question", (*l)->name);
 	}
@@ -587,6 +587,24 @@ test_law_normal_fd(void)
 			bad_t += !(t.qmax >= 0 && t.qmax <= 0.3 * P * (1 + 1e-15) && t.k >= 0 && t.kt >= 0 && t.mmax >= 0);
 		}
 		CHECK(worst < 1e-7, "%s: P = dU/dh and k = dP/dh by central differences (worst relative %.2g)", law->name, worst);
+		{	/* overlap, normal's inverse, and the limits at a force (law_contact_limits):
+			 * the tangent's at that overlap; a few roundings (Hertz: a cube root), 1e-14 */
+			double inv = 0, lim = 0, qm, mm, P;
+
+			for (h = 1e-8; h <= 1e-6; h *= 1.7) {
+				law->normal(law, &lp, h, &P, NULL);
+				inv = fmax(inv, fabs(law->overlap(law, &lp, P) - h) / h);
+				law_contact_limits(law, &lp, P, &qm, &mm);
+				law->tangent(law, &lp, h, P, &t);
+				lim = fmax(lim, t.qmax > 0 ? fabs(qm - t.qmax) / t.qmax : fabs(qm));
+				lim = fmax(lim, t.qmax > 0 ? fabs(law->coulomb(law, &lp, P) - t.qmax) / t.qmax :
+				    fabs(law->coulomb(law, &lp, P)));
+				lim = fmax(lim, t.mmax > 0 ? fabs(mm - t.mmax) / t.mmax : fabs(mm));
+			}
+			CHECK(inv < 1e-14 && lim < 1e-14 && law->overlap(law, &lp, 0) == 0,
+			    "%s: overlap(P) inverts P(h) (%.2g), the limits at a force (and coulomb) are the tangent's (%.2g)",
+			    law->name, inv, lim);
+		}
 		CHECK(bad_t == 0, "%s: the tangential state within the Coulomb limit, stiffnesses >= 0 (%d off)", law->name, bad_t);
 		{	/* no force apart */
 			double P = 1, k = 1, U = law->normal(law, &lp, -1e-9, &P, &k);

@@ -875,18 +875,18 @@ test_history(void)
 		lp->Q0[0] = 0.99 * lim_p;
 		lw->Q0[1] = 0.99 * lim_w;	/* with mu instead of wall_mu this is 1.32 times the limit */
 		lw->M0 = 0;
-		CHECK(fr_check_history(&p) == 0, "check_history: lines at 0.99 of mu (P0 + P_mean) (wall_mu on the wall) pass");
+		CHECK(fr_check_history(&contact_law_hertz_mindlin, &p) == 0, "check_history: lines at 0.99 of mu (P0 + P_mean) (wall_mu on the wall) pass");
 		lp->Q0[0] = 1.01 * lim_p;
-		rc = fr_check_history(&p);
+		rc = fr_check_history(&contact_law_hertz_mindlin, &p);
 		CHECK(rc == -1, "check_history: |Q0| = 1.01 mu (P0 + P_mean) is refused (%s)", msg_geterr());
 		lp->Q0[0] = 0.99 * lim_p;
 		lw->Q0[1] = 1.01 * lim_w;
-		CHECK(fr_check_history(&p) == -1, "check_history: a wall line above wall_mu (P0 + P_mean) is refused");
+		CHECK(fr_check_history(&contact_law_hertz_mindlin, &p) == -1, "check_history: a wall line above wall_mu (P0 + P_mean) is refused");
 		lw->Q0[1] = 0;
 		lp->M0 = -0.99 * mlim_p;
-		CHECK(fr_check_history(&p) == 0, "check_history: |M0| = 0.99 (M_max(P0) + M_max(P_mean)) passes");
+		CHECK(fr_check_history(&contact_law_hertz_mindlin, &p) == 0, "check_history: |M0| = 0.99 (M_max(P0) + M_max(P_mean)) passes");
 		lp->M0 = -1.01 * mlim_p;
-		rc = fr_check_history(&p);
+		rc = fr_check_history(&contact_law_hertz_mindlin, &p);
 		CHECK(rc == -1, "check_history: |M0| = 1.01 (M_max(P0) + M_max(P_mean)) is refused (%s)", msg_geterr());
 	}
 	pack_free(&p);
