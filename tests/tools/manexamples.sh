@@ -96,8 +96,10 @@ for page in "$TOP"/share/man/man[157]/*.[157]; do
 		fail "$name: its examples run as typed" "chromium not installed (make check installs it as root: apt-get install chromium)"
 		continue
 	fi
-	# no D-Bus for Chromium to wait for (tests/tools/packview.sh); a bound on a hung example
-	if (cd "$d" && DBUS_SESSION_BUS_ADDRESS=disabled: timeout 300 bash -e -o pipefail "$d.script" >"$d.out" 2>"$d.err"); then
+	# no D-Bus for Chromium to wait for (tests/tools/packview.sh); HOME the page's directory,
+	# so that Chromium's profile is its own, not one another test's Chromium holds; a bound
+	# on a hung example
+	if (cd "$d" && HOME=$d DBUS_SESSION_BUS_ADDRESS=disabled: timeout 300 bash -e -o pipefail "$d.script" >"$d.out" 2>"$d.err"); then
 		pass "$name: its examples run as typed ($nc lines)"
 	else
 		rc=$?
