@@ -11,6 +11,9 @@ if [ "${BIN#*build-san}" != "$BIN" ]; then
 	echo "SKIP makerun (left to the optimised build)"
 	exit 0
 fi
+# a scratch directory used before (run.sh --one keeps it) starts empty: ln -s into an existing
+# link to a directory would write into the tree
+rm -rf "tools dir" a b cmds a.* b.*
 ln -s "$BIN" "tools dir"
 mkdir a b b/out
 ln -s "$TOP/share" a/share	# the figures' scripts, where make run finds them
