@@ -393,6 +393,7 @@ install: tools libs
 	cp $(MAN5) $(DESTDIR)$(MANPREFIX)/man5/
 	cp $(MAN7) $(DESTDIR)$(MANPREFIX)/man7/
 	cp -R share/doc $(DESTDIR)$(DATADIR)/
+	cp README.md NEWS CITATION.cff $(DESTDIR)$(DATADIR)/doc/
 	mkdir -p $(DESTDIR)$(DATADIR)/pipelines $(DESTDIR)$(DATADIR)/plot $(DESTDIR)$(DATADIR)/examples
 	cp pipelines/Makefile pipelines/README.md pipelines/*.sh $(DESTDIR)$(DATADIR)/pipelines/
 	cp share/plot/* $(DESTDIR)$(DATADIR)/plot/

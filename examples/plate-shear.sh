@@ -32,5 +32,7 @@ awk -F '\t' '/^##/ { next }
 	/^# / { sub(/^# /, ""); for (i = 1; i <= NF; i++) { c = $i; sub(/\[.*\]$/, "", c); col[c] = i }; next }
 	{ printf "%.2f\t%.3f\t%.4f\t%.2f\n", $col["gamma"], $col["qp"], $col["phi"], $col["Z"] }' shear.tsv
 echo "# y/y_w	v_x/v_w"
-awk -F '\t' '!/^#/ { printf "%.2f\t%.3f\n", $1, $2 }' profile.tsv
+awk -F '\t' '/^##/ { next }
+	/^# / { sub(/^# /, ""); for (i = 1; i <= NF; i++) { c = $i; sub(/\[.*\]$/, "", c); col[c] = i }; next }
+	{ printf "%.2f\t%.3f\n", $col["y_over_yw"], $col["vx_over_vw"] }' profile.tsv
 grep -E '^(packing_fraction|coordination|nematic_order|qp|a_n|a_fn|a_ft) ' descriptors.txt

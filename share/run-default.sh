@@ -9,33 +9,41 @@
 # final pack in 3D (packview).
 set -e
 bin=${1:-build/bin}
-# OpenMP threads that wait at a barrier spin for a while before they sleep: GNU OpenMP's
-# default spin makes two threads beside one other busy process 4x slower than alone (packgen
-# 2740: 7.5 s alone, 32.7 s beside a busy loop; 13.6 s on one thread).  A short spin keeps
-# the time alone (7.2 s) and bounds the loss (18.6 s); the bytes do not depend on it.
-export GOMP_SPINCOUNT="${GOMP_SPINCOUNT:-1000}"
+# the grains of the pack: the papers' 2740 unless a second argument says (tests/tools/makerun.sh
+# runs the chain small)
+n=${2:-2740}
+# Idle OpenMP threads sleep at once by default: a tool that runs more than one thread starts
+# itself again with OMP_WAIT_POLICY=passive unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set
+# (qusgm(7), ENVIRONMENT).  This script used to set GOMP_SPINCOUNT=1000, which switched that
+# off and cost 5 times the CPU of one thread beside other jobs (bench/threads.md).
 mkdir -p out
 printf '# stage\tseconds\n' >out/times.tsv
+# the tools' directory as it can be typed: quoted only where it needs to be
+case $bin in
+*[!A-Za-z0-9_./+-]*) b="'$(printf '%s' "$bin" | sed "s/'/'\\\\''/g")'" ;;
+*) b=$bin ;;
+esac
+# stage NAME COMMAND: COMMAND is one line of shell, printed as it runs, so that it can be
+# pasted into a shell as it is (the directory it ran in is the current one)
 stage() {
-	name=$1
-	shift
-	echo "== $name: $*" >&2
+	name=$1 cmd=$2
+	echo "== $name: $cmd" >&2
 	t0=$(date +%s.%N)
-	"$@"
+	eval "$cmd"
 	t1=$(date +%s.%N)
 	awk -v n="$name" -v a="$t0" -v b="$t1" 'BEGIN { printf "%s\t%.1f\n", n, b - a }' >>out/times.tsv
 }
-stage packgen "$bin/packgen" -n 2740 --seed 1 --material glass -o out/loose.pack.gz
-stage densify "$bin/densify" --stress 4e6 --log out/densify.tsv -o out/dense.pack.gz out/loose.pack.gz
-stage frictionalize "$bin/frictionalize" --mu 0.3 --log out/frictionalize.tsv -o out/frictional.pack.gz out/dense.pack.gz
-stage loadtest sh -c "'$bin/loadtest' --path uniaxial --to-stress 20e6 -o out/final.pack.gz out/frictional.pack.gz >out/curve.tsv"
-stage moduli "$bin/moduli" --window 10 -o out/moduli.tsv out/curve.tsv
+stage packgen "$b/packgen -n $n --seed 1 --material glass -o out/loose.pack.gz"
+stage densify "$b/densify --stress 4e6 --log out/densify.tsv -o out/dense.pack.gz out/loose.pack.gz"
+stage frictionalize "$b/frictionalize --mu 0.3 --log out/frictionalize.tsv -o out/frictional.pack.gz out/dense.pack.gz"
+stage loadtest "$b/loadtest --path uniaxial --to-stress 20e6 -o out/final.pack.gz out/frictional.pack.gz > out/curve.tsv"
+stage moduli "$b/moduli --window 10 -o out/moduli.tsv out/curve.tsv"
 # the effective-medium comparison like for like: an isotropic probe of the final pack (3
 # increments of 1e-4), its K from the volume-averaged stress, Walton's K from the bulk
 # porosity and coordination (moduli(1))
-stage probe sh -c "'$bin/loadtest' --path isotropic --steps 3 out/final.pack.gz | '$bin/moduli' --window 3 --emt glass -o out/probe.tsv"
+stage probe "$b/loadtest --path isotropic --steps 3 out/final.pack.gz | $b/moduli --window 3 --emt glass -o out/probe.tsv"
 # the final pack in 3D, one page to open in a browser (packview(1))
-stage packview "$bin/packview" -o out/pack.html out/final.pack.gz
+stage packview "$b/packview -o out/pack.html out/final.pack.gz"
 echo "== packinfo out/frictional.pack.gz" >&2
 "$bin/packinfo" out/frictional.pack.gz | grep -E '^(grains|porosity|coordination|under4|sigma_c|residual|sliding_ratio) '
 if command -v gnuplot >/dev/null 2>&1; then
@@ -47,7 +55,10 @@ else
 fi
 echo "== stage times (s)"
 cat out/times.tsv
+# the columns of a table by their names (qusgm-tables(5)): c["K"] is K[Pa]'s position
+names='/^##/ { next } /^# / { sub(/^# /, ""); for (i = 1; i <= NF; i++) { k = $i; sub(/\[.*\]$/, "", k); c[k] = i }; next }'
 echo "== moduli (out/moduli.tsv): sigma_c, K, G, E in MPa"
-awk -F'\t' 'NR > 1 { printf "%8.3f %9.1f %9.1f %9.1f  nu %.3f\n", $5 / 1e6, $7 / 1e6, $8 / 1e6, $10 / 1e6, $11 }' out/moduli.tsv
+awk -F'\t' "$names"' { printf "%8.3f %9.1f %9.1f %9.1f  nu %.3f\n", $c["sigma_c"] / 1e6, $c["K"] / 1e6, $c["G"] / 1e6, $c["E"] / 1e6, $c["nu"] }' out/moduli.tsv
 echo "== isotropic probe of the final pack (out/probe.tsv) against effective-medium theory (bulk porosity, coordination)"
-awk -F'\t' 'NR > 1 { printf "sigma_c %.3f MPa  K %.1f MPa  K_emt %.1f MPa  K / K_emt %.3f  (bulk porosity %.4f, coordination %.3f)\n", $5 / 1e6, $7 / 1e6, $15 / 1e6, $7 / $15, $13, $14 }' out/probe.tsv
+awk -F'\t' "$names"' { printf "sigma_c %.3f MPa  K %.1f MPa  K_emt %.1f MPa  K / K_emt %.3f  (bulk porosity %.4f, coordination %.3f)\n",
+	$c["sigma_c"] / 1e6, $c["K"] / 1e6, $c["K_emt"] / 1e6, $c["K"] / $c["K_emt"], $c["porosity"], $c["coordination"] }' out/probe.tsv

@@ -50,7 +50,7 @@ cli_output_help(const char *help)
 static struct cli_opt common_opts[] = {
 	{"output", 'o', CLI_STRING, &output_path, "FILE", "write to FILE (atomically) instead of stdout; .gz compresses", NULL},
 	{"verbose", 'v', CLI_FLAG, &verbose_count, NULL, "report progress on stderr, also when it is not a terminal", NULL},
-	{"threads", 0, CLI_LONG, &threads_opt, "N", "threads (0: OMP_NUM_THREADS, else the cores not busy at the start); same results for any N", NULL},
+	{"threads", 0, CLI_LONG, &threads_opt, "N", "threads (0: OMP_NUM_THREADS, else the cores this process may use less those busy at the start); same results for any N", NULL},
 	{"quiet", 'q', CLI_FLAG, &quiet_flag, NULL, "no warnings or progress", NULL},
 	{"help", 'h', CLI_FLAG, &help_flag, NULL, "print this help and exit", NULL},
 	{"version", 'V', CLI_FLAG, &version_flag, NULL, "print the version and exit", NULL},

@@ -60,9 +60,13 @@ if [ -z "$bad" ]; then pass "every installed file in exactly one package ($(wc -
 for want in "usr/bin/packgen	qusgm" "usr/lib/$triplet/libqusgm.so.0	libqusgm0" "usr/lib/$triplet/libqusgm.so.$ver	libqusgm0" \
 	"usr/lib/$triplet/libqusgm.so	libqusgm-dev" "usr/lib/$triplet/libqusgm.a	libqusgm-dev" "usr/lib/$triplet/pkgconfig/qusgm.pc	libqusgm-dev" \
 "usr/share/man/man1/densify.1	qusgm" "usr/share/qusgm/examples/triaxial.sh	qusgm" \
+	"usr/share/qusgm/doc/NEWS	qusgm" "usr/share/qusgm/doc/README.md	qusgm" "usr/share/qusgm/doc/CITATION.cff	qusgm" \
 	"usr/share/qusgm/pipelines/Makefile	qusgm" "usr/share/qusgm/plot/fig4.gp	qusgm"; do
 	if grep -qxF "$want" owners; then pass "package of ${want%	*}: ${want#*	}"; else fail "package of ${want%	*}: ${want#*	}" "$(grep -F "${want%	*}" owners | head -n 2 | tr '\n' ' ')"; fi
 done
+# the NEWS the changelog's entry points to is in the package qusgm
+np=$(sed -n '3s|.*(NEWS, installed as /\(usr/[^)]*\)).*|\1|p' "$deb/changelog")
+if [ -n "$np" ] && grep -qxF "$np	qusgm" owners; then pass "debian/changelog's NEWS ($np) in qusgm"; else fail "debian/changelog's NEWS in qusgm" "'$np': $(sed -n 3p "$deb/changelog")"; fi
 hdr=$(grep '^usr/include/qusgm/.*\.h	libqusgm-dev$' owners | head -n 1)
 if [ -n "$hdr" ]; then pass "libqusgm-dev: the headers (${hdr%	*} ...)"; else fail "libqusgm-dev: the headers in usr/include/qusgm" "$(grep include owners | head -n 3 | tr '\n' ' ')"; fi
 py=$(grep '	python3-qusgm$' owners | grep '^usr/lib/python3/dist-packages/qusgm' | head -n 1)

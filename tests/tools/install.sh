@@ -195,6 +195,17 @@ else
 	fail "example: a reader error through qusgm_msg_geterr (file:line)" "$(cat bad.err)"
 fi
 
+# the project's README, NEWS and CITATION.cff beside the other documents, the same bytes
+# (issue 59: neither make install nor make deb installed them; the Debian changelog points to
+# NEWS)
+for f in README.md NEWS CITATION.cff; do
+	if cmp -s "$TOP/$f" "$stage/usr/local/share/qusgm/doc/$f"; then
+		pass "installed share/qusgm/doc/$f"
+	else
+		fail "installed share/qusgm/doc/$f" "missing or not $f of the tree"
+	fi
+done
+
 # make uninstall with the same DESTDIR and PREFIX: no file left (the folders may stay)
 if make -s -C "$TOP" uninstall B="$B" DESTDIR="$stage" PREFIX=/usr/local >uninst.log 2>&1; then
 	pass "make uninstall"
