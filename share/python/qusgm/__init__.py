@@ -52,9 +52,10 @@ field float64, nan for 'nan', but a text column, one whose first row is not a nu
 text_columns (their names), t[name] a column, len(t) the rows, t.to_dataframe().
 
 Malformed input raises FormatError (a ValueError) "FILE:LINE: what is wrong", as the tools
-report it.  This reader checks the structure of a pack (header keywords, counts, columns,
-numbers, ids and wall names of the contacts), not every rule of qusgm's own reader
-(overlapping centres, radius ranges...): packinfo(1) is the full check.
+report it.  A pack is held to every rule of qusgm's own reader (lib/pack/packio.c), and refused
+with its words: the same inputs as packinfo(1) refuses, the same message after its "packinfo: "
+(tests/tools/readers.sh runs both over tests/corpus/packs and the fuzz corpus).  Memory grows
+with the input read, never with a count a header declares.
 """
 
 from __future__ import annotations
