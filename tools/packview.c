@@ -58,20 +58,26 @@ read_text(const char *path, const char *what, const char *const words[2])
 	if (sb.st_size > SCRIPT_MAX)
 		msg_die(EXIT_DATA, "%s: %lld bytes, more than the %ld MiB a script may have (%s %s)", path,
 		    (long long)sb.st_size, SCRIPT_MAX >> 20, opt, what);
-	if (!(s = malloc((size_t)SCRIPT_MAX + 2)))
+	/* its size, and one byte more to see that it grew meanwhile */
+	if (!(s = malloc((size_t)sb.st_size + 2)))
 		msg_die(EXIT_DATA, "out of memory");
-	len = fread(s, 1, (size_t)SCRIPT_MAX + 1, fp);
-	if (ferror(fp))
-		msg_die(EXIT_DATA, "%s: read error", path);
-	fclose(fp);
-	if (len > (size_t)SCRIPT_MAX)	/* it grew since */
-		msg_die(EXIT_DATA, "%s: more than the %ld MiB a script may have (%s %s)", path, SCRIPT_MAX >> 20, opt, what);
+	len = fread(s, 1, (size_t)sb.st_size + 1, fp);
 	s[len] = 0;
-	if (strlen(s) != len)
-		msg_die(EXIT_DATA, "%s: not a script (a NUL byte)", path);
-	if (!strstr(s, words[0]) && !(words[1] && strstr(s, words[1])))
+	if (ferror(fp) || len != (size_t)sb.st_size || strlen(s) != len ||
+	    (!strstr(s, words[0]) && !(words[1] && strstr(s, words[1])))) {
+		int e = ferror(fp), nul = strlen(s) != len;
+		fclose(fp);
+		free(s);
+		if (e)
+			msg_die(EXIT_DATA, "%s: read error", path);
+		if (len != (size_t)sb.st_size)
+			msg_die(EXIT_DATA, "%s: changed while read (%s %s)", path, opt, what);
+		if (nul)
+			msg_die(EXIT_DATA, "%s: not a script (a NUL byte)", path);
 		msg_die(EXIT_DATA, "%s: not %s (no '%s'%s%s%s in it; %s FILE)", path, what, words[0],
 		    words[1] ? " or '" : "", words[1] ? words[1] : "", words[1] ? "'" : "", opt);
+	}
+	fclose(fp);
 	return s;
 }
 
