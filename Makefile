@@ -73,7 +73,10 @@ endif
 # OpenMP: the evaluations and the vector algebra run on threads (lib/base/par.h); OMPFLAGS=
 # builds without them (one thread, the same results).
 OMPFLAGS ?= -fopenmp
-ALL_CFLAGS = $(STD) $(CPPFLAGS) $(WARN) $(CFLAGS) $(OMPFLAGS) $(EXTRA_CFLAGS) -Ilib $(PKG_CFLAGS)
+# QUSGM_BUILD: what make compiles sees the library's internal inline code in the headers that
+# the installed API includes for their types (lanes.h's SIMD twins in law.h and layout.h); a
+# user's program, without it, does not (tests/tools/install.sh compiles it -pedantic)
+ALL_CFLAGS = $(STD) $(CPPFLAGS) $(WARN) $(CFLAGS) $(OMPFLAGS) $(EXTRA_CFLAGS) -DQUSGM_BUILD -Ilib $(PKG_CFLAGS)
 ALL_LIBS   = $(PKG_LIBS) -lm
 
 LIB_SRC   = $(wildcard lib/*/*.c)
@@ -400,6 +403,8 @@ install: tools libs
 	cp examples/README.md examples/*.sh $(DESTDIR)$(DATADIR)/examples/
 	mkdir -p $(DESTDIR)$(PYTHONDIR)/qusgm
 	cp share/python/qusgm/__init__.py share/python/qusgm/py.typed $(DESTDIR)$(PYTHONDIR)/qusgm/
+	@$(PYTHON) -c 'import sys; sys.exit(sys.argv[1] not in sys.path)' $(PYTHONDIR) || \
+	  echo "qusgm: the Python package is in $(PYTHONDIR), where $(PYTHON) does not look: set PYTHONPATH=$(PYTHONDIR) (share/doc/library.md)"
 	mkdir -p $(DESTDIR)$(LIBDIR) $(DESTDIR)$(PKGCONFIGDIR)
 	cp $(B)/api/libqusgm.a $(B)/$(SOLIB) $(DESTDIR)$(LIBDIR)/
 	ln -sf $(SOLIB) $(DESTDIR)$(LIBDIR)/$(SONAME)

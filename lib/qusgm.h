@@ -5,8 +5,8 @@
  * libqusgm.so export (lib/qusgm.api), each name prefixed qusgm_: the installed copies of the
  * headers declare each such name N of lib/ as qusgm_N (make install renames them).  The other
  * headers installed under include/qusgm/ are those these include, for their types; their
- * functions are internal to the library and not exported.  Compiles as C11 and as C++
- * (share/doc/library.md, "Using the library"). */
+ * functions are internal to the library and not exported.  Compiles as C99, C11 and C++,
+ * clean under -pedantic (share/doc/library.md, "Using the library"). */
 #ifndef QUSGM_QUSGM_H
 #define QUSGM_QUSGM_H
 

@@ -10,6 +10,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* Debian's libjs-three: three.js and its OrbitControls as classic scripts.  The page inlines
  * them when packview runs, so that it follows the installed package (its security updates)
@@ -32,31 +33,51 @@ static const struct cli_tool tool = {
 	opts, 1,
 };
 
-/* The whole text of a script file (NUL-terminated; the caller frees it). */
+/* A script file is at most this large: three.min.js is 0.6 MB, three.module.js 1.2 MB. */
+#define SCRIPT_MAX (16L << 20)
+
+/* The whole text of a script file (NUL-terminated; the caller frees it): a regular file of
+ * 1 byte to SCRIPT_MAX, no NUL, holding the word it must (three.js names THREE and its
+ * REVISION, OrbitControls itself).  An empty file, /dev/null, /dev/zero, a FIFO, or a text
+ * that is no such script would make a page that shows nothing, or never be read to its end. */
 static char *
-read_text(const char *path, const char *what)
+read_text(const char *path, const char *what, const char *const words[2])
 {
 	FILE *fp = fopen(path, "rb");
-	char *s = NULL;
-	size_t len = 0;
-	FILE *m;
-	char buf[65536];
-	size_t k;
+	const char *opt = strcmp(what, "three.js") == 0 ? "--three" : "--controls";
+	struct stat sb;
+	char *s;
+	size_t len;
 
 	if (!fp)
-		msg_die(EXIT_DATA, "%s: %s (%s: Debian's libjs-three, or %s FILE)", path, strerror(errno), what,
-		    strcmp(what, "three.js") == 0 ? "--three" : "--controls");
-	if (!(m = open_memstream(&s, &len)))
+		msg_die(EXIT_DATA, "%s: %s (%s: Debian's libjs-three, or %s FILE)", path, strerror(errno), what, opt);
+	if (fstat(fileno(fp), &sb) != 0 || !S_ISREG(sb.st_mode))
+		msg_die(EXIT_DATA, "%s: not a regular file (%s %s: a script file, read whole)", path, opt, what);
+	if (sb.st_size == 0)
+		msg_die(EXIT_DATA, "%s: empty, not %s (%s)", path, what, opt);
+	if (sb.st_size > SCRIPT_MAX)
+		msg_die(EXIT_DATA, "%s: %lld bytes, more than the %ld MiB a script may have (%s %s)", path,
+		    (long long)sb.st_size, SCRIPT_MAX >> 20, opt, what);
+	/* its size, and one byte more to see that it grew meanwhile */
+	if (!(s = malloc((size_t)sb.st_size + 2)))
 		msg_die(EXIT_DATA, "out of memory");
-	while ((k = fread(buf, 1, sizeof buf, fp)) > 0)
-		fwrite(buf, 1, k, m);
-	if (ferror(fp))
-		msg_die(EXIT_DATA, "%s: read error", path);
+	len = fread(s, 1, (size_t)sb.st_size + 1, fp);
+	s[len] = 0;
+	if (ferror(fp) || len != (size_t)sb.st_size || strlen(s) != len ||
+	    (!strstr(s, words[0]) && !(words[1] && strstr(s, words[1])))) {
+		int e = ferror(fp), nul = strlen(s) != len;
+		fclose(fp);
+		free(s);
+		if (e)
+			msg_die(EXIT_DATA, "%s: read error", path);
+		if (len != (size_t)sb.st_size)
+			msg_die(EXIT_DATA, "%s: changed while read (%s %s)", path, opt, what);
+		if (nul)
+			msg_die(EXIT_DATA, "%s: not a script (a NUL byte)", path);
+		msg_die(EXIT_DATA, "%s: not %s (no '%s'%s%s%s in it; %s FILE)", path, what, words[0],
+		    words[1] ? " or '" : "", words[1] ? words[1] : "", words[1] ? "'" : "", opt);
+	}
 	fclose(fp);
-	if (fclose(m) != 0)
-		msg_die(EXIT_DATA, "out of memory");
-	if (strlen(s) != len)
-		msg_die(EXIT_DATA, "%s: not a script (a NUL byte)", path);
 	return s;
 }
 
@@ -86,17 +107,22 @@ main(int argc, char **argv)
 
 	msg_init(argv[0]);
 	cli_parse(&tool, argc, argv, &st);
+	three_path = default_path(three_path, "QUSGM_THREE_JS", THREE_JS);
+	controls_path = default_path(controls_path, "QUSGM_ORBIT_JS", CONTROLS_JS);
 	{
-		struct file_role fr[] = {{st.output, "-o", 1}, {st.input, "the input", 0}};
-		if (file_roles_check(fr, 2))
+		/* -o is none of the inputs, the scripts included (same device and inode) */
+		struct file_role fr[] = {{st.output, "-o", 1}, {st.input, "the input", 0},
+		    {three_path, "the --three file", 0}, {*controls_path ? controls_path : NULL, "the --controls file", 0}};
+		if (file_roles_check(fr, 4))
 			cli_usage_error("%s", msg_geterr());
 	}
 	cli_usage_done();
-	three_path = default_path(three_path, "QUSGM_THREE_JS", THREE_JS);
-	controls_path = default_path(controls_path, "QUSGM_ORBIT_JS", CONTROLS_JS);
-	three = read_text(three_path, "three.js");
-	if (*controls_path)
-		controls = read_text(controls_path, "OrbitControls");
+	{
+		static const char *const three_words[2] = {"THREE", "REVISION"}, *const orbit_words[2] = {"OrbitControls", NULL};
+		three = read_text(three_path, "three.js", three_words);
+		if (*controls_path)
+			controls = read_text(controls_path, "OrbitControls", orbit_words);
+	}
 	s = (struct view_scripts){three, three_path, controls, controls_path};
 
 	if (pack_read_path(st.input, &p))

@@ -665,11 +665,67 @@ fit_box(struct pack *p)
 		}
 }
 
+/* YADE's periodic cell line, "##PERIODIC:: Lx Ly Lz" (SpherePack.save, packexport --xyzr
+ * --periodic), its text after the marker in s: 0 with the three lengths in L, or -1. */
+static int
+cell_line(struct lines *in, char *s, double L[3])
+{
+	char *tok[4];
+	int n = lines_split(s, " \t", tok, 4), k;
+
+	if (n != 3)
+		return lines_error(in, "##PERIODIC:: expected 3 cell lengths (Lx Ly Lz), found %d", n);
+	for (k = 0; k < 3; k++)
+		if (num_parse(tok[k], &L[k]) || !(L[k] > 0))
+			return lines_error(in, "##PERIODIC:: cell length '%s' is not a positive number", tok[k]);
+	return 0;
+}
+
+/* The box of a periodic cell of lengths L, each axis periodic: [0, L] where it holds every
+ * centre (YADE's cell starts at the origin); else from the lowest centre, moved down by
+ * at most 64 ulps until hi - lo is L exactly and the box holds every centre (packexport
+ * writes a box's lengths, not where it starts: so the round trip gives back the same
+ * lengths); else, centres spread over more than a period, [0, L] with the centres wrapped
+ * into it. */
+static void
+cell_box(struct pack *p, const double L[3])
+{
+	size_t i;
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		double lo = p->x[a], hi = p->x[a], b;
+		int k, wrap[3] = {0, 0, 0};
+
+		for (i = 1; i < p->n; i++) {
+			lo = fmin(lo, p->x[3 * i + a]);
+			hi = fmax(hi, p->x[3 * i + a]);
+		}
+		p->periodic[a] = 1;
+		p->box[a] = 0;
+		p->box[a + 3] = L[a];
+		if (lo >= 0 && hi <= L[a])
+			continue;
+		for (k = 0, b = lo; k < 64; k++, b = nextafter(b, -HUGE_VAL))
+			if ((b + L[a]) - b == L[a] && b + L[a] >= hi) {
+				p->box[a] = b;
+				p->box[a + 3] = b + L[a];
+				break;
+			}
+		if (k < 64)
+			continue;
+		wrap[a] = 1;
+		pack_wrap_centres(p->x, p->n, p->box, p->box + 3, wrap);
+	}
+}
+
 int
 xyzr_read(FILE *fp, const char *name, const double *box, struct pack *p)
 {
 	struct lines *in;
 	char *s;
+	double L[3];
+	long cell = 0;	/* the line of the ##PERIODIC:: cell, 0 for none */
 	int r;
 
 	pack_init(p);
@@ -677,8 +733,18 @@ xyzr_read(FILE *fp, const char *name, const double *box, struct pack *p)
 		return -1;
 	while ((r = lines_next(in, &s, NULL)) == 1) {
 		s += strspn(s, " \t");
+		if (strncmp(s, "##PERIODIC::", 12) == 0) {
+			if (cell) {
+				r = lines_error(in, "a second ##PERIODIC:: line (the first is line %ld)", cell);
+				break;
+			}
+			if ((r = cell_line(in, s + 12, L)) < 0)
+				break;
+			cell = lines_lineno(in);
+			continue;
+		}
 		if (*s == 0 || *s == '#')
-			continue;	/* blank, comment, or YADE's ##PERIODIC:: cell line */
+			continue;	/* blank or comment */
 		if ((r = in_sphere(in, s, box, p)) < 0)
 			break;
 	}
@@ -689,14 +755,32 @@ xyzr_read(FILE *fp, const char *name, const double *box, struct pack *p)
 			lines_error_at(in, lines_lineno(in) + 1, "no spheres (only blank and comment lines)");
 		r = -1;
 	}
+	if (r == 0 && cell && box) {
+		int a;
+
+		for (a = 0; a < 3; a++)
+			if (pack_box_length(box, a) != L[a]) {
+				char b1[40], b2[40];
+				num_format(b1, L[a]);
+				num_format(b2, pack_box_length(box, a));
+				r = lines_error_at(in, cell, "##PERIODIC:: cell length %s along %c differs from --box's %s",
+				    b1, 'x' + a, b2);
+				break;
+			}
+	}
 	lines_close(in);
 	if (r < 0) {
 		pack_free(p);
 		return -1;
 	}
-	if (box)
+	if (box) {
 		memcpy(p->box, box, sizeof p->box);
-	else
+		if (cell)
+			p->periodic[0] = p->periodic[1] = p->periodic[2] = 1;
+	} else if (cell) {
+		cell_box(p, L);
+	} else {
 		fit_box(p);
+	}
 	return 0;
 }

@@ -75,10 +75,13 @@ int export_lammps_data(const struct pack *p, FILE *fp);
  * the box lengths (YADE's periodic cell). */
 int export_xyzr(const struct pack *p, FILE *fp, int periodic);
 
-/* Read "x y z r" lines (blank lines and '#' comments allowed, "##PERIODIC::" among them)
- * from fp into p, initialised here: ids 1..N in file order, E = nu = rho = 0 for the caller
- * to fill.  With box NULL, p->box is the tightest box holding every sphere; otherwise it is
- * box, and every centre must lie in it.  0, or -1 with "name:line: what" in the slot. */
+/* Read "x y z r" lines (blank lines and '#' comments allowed) from fp into p, initialised
+ * here: ids 1..N in file order, E = nu = rho = 0 for the caller to fill.  With box NULL,
+ * p->box is the tightest box holding every sphere; otherwise it is box, and every centre must
+ * lie in it.  YADE's cell line "##PERIODIC:: Lx Ly Lz" makes every axis periodic, the box of
+ * those lengths (with box NULL: [0, L] where it holds the centres, else one from the lowest
+ * centre, so that export_xyzr writes the same lengths back; with box, its lengths must be
+ * those).  0, or -1 with "name:line: what" in the slot. */
 int xyzr_read(FILE *fp, const char *name, const double *box, struct pack *p);
 
 #endif

@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 /* A JSON string; '<' as \u003c, so that no "</script" ends the data block early. */
 static void
@@ -298,18 +299,21 @@ put_data(FILE *fp, const struct pack *p, const struct grain_forces *g, const cha
 	return 0;
 }
 
-/* A script's text, with any "</script" written "<\/script" (the same string to JavaScript)
- * so that it cannot end its element. */
+/* A script's text, with any "</script", in any case, written "<\/script" so that it cannot end
+ * its element, and any "<!--" written "<\!--" so that it cannot open the HTML spec's escaped
+ * script data, in which a "<script" hides the element's end and blanks the page: in a string
+ * or a regular expression, where a script has them, the same text to JavaScript. */
 static void
 put_script(FILE *fp, const char *js)
 {
 	const char *s = js, *t;
 
-	while ((t = strstr(s, "</script")) != NULL) {
-		fwrite(s, 1, (size_t)(t - s), fp);
-		fputs("<\\/script", fp);
-		s = t + 8;
-	}
+	for (t = s; (t = strchr(t, '<')) != NULL; t++)
+		if (strncasecmp(t, "</script", 8) == 0 || strncmp(t, "<!--", 4) == 0) {
+			fwrite(s, 1, (size_t)(t - s) + 1, fp);
+			fputc('\\', fp);
+			s = t + 1;	/* "/script" or "!--" follows as it was, its case kept */
+		}
 	fputs(s, fp);
 }
 

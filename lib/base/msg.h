@@ -19,13 +19,18 @@
 #include <stdarg.h>
 #include <stddef.h>
 
-/* A function that does not return, in C (_Noreturn) and in C++ ([[noreturn]]): the installed
- * headers compile as both (share/doc/library.md, "Using the library"). */
+/* A function that does not return, in C11 (_Noreturn), in C++ ([[noreturn]]) and in C99 (GCC's
+ * and Clang's attribute; nothing elsewhere): the installed headers compile as each, clean
+ * under -pedantic (share/doc/library.md, "Using the library"). */
 #ifndef QUSGM_NORETURN
-#ifdef __cplusplus
+#if defined(__cplusplus)
 #define QUSGM_NORETURN [[noreturn]]
-#else
+#elif defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
 #define QUSGM_NORETURN _Noreturn
+#elif defined(__GNUC__)
+#define QUSGM_NORETURN __attribute__((noreturn))
+#else
+#define QUSGM_NORETURN
 #endif
 #endif
 

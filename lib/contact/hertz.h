@@ -225,7 +225,7 @@ hertz_dem_interaction(const struct law_pair *lp, const struct law_dem_elems *in,
 	return fsum;
 }
 
-#if LANES_OK
+#if defined(QUSGM_BUILD) && LANES_OK
 /* The twins of the kernels the engine's sphere pass calls, on two contacts at once, one in
  * each lane (lanes.h, and law.h's twins): lane by lane the same operations in the same order
  * as the scalar kernel named, so the same bytes (tests/unit/test_dem.c's test_lanes).  A

@@ -38,7 +38,12 @@
 #define QUSGM_LAW_H
 
 #include <math.h>
+/* The SIMD twins of the kernels (lanes.h) are the library's own: QUSGM_BUILD, defined by the
+ * Makefile for what it compiles, shows them; a program that includes the installed header
+ * sees neither them nor lanes.h (its vector extensions warn under -pedantic). */
+#ifdef QUSGM_BUILD
 #include "base/lanes.h"
+#endif
 #include "pack/pack.h"
 
 #ifdef __cplusplus
@@ -337,7 +342,7 @@ law_clamp_tangential(double Q[3], double qmax)
 			Q[a] *= qmax / q;
 }
 
-#if LANES_OK
+#if defined(QUSGM_BUILD) && LANES_OK
 /* The twins of the kernels above on two contacts at once, one in each lane of v2d (lanes.h):
  * lane by lane the same operations in the same order, so the scalar kernel's bytes
  * (tests/unit/test_dem.c's test_lanes checks the sphere DEM both ways); both branches of a

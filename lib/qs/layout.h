@@ -9,7 +9,10 @@
 #define QUSGM_LAYOUT_H
 
 #include <math.h>
+/* lanes.h is the library's own (law.h says why): not in a user's program */
+#ifdef QUSGM_BUILD
 #include "base/lanes.h"
+#endif
 #include "base/vec3.h"
 #include <stddef.h>
 
@@ -69,7 +72,7 @@ layout_grain_len(const struct qs_layout *l, const double *v, size_t i)
 	return sqrt(layout_grain_len_sq(l, v, i));
 }
 
-#if LANES_OK
+#if defined(QUSGM_BUILD) && LANES_OK
 /* The lengths of grains i and i + 1, one square root instruction for both (lanes.h). */
 static inline v2d
 layout_grain_len_pair(const struct qs_layout *l, const double *v, size_t i)

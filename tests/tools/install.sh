@@ -50,7 +50,7 @@ if [ -n "$want" ] && [ "$want" = "$have" ]; then
 else
 	fail "headers: qusgm.h and what it includes, no other" "missing: $(echo "$want" | grep -vxF "$have" | tr '\n' ' ') extra: $(echo "$have" | grep -vxF "$want" | tr '\n' ' ')"
 fi
-for h in base/table.h base/fileio.h qs/loadpath.h; do
+for h in base/table.h base/fileio.h qs/loadpath.h base/lanes.h; do
 	if [ -e "$inc/$h" ]; then fail "internal $h not installed" "$inc/$h"; else pass "internal $h not installed"; fi
 done
 
@@ -98,6 +98,24 @@ if "$py" -c 'import sys; sys.exit(sys.argv[1] not in sys.path)' "$pydir"; then
 else
 	fail "$pydir is on $py's sys.path" "$("$py" -c 'import sys; print(sys.path)')"
 fi
+if grep -q PYTHONPATH inst.log; then fail "PREFIX=/usr/local: no word of PYTHONPATH" "$(grep PYTHONPATH inst.log)"; else pass "PREFIX=/usr/local: no word of PYTHONPATH"; fi
+# a PREFIX whose folder that python3 does not search: make install says the PYTHONPATH to set,
+# and with it the package imports (it said nothing, issue 59)
+opt=/opt/qusgm-test-$$
+optpy=$("$py" "$TOP/share/python/pythondir.py" "$opt")
+make -s -C "$TOP" install B="$B" DESTDIR="$PWD/stage2" PREFIX="$opt" >inst2.log 2>&1
+if "$py" -c 'import sys; sys.exit(sys.argv[1] in sys.path)' "$optpy" && grep -qxF "qusgm: the Python package is in $optpy, where $py does not look: set PYTHONPATH=$optpy (share/doc/library.md)" inst2.log; then
+	pass "PREFIX=$opt: make install says to set PYTHONPATH=$optpy"
+else
+	fail "PREFIX=$opt: make install says to set PYTHONPATH=$optpy" "$(tail -n 2 inst2.log)"
+fi
+pp=$PWD/stage2$optpy
+if [ "$(cd / && PYTHONPATH=$pp "$py" -c 'import qusgm; print(qusgm.__file__)' 2>&1)" = "$pp/qusgm/__init__.py" ]; then
+	pass "PREFIX=$opt: with that PYTHONPATH, import qusgm finds the installed package"
+else
+	fail "PREFIX=$opt: with that PYTHONPATH, import qusgm finds the installed package" "$(cd / && PYTHONPATH=$pp "$py" -c 'import qusgm' 2>&1 | tail -n 1)"
+fi
+rm -rf stage2
 
 # pkg-config, pointed at the stage: the staged qusgm.pc names /usr/local, so a copy with its
 # prefix line moved into the stage (libdir and includedir follow ${prefix}); a
@@ -123,16 +141,22 @@ fi
 CXX=${CXX:-c++}
 command -v "$CXX" >/dev/null 2>&1 || CXX=
 [ -n "$CXX" ] || echo "SKIP C++ (no c++ compiler; Debian: apt-get install g++)"
-bad= badxx=
+# and pedantic: C99 and C++17 with -pedantic -Werror (a user's program saw _Noreturn, C11's,
+# and the compound literals of lanes.h's SIMD twins, issue 59)
+bad= badxx= bad99= badxx17=
 for h in "$inc"/qusgm.h "$inc"/*/*.h; do
 	rel=${h#"$inc"/}
 	printf '#include "%s"\n' "$rel" >hdr.c
 	${CC:-cc} -std=c11 -Wall -Wextra -Werror $cflags $(pkg-config --cflags gsl 2>/dev/null) -fsyntax-only hdr.c 2>hdr.err || bad="$bad $rel"
+	${CC:-cc} -std=c99 -pedantic -Wall -Wextra -Werror $cflags $(pkg-config --cflags gsl 2>/dev/null) -fsyntax-only hdr.c 2>hdr99.err || bad99="$bad99 $rel"
 	[ -z "$CXX" ] || "$CXX" -x c++ -std=c++11 -Wall -Wextra -Werror $cflags $(pkg-config --cflags gsl 2>/dev/null) -fsyntax-only hdr.c 2>hdrxx.err || badxx="$badxx $rel"
+	[ -z "$CXX" ] || "$CXX" -x c++ -std=c++17 -pedantic -Wall -Wextra -Werror $cflags $(pkg-config --cflags gsl 2>/dev/null) -fsyntax-only hdr.c 2>hdrxx17.err || badxx17="$badxx17 $rel"
 done
 if [ -z "$bad" ]; then pass "every installed header compiles alone"; else fail "every installed header compiles alone" "$bad: $(head -c 300 hdr.err)"; fi
+if [ -z "$bad99" ]; then pass "every installed header compiles alone as -std=c99 -pedantic -Werror"; else fail "every installed header compiles alone as -std=c99 -pedantic -Werror" "$bad99: $(head -c 300 hdr99.err)"; fi
 if [ -n "$CXX" ]; then
 	if [ -z "$badxx" ]; then pass "every installed header compiles alone as C++"; else fail "every installed header compiles alone as C++" "$badxx: $(head -c 300 hdrxx.err)"; fi
+	if [ -z "$badxx17" ]; then pass "every installed header compiles alone as -std=c++17 -pedantic -Werror"; else fail "every installed header compiles alone as -std=c++17 -pedantic -Werror" "$badxx17: $(head -c 300 hdrxx17.err)"; fi
 fi
 
 # A user's program, linked against the staged library.

@@ -94,7 +94,54 @@ if grep -q '^box 0 0 0 0.003 0.003 0.003$' box.pack; then pass "--box is used as
 # Comments, blank lines, CRLF, the YADE cell line, gzip: the same spheres.
 { echo '##PERIODIC:: 0.003 0.003 0.003'; echo '# a comment'; echo; sed 's/$/\r/' in.xyzr; echo '   '; } >commented.xyzr
 packimport commented.xyzr | packexport --xyzr >commented.out
-expect_same "comments, blank lines, CRLF, ##PERIODIC:: are skipped" commented.out in.xyzr
+expect_same "comments, blank lines, CRLF are skipped; the spheres after a ##PERIODIC:: line as they were" commented.out in.xyzr
+
+# YADE's periodic cell: ##PERIODIC:: makes a periodic pack of those box lengths, and the
+# --periodic round trip, which packimport(1) calls exact, gives back the same bytes (the line
+# was skipped: the cell lost, the lengths of a fitted box written back, issue 59)
+if packimport commented.xyzr 2>/dev/null | grep -qx 'boundary periodic periodic periodic'; then
+	pass "##PERIODIC:: makes every axis periodic"
+else
+	fail "##PERIODIC:: makes every axis periodic" "$(packimport commented.xyzr 2>&1 | grep -E '^(boundary|box)')"
+fi
+if packimport commented.xyzr 2>/dev/null | grep -qx 'box 0 0 0 0.003 0.003 0.003'; then
+	pass "##PERIODIC:: the cell [0, L] that holds the centres"
+else
+	fail "##PERIODIC:: the cell [0, L] that holds the centres" "$(packimport commented.xyzr 2>&1 | grep '^box')"
+fi
+packgen -n 60 --seed 3 -o walled.pack 2>/dev/null
+# per: a cell at the origin, as YADE writes it
+{ echo '##PERIODIC:: 0.003 0.0031 0.0032'; cat in.xyzr; } >per.xyzr
+packexport --xyzr --periodic walled.pack >walled.xyzr 2>/dev/null
+for f in walled per; do
+	packimport "$f.xyzr" 2>/dev/null | packexport --xyzr --periodic >"$f.back" 2>/dev/null
+	if [ -s "$f.xyzr" ] && cmp -s "$f.back" "$f.xyzr"; then
+		pass "$f: packexport --xyzr --periodic | packimport | packexport --xyzr --periodic: the same bytes ($(head -n 1 "$f.xyzr"))"
+	else
+		fail "$f: the --periodic round trip is byte-exact" "$(cmp "$f.back" "$f.xyzr" 2>&1)"
+	fi
+done
+# a box away from the origin: the lengths exactly, the centres as they were
+packimport walled.xyzr 2>/dev/null >wp.pack
+packinfo wp.pack >wp.info 2>wp.err
+if [ -s wp.info ] && grep -qx 'boundary periodic periodic periodic' wp.pack; then
+	pass "the periodic import of a box away from the origin reads back (packinfo)"
+else
+	fail "the periodic import of a box away from the origin reads back" "$(head -c 300 wp.err)"
+fi
+{ echo '##PERIODIC:: 0.003 0.003'; cat in.xyzr; } >cell2.xyzr
+expect_error "##PERIODIC:: with two lengths" 1 '^packimport: cell2\.xyzr:1: ##PERIODIC:: expected 3 cell lengths \(Lx Ly Lz\), found 2$' packimport cell2.xyzr
+{ echo '##PERIODIC:: 0.003 -1 0.003'; cat in.xyzr; } >cellneg.xyzr
+expect_error "##PERIODIC:: a negative length" 1 "^packimport: cellneg\\.xyzr:1: ##PERIODIC:: cell length '-1' is not a positive number$" packimport cellneg.xyzr
+{ cat commented.xyzr; echo '##PERIODIC:: 0.003 0.003 0.003'; } >celltwice.xyzr
+expect_error "a second ##PERIODIC:: line" 1 '^packimport: celltwice\.xyzr:[0-9]+: a second ##PERIODIC:: line \(the first is line 1\)$' packimport celltwice.xyzr
+expect_error "##PERIODIC:: and --box of other lengths" 1 "^packimport: commented\\.xyzr:1: ##PERIODIC:: cell length 0\\.003 along x differs from --box's 0\\.004$" \
+    packimport --box 0,0,0,0.004,0.003,0.003 commented.xyzr
+if packimport --box 0,0,0,0.003,0.003,0.003 commented.xyzr 2>/dev/null | grep -qx 'boundary periodic periodic periodic'; then
+	pass "##PERIODIC:: with --box of its lengths: periodic, the box given"
+else
+	fail "##PERIODIC:: with --box of its lengths" "$(packimport --box 0,0,0,0.003,0.003,0.003 commented.xyzr 2>&1 | tail -n 1)"
+fi
 gzip -c in.xyzr >in.xyzr.gz
 packimport in.xyzr.gz >gz.pack
 sed 1,2d gz.pack >gz.body

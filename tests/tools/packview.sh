@@ -34,7 +34,7 @@ fi
 grep -q 'THREE.OrbitControls\|exports.OrbitControls' dense.html && grep -q 'REVISION' dense.html &&
 	pass "three.js and OrbitControls inlined" || fail "three.js and OrbitControls inlined" "not found in the page"
 packview --controls '' -o own.html dense.pack
-echo 'this is not JavaScript' >broken.js
+echo 'THREE: this is not JavaScript' >broken.js
 packview --three broken.js -o broken.html dense.pack
 if grep -q 'exports.OrbitControls' own.html; then fail "--controls '': the page's own orbit" "OrbitControls inlined"; else pass "--controls '': the page's own orbit"; fi
 
@@ -45,6 +45,38 @@ expect_error "a truncated pack: one line" 1 '^packview: short\.pack:[0-9]+: ' pa
 expect_error "no three.js: one line" 1 '^packview: /nonexistent/three\.js: .*--three' packview --three /nonexistent/three.js -o bad.html dense.pack
 [ -e bad.html ] && fail "nothing written without three.js" "bad.html exists" || pass "nothing written without three.js"
 expect_error "-o in a missing directory" 2 '^packview: ' packview -o /nonexistent/dir/p.html dense.pack
+
+# the inlined scripts (issue 59): "</script" in any case and "<!--" cannot end or hide the
+# script element; an empty, special, huge or foreign file is refused; -o is not --three
+printf 'var THREE = {REVISION: "0"}; var a = "</SCRIPT>", b = "</Script >", c = "<!--<script>";\n' >tricky.js
+packview --three tricky.js --controls '' -o tricky.html dense.pack 2>/dev/null
+printf 'var THREE = {REVISION: "0"};\n' >plain.js
+packview --three plain.js --controls '' -o plain.html dense.pack 2>/dev/null
+n_end=$(grep -oi '</script' tricky.html | wc -l) n_end0=$(grep -oi '</script' plain.html | wc -l)
+n_com=$(grep -o '<!--' tricky.html | wc -l) n_com0=$(grep -o '<!--' plain.html | wc -l)
+if [ -s tricky.html ] && [ "$n_end" -eq "$n_end0" ] && [ "$n_com" -eq "$n_com0" ] &&
+   grep -qF 'var a = "<\/SCRIPT>", b = "<\/Script >", c = "<\!--<script>";' tricky.html; then
+	pass "</SCRIPT, </Script and <!-- of an inlined script are neutralised (<\\/SCRIPT, <\\!--; $n_end0 real ends)"
+else
+	fail "</SCRIPT, </Script and <!-- of an inlined script are neutralised" "$n_end/$n_end0 ends, $n_com/$n_com0 <!--: $(grep -o 'var a = [^;]*' tricky.html)"
+fi
+: >empty.js
+expect_error "--three an empty file" 1 '^packview: empty\.js: empty, not three\.js \(--three\)$' packview --three empty.js -o bad.html dense.pack
+expect_error "--three /dev/null" 1 '^packview: /dev/null: not a regular file ' packview --three /dev/null -o bad.html dense.pack
+expect_error "--three /dev/zero (read without limit before)" 1 '^packview: /dev/zero: not a regular file ' packview --three /dev/zero -o bad.html dense.pack
+expect_error "--controls /dev/null" 1 '^packview: /dev/null: not a regular file \(--controls ' packview --controls /dev/null -o bad.html dense.pack
+echo 'var x = 1;' >other.js
+expect_error "--three a script that is not three.js" 1 "^packview: other\\.js: not three\\.js \\(no 'THREE' or 'REVISION' in it; --three FILE\\)$" packview --three other.js -o bad.html dense.pack
+expect_error "--controls a script that is not OrbitControls" 1 "^packview: other\\.js: not OrbitControls \\(no 'OrbitControls' in it; --controls FILE\\)$" packview --controls other.js -o bad.html dense.pack
+head -c 16777217 /dev/zero | tr '\0' ' ' >huge.js
+expect_error "--three over 16 MiB" 1 '^packview: huge\.js: 16777217 bytes, more than the 16 MiB a script may have' packview --three huge.js -o bad.html dense.pack
+rm -f huge.js
+[ -e bad.html ] && fail "nothing written for a refused script" "bad.html exists" || pass "nothing written for a refused script"
+cp plain.js keep.js
+expect_error "-o over the --three file" 2 "^packview: -o 'keep\\.js' is the --three file: " packview --three keep.js -o keep.js dense.pack
+ln -s keep.js link.js
+expect_error "-o over the --three file through a link (device and inode)" 2 "^packview: -o 'keep\\.js' is the --three file: " packview --three link.js -o keep.js dense.pack
+expect_same "the --three file is left as it was" keep.js plain.js
 expect_error "-o over the input" 2 '^packview: ' packview -o dense.pack dense.pack
 expect_error "an unknown option" 2 '^packview: ' packview --no-such-option dense.pack
 
