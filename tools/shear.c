@@ -110,7 +110,7 @@ static void
 check_files(const struct cli_state *st)
 {
 	static char snap[MAX_SNAPSHOTS][4096];
-	struct file_role r[5 + MAX_SNAPSHOTS] = {{st->output, "-o", 1}, {o.profile, "--profile", 1}, {"-", "the table", 1},
+	struct file_role r[5 + MAX_SNAPSHOTS] = {{st->output, "-o", FILE_UPDATE}, {o.profile, "--profile", 1}, {"-", "the table", 1},
 	    {st->input, "the input", 0}, {o.checkpoint, "--checkpoint", 1}};
 	char g[40];
 	int k;
