@@ -20,6 +20,7 @@
 #include <time.h>
 #include <errno.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #define MAX_SNAPSHOTS 64
 
@@ -240,8 +241,11 @@ struct run_ctx {
 	int replay;		/* going on from a checkpoint: its table is printed before the next row */
 };
 
-/* The checkpoint's first lines (then plateshear_state_write's). */
-#define CK_MAGIC "qusgm-shear-checkpoint 1"
+/* The checkpoint's first lines (then plateshear_state_write's, then the checksum line
+ * "checksum crc32 X", X zlib's CRC-32 of every byte before it).  Version 1 had no checksum:
+ * it is refused, with a word to start afresh. */
+#define CK_MAGIC "qusgm-shear-checkpoint 2"
+#define CK_MAGIC_1 "qusgm-shear-checkpoint 1"
 
 static const struct table_col cols[] = {
 	{"step", NULL}, {"time", "s"}, {"gamma", NULL}, {"tau_sigma", NULL}, {"sigma_ratio", NULL}, {"qp", NULL},
@@ -348,6 +352,66 @@ on_row(const struct shear_row *row, struct engine *d, void *vc)
 	return 0;
 }
 
+/* zlib's CRC-32 of n bytes, in pieces that fit its uInt */
+static unsigned long
+ck_crc_more(unsigned long crc, const char *b, size_t n)
+{
+	while (n > 0) {
+		uInt k = n > (1u << 30) ? (1u << 30) : (uInt)n;
+
+		crc = crc32(crc, (const Bytef *)b, k);
+		b += k, n -= k;
+	}
+	return crc;
+}
+
+static unsigned long
+ck_crc(const char *b, size_t n)
+{
+	return ck_crc_more(crc32(0, Z_NULL, 0), b, n);
+}
+
+/* The checkpoint's checksum, before anything of it is used: its last line "checksum crc32
+ * X", X the CRC-32 of every byte before it (read as lines: plain or gzip alike).  A
+ * checkpoint changed or damaged by a single byte, or cut short, is refused with its name;
+ * so is one of version 1, which had no checksum. */
+static void
+ck_verify(const char *path)
+{
+	struct lines *in = lines_open_path(path);
+	unsigned long crc = crc32(0, Z_NULL, 0), before = crc, want;
+	char first[64] = "", last[64] = "", *line;
+	size_t len;
+	long n = 0;
+	int r, k = 0;
+
+	if (!in)
+		msg_die_err(EXIT_DATA);
+	while ((r = lines_next(in, &line, &len)) == 1) {
+		before = crc;
+		crc = ck_crc_more(crc, line, len);
+		if (lines_newline(in))
+			crc = ck_crc_more(crc, "\n", 1);
+		snprintf(n++ ? last : first, sizeof last, "%.*s", (int)(len < 63 ? len : 63), line);
+		if (n == 1)
+			strcpy(last, first);
+	}
+	if (r < 0)
+		msg_die_err(EXIT_DATA);
+	lines_close(in);
+	if (strcmp(first, CK_MAGIC_1) == 0)
+		msg_die(EXIT_DATA, "%s: the checkpoint of an earlier qusgm (version 1, without a checksum): remove it to start the run afresh",
+		    path);
+	if (strcmp(first, CK_MAGIC) != 0)
+		msg_die(EXIT_DATA, "%s:1: not a shear checkpoint (no '%s')", path, CK_MAGIC);
+	if (sscanf(last, "checksum crc32 %8lx%n", &want, &k) != 1 || last[k] || k != 23)
+		msg_die(EXIT_DATA, "%s:%ld: the checkpoint ends without its checksum line (cut short?): remove it to start the run afresh",
+		    path, n);
+	if (want != before)
+		msg_die(EXIT_DATA, "%s:%ld: the checksum does not match (CRC-32 %08lx of the bytes before it): the checkpoint was "
+		    "changed or damaged; remove it to start the run afresh", path, n, before);
+}
+
 /* After a row: the state to the checkpoint (atomically) when --checkpoint-every seconds
  * have passed since the last save, or when the next row, taken as long as the longest so
  * far in any call and followed by a save as long as the longest, would end past
@@ -359,6 +423,9 @@ on_checkpoint(const struct shear_state *ss, void *vc)
 	struct run_ctx *c = vc;
 	double now = cli_elapsed(), wrote;
 	struct file_out out;
+	FILE *mem;
+	char *buf = NULL;
+	size_t len = 0;
 	int past;
 
 	c->longest = fmax(c->longest, now - c->last_row);
@@ -366,12 +433,24 @@ on_checkpoint(const struct shear_state *ss, void *vc)
 	past = o.time_limit > 0 && now + c->longest + c->longest_save > o.time_limit;
 	if (!past && now - c->last_save < o.checkpoint_every)
 		return 0;
-	if (fflush(c->table) || file_out_open(&out, o.checkpoint))
+	if (fflush(c->table) || !(mem = open_memstream(&buf, &len)))
 		return -1;
-	fprintf(out.fp, "%s\nrun %s\nclock %.3f %.3f %.3f %ld\nsnapshots %d\nrows %ld %a\ntable %zu\n", CK_MAGIC, c->run,
+	/* the whole in memory first, for its checksum */
+	fprintf(mem, "%s\nrun %s\nclock %.3f %.3f %.3f %ld\nsnapshots %d\nrows %ld %a\ntable %zu\n", CK_MAGIC, c->run,
 	    c->longest, c->longest_save, c->before + now, c->calls, c->next_snap, c->rows, c->gamma, c->tablelen);
-	fwrite(c->tablebuf, 1, c->tablelen, out.fp);
-	if (plateshear_state_write(ss, out.fp) || file_out_commit(&out)) {
+	fwrite(c->tablebuf, 1, c->tablelen, mem);
+	if (plateshear_state_write(ss, mem) || fclose(mem)) {
+		free(buf);
+		return -1;
+	}
+	if (file_out_open(&out, o.checkpoint)) {
+		free(buf);
+		return -1;
+	}
+	fwrite(buf, 1, len, out.fp);
+	fprintf(out.fp, "checksum crc32 %08lx\n", ck_crc(buf, len));
+	free(buf);
+	if (file_out_commit(&out)) {
 		file_out_abort(&out);
 		return -1;
 	}
@@ -396,6 +475,7 @@ resume_from(struct run_ctx *c)
 			msg_die(EXIT_DATA, "%s: %s", o.checkpoint, strerror(errno));
 		return NULL;
 	}
+	ck_verify(o.checkpoint);
 	if (!(in = lines_open_path(o.checkpoint)))
 		msg_die_err(EXIT_DATA);
 	if (lines_next(in, &line, NULL) != 1 || strcmp(line, CK_MAGIC) != 0)

@@ -202,6 +202,9 @@ state_read(struct shear_state *s, struct lines *in)
 			return lines_error(in, "'%s': not a finite number", tok[2 + k]);
 	}
 	s->xw = v[0], s->next_row = v[1], s->vw = v[2], s->H0 = v[3];
+	if (!(s->xw >= 0 && s->next_row > 0 && s->vw > 0 && s->H0 > 0))
+		return lines_error(in, "loop: the wall's travel, the next row's strain, v_w and H0 must be positive (%g %g %g %g)",
+		    s->xw, s->next_row, s->vw, s->H0);
 	for (b = 0; b < s->nb; b++) {
 		if (lines_next(in, &line, NULL) != 1 || lines_split(line, " \t", tok, 8) != 2)
 			return lines_error(in, "expected a profile bin's sum and samples");
@@ -251,6 +254,13 @@ shear_begin(struct engine *d, struct pack *p, const struct shear_params *sp, str
 	if (from) {	/* the state of a run of this input, after a row */
 		if (state_read(ss, from))
 			return -2;
+		/* the wall's velocity is the run's own, as shear_begin sets it below (bit for bit:
+		 * the same expression on the same numbers) */
+		if (ss->vw != (sp->velocity > 0 ? sp->velocity * d->u_time / d->u_len : sp->inertial * sqrt(sigma_s) * ss->H0)) {
+			msg_seterr("%s: v_w %g m/s is not the run's (--velocity, --inertial): the checkpoint was changed",
+			    lines_name(from), ss->vw * d->u_len / d->u_time);
+			return -2;
+		}
 		glue_count(d, res, mtop);
 	} else {
 		/* the pack's frictional history, for the pairs that were in it (those across a new
@@ -362,6 +372,18 @@ plateshear_run_resumable(struct pack *p, const struct shear_params *sp, shear_ro
 	if ((status = shear_begin(&d, p, sp, from, sigma_s, &ss, res, &mtop, &A, &vol)) != 0)
 		goto out;
 	status = -1;
+	{	/* the steps to the strain at v_w, the box as tall as now: a run of no sense (a time
+		 * step or a v_w that is not a positive number, or so small that the run would go on
+		 * for ten times --max-steps, days or years) is refused before its first step */
+		double need = (sp->strain * (d.hi[1] - d.lo[1]) - ss.xw) / (ss.vw * d.dt);
+
+		if (!(d.dt > 0 && isfinite(d.dt) && ss.vw > 0 && isfinite(ss.vw)) || !(need <= 10.0 * (double)sp->max_steps)) {
+			msg_seterr("the shear would need %.3g steps of %.3g s at v_w %.3g m/s to reach gamma %g, more than ten times "
+			    "--max-steps (%ld): the stiffness, --stress, --inertial or --velocity is out of any sensible range",
+			    need, d.dt * d.u_time, res->v_w, sp->strain, sp->max_steps);
+			goto out;
+		}
+	}
 	memset(&rs, 0, sizeof rs);
 	for (;;) {
 		double F[3], gamma;
