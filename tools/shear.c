@@ -38,7 +38,7 @@ static struct opts {
 	.bins = 20,
 	.kappa = NAN, .kn = NAN, .kt = NAN, .restitution = NAN, .mu = NAN, .wall_mu = NAN,
 	.prefix = "shear",
-	.checkpoint_every = 600,
+	.checkpoint_every = NAN,	/* 600 s, set once it is known whether it was given */
 };
 
 static struct cli_opt opt_table[] = {
@@ -63,7 +63,7 @@ static struct cli_opt opt_table[] = {
 	{"relax-tol", 0, CLI_DOUBLE, &o.sp.relax_tol, "TOL", "before the strain, relax at sigma_w until the unbalanced force is below TOL of the mean interaction force; 0: no relaxation", NULL},
 	{"start-strain", 0, CLI_DOUBLE, &o.sp.start_strain, "GAMMA", "damp the top wall's normal motion up to this strain; 0: never", NULL},
 	{"checkpoint", 0, CLI_STRING, &o.checkpoint, "FILE", "save the run's state to FILE as it goes; go on from FILE if it exists", NULL},
-	{"checkpoint-every", 0, CLI_DOUBLE, &o.checkpoint_every, "S", "with --checkpoint: save at the first row S seconds after the last save (0: at every row)", "s"},
+	{"checkpoint-every", 0, CLI_DOUBLE, &o.checkpoint_every, "S", "with --checkpoint: save at the first row S seconds after the last save, 0: at every row (default 600)", "s"},
 	{"time-limit", 0, CLI_DOUBLE, &o.time_limit, "S", "with --checkpoint: stop (exit 75) at the last row before S seconds; 0: none", "s"},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
@@ -133,6 +133,8 @@ check_files(const struct cli_state *st)
 static void
 parse_args(int argc, char **argv, struct cli_state *st)
 {
+	int k;
+
 	shear_params_default(&o.sp);
 	o.sp.profile_from = NAN;
 	o.sp.inertial = NAN;
@@ -185,13 +187,25 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--start-strain: must be in [0, 100]");
 	if (!(o.time_limit >= 0 && isfinite(o.time_limit)))
 		cli_usage_error("--time-limit: must be a number of seconds, 0 or more");
-	if (!(o.checkpoint_every >= 0 && isfinite(o.checkpoint_every)))
+	if (!isnan(o.checkpoint_every) && !(o.checkpoint_every >= 0 && isfinite(o.checkpoint_every)))
 		cli_usage_error("--checkpoint-every: must be a number of seconds, 0 or more");
+	if (!isnan(o.checkpoint_every) && !o.checkpoint)
+		cli_usage_error("--checkpoint-every needs --checkpoint (where the state goes)");
+	if (!isnan(o.sp.profile_from) && o.sp.profile_from >= o.sp.strain && o.sp.strain > 0)
+		cli_usage_error("--profile-from: %g is not below --strain %g (the profile would have no sample)", o.sp.profile_from,
+		    o.sp.strain);
 	if (o.time_limit > 0 && !o.checkpoint)
 		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
 	parse_snapshots();
+	for (k = 0; k < o.nsnap; k++)
+		if (o.sp.strain > 0 && o.snap[k] > o.sp.strain) {
+			cli_usage_error("--snapshots: %g is beyond --strain %g (the run never reaches it)", o.snap[k], o.sp.strain);
+			break;
+		}
 	check_files(st);
 	cli_usage_done();
+	if (isnan(o.checkpoint_every))
+		o.checkpoint_every = 600;
 	o.sp.profile_bins = (int)o.bins;
 	if (isnan(o.sp.inertial))
 		o.sp.inertial = 1e-3;
