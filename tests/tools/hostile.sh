@@ -64,3 +64,36 @@ expect_error "a box of 1e300 m" 1 '^packinfo: bigbox\.pack:[0-9]+: box: bound 1e
 # --- loadtest: a key twice in a path segment (H9) --------------------------------------------
 expect_error "loadtest: steps=1 steps=2" 2 "^loadtest: --path: segment 1: 'steps' is given twice" \
     loadtest --path 'uniaxial steps=1 steps=2' s.pack
+
+# --- input that is no text, and gzip's padding (H10) -------------------------------------------
+# each was "binary data (NUL byte)"; now what it is, and that only gzip is read
+gzip -c s.pack | gzip -c >twice.pack.gz
+expect_error "a gzip inside a gzip" 1 '^packinfo: twice\.pack\.gz:1: a gzip inside a gzip \(compressed twice\): decompress it once' \
+    packinfo twice.pack.gz
+printf 'x\234\313H\315\311\311\007\000\006,\002\025' >z.pack
+expect_error "zlib data" 1 '^packinfo: z\.pack:1: zlib-compressed data \(no gzip header\): only gzip is read' packinfo z.pack
+printf '\3757zXZ\000\000\004\346\326\264F' | gzip -c >xz.pack.gz
+expect_error "xz inside a gzip" 1 '^packinfo: xz\.pack\.gz:1: inside the gzip stream, xz-compressed: decompress it first' \
+    packinfo xz.pack.gz
+printf 'BZh91AY&SY\000\000\000' | gzip -c >bz.pack.gz
+expect_error "bzip2 inside a gzip" 1 '^packinfo: bz\.pack\.gz:1: inside the gzip stream, bzip2-compressed' packinfo bz.pack.gz
+# zero padding after the last member (a tape block), which gzip -d accepts: read
+gzip -c s.pack >pad.pack.gz
+head -c 1000 /dev/zero >>pad.pack.gz
+packinfo s.pack >plain.info 2>/dev/null
+expect_ok "gzip's zero padding is read" packinfo pad.pack.gz
+expect_same "gzip's zero padding: the same pack" ok.out plain.info
+printf 'x' >>pad.pack.gz
+expect_error "zero padding, then other bytes" 1 '^packinfo: pad\.pack\.gz:[0-9]+: trailing data after the end of the gzip stream' \
+    packinfo pad.pack.gz
+
+# --- names and ranges said (H10) ---------------------------------------------------------------
+expect_error "--psd table: (no file)" 2 '^packgen: --psd table: names no file' packgen -n 5 --psd table:
+printf 'E 7e10\nnu 0.5\nrho 2500\n' >half.mat
+expect_error "a material's nu 0.5: the range said" 2 '^packgen: --material: \./half\.mat:2: nu 0\.5: the Poisson ratio must be in \(-1, 0\.5\)' \
+    packgen -n 5 --material ./half.mat
+printf 'E 7e10\nnu 0.2\nrho 2500\n' >mymaterial
+expect_error "a material file named without a slash" 2 \
+    "^packgen: --material: unknown material 'mymaterial' \\(presets: .*\\): to read the file of that name, give its path as \\./mymaterial" \
+    packgen -n 5 --material mymaterial
+expect_error "-o ''" 2 "^packinfo: -o: the file name is empty" packinfo -o '' s.pack
