@@ -277,8 +277,16 @@ killtest: all
 # make fuzz [FUZZ_SECONDS=60] [FUZZ_JOBS=NAME...]: each libFuzzer harness in turn for that
 # long, on a copy of its seed corpus (tests/fuzz/corpus/NAME, which it does not grow), the
 # library built with clang and the sanitizers in build-fuzz/.  Crashes are left in
-# build-fuzz/crashes/NAME/.  clang is installed as root when missing.
+# build-fuzz/crashes/NAME/.  clang is installed as root when missing.  FUZZ_MAX_LEN_NAME caps
+# the inputs of harness NAME (bytes): 256 KB for the pack and table readers, whose real
+# inputs are large (a pack of a few thousand grains, a long curve), 8 KB for the others.
 FUZZ_SECONDS ?= 60
+FUZZ_MAX_LEN_fuzz_pack     ?= 262144
+FUZZ_MAX_LEN_fuzz_table    ?= 262144
+FUZZ_MAX_LEN_fuzz_material ?= 8192
+FUZZ_MAX_LEN_fuzz_psd      ?= 8192
+FUZZ_MAX_LEN_fuzz_loadpath ?= 8192
+FUZZ_MAX_LEN_DEFAULT       ?= 8192
 FUZZ_JOBS    ?= $(FUZZ)
 FUZZ_CC       = clang
 FUZZ_FLAGS    = -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
@@ -304,10 +312,14 @@ build-fuzz/fuzz/%: tests/fuzz/%.c tests/fuzz/*.h $(B)/libqusgm.a $(LIB_HDR)
 
 fuzz: fuzz-build
 	@for f in $(FUZZ_JOBS); do \
+	  maxlen=$(FUZZ_MAX_LEN_DEFAULT); \
+	  for p in $(foreach h,$(FUZZ_JOBS),$(h)=$(or $(FUZZ_MAX_LEN_$(h)),$(FUZZ_MAX_LEN_DEFAULT))); do \
+	    [ "$${p%%=*}" = "$$f" ] && maxlen=$${p#*=}; \
+	  done; \
 	  rm -rf build-fuzz/corpus/$$f; mkdir -p build-fuzz/corpus/$$f build-fuzz/crashes/$$f; \
 	  cp tests/fuzz/corpus/$$f/* build-fuzz/corpus/$$f/; \
-	  echo "== $$f ($(FUZZ_SECONDS) s)"; \
-	  build-fuzz/fuzz/$$f -max_total_time=$(FUZZ_SECONDS) -max_len=8192 -timeout=10 -rss_limit_mb=2048 \
+	  echo "== $$f ($(FUZZ_SECONDS) s, inputs up to $$maxlen bytes)"; \
+	  build-fuzz/fuzz/$$f -max_total_time=$(FUZZ_SECONDS) -max_len=$$maxlen -timeout=10 -rss_limit_mb=2048 \
 	    -artifact_prefix=build-fuzz/crashes/$$f/ build-fuzz/corpus/$$f 2>build-fuzz/$$f.log || \
 	    { tail -n 40 build-fuzz/$$f.log; echo "$$f: crash, reproducer in build-fuzz/crashes/$$f/" >&2; exit 1; }; \
 	  grep -E '^#[0-9]+.*(DONE|pulse|NEW)' build-fuzz/$$f.log | tail -n 1; \

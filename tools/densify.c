@@ -224,15 +224,16 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	/* the finished run removes the checkpoint: never the pack or the log just written, nor
 	 * the input; and it is read back, so not standard output */
 	if (o.checkpoint && (strcmp(o.checkpoint, "-") == 0 || file_same(o.checkpoint, st->output, 1) ||
-	                        file_same(o.checkpoint, o.log, 1) || file_same(o.checkpoint, st->input, 0)))
+	                        file_same(o.checkpoint, o.log, 0) || file_same(o.checkpoint, st->input, 0)))
 		cli_usage_error("--checkpoint: '%s' is standard output, the input, the output or the log; give it a file of its own",
 		    o.checkpoint);
 	/* a run of hours must not find out at its end that it cannot write */
 	if (o.checkpoint)
 		check_dir(o.checkpoint, "--checkpoint");
-	{	/* nor the log or the pack over the other or over the input (--log X -o X kept the
-		 * log as X and lost the pack) */
-		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {o.log, "--log", 1}, {st->input, "the input", 0}};
+	{	/* nor the log or the pack over the other, nor the log over the input, even through
+		 * a symbolic link (--log X -o X kept the log as X and lost the pack); the pack may
+		 * replace the input (read whole, then renamed over it) */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", FILE_UPDATE}, {o.log, "--log", FILE_LOG}, {st->input, "the input", FILE_IN}};
 		if (file_roles_check(r, 3))
 			cli_usage_error("%s", msg_geterr());
 	}

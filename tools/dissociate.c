@@ -65,8 +65,8 @@ parse_args(int argc, char **argv, struct cli_state *st)
 	if (!(o.d.probe > 0 && o.d.probe <= 1e-3))
 		cli_usage_error("--probe-strain: must be in (0, 1e-3]");
 	qs_load_opts_check(&o.lp, o.rule, o.nsub, o.mu, o.wall_mu);
-	{	/* before any work: -o writable and not the input */
-		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {st->input, "the input", 0}};
+	{	/* before any work: -o writable (it may be the input: the pack updated in place) */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", FILE_UPDATE}, {st->input, "the input", FILE_IN}};
 		if (file_roles_check(r, 2))
 			cli_usage_error("%s", msg_geterr());
 	}

@@ -101,8 +101,9 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--window and --min-inc must not exceed --max-inc");
 	if (!(o.fp.sat_tol > 0 && o.fp.sat_tol < 1))
 		cli_usage_error("--sat-tol: must be in (0, 1)");
-	{	/* before any work: the pack and the log writable, neither over the other nor the input */
-		struct file_role r[] = {{st->output ? st->output : "-", "-o", 1}, {o.log, "--log", 1}, {st->input, "the input", 0}};
+	{	/* before any work: the pack and the log writable, neither over the other nor the log
+		 * over the input (the pack may update it in place) */
+		struct file_role r[] = {{st->output ? st->output : "-", "-o", FILE_UPDATE}, {o.log, "--log", FILE_LOG}, {st->input, "the input", FILE_IN}};
 		if (file_roles_check(r, 3))
 			cli_usage_error("%s", msg_geterr());
 	}

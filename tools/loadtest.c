@@ -172,8 +172,9 @@ parse_args(int argc, char **argv, struct cli_state *st, struct load_path *path)
 		cli_usage_error("--max-steps must be positive and --max-strain in (0, 0.5]");
 	if (!isnan(o.def.to_strain) && !(fabs(o.def.to_strain) <= 0.5))
 		cli_usage_error("--to-strain: must be in [-0.5, 0.5]");
-	{	/* before any work: -o writable, and neither the input nor the table's standard output */
-		struct file_role r[] = {{st->output, "-o", 1}, {"-", "the table", 1}, {st->input, "the input", 0}};
+	{	/* before any work: -o writable (it may be the input: the pack updated in place), and
+		 * not the table's standard output */
+		struct file_role r[] = {{st->output, "-o", FILE_UPDATE}, {"-", "the table", FILE_OUT}, {st->input, "the input", FILE_IN}};
 		if (file_roles_check(r, 3))
 			cli_usage_error("%s", msg_geterr());
 	}

@@ -203,8 +203,8 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--plate-radius: expected edge or corner, got '%s'", o.plate_radius_name);
 	if (!(o.eta >= 0 && o.eta < 1))
 		cli_usage_error("--platyness: must be in [0, 1), got %g", o.eta);
-	if (!(o.spheroradius > 0 && isfinite(o.spheroradius)))
-		cli_usage_error("--spheroradius: must be positive");
+	if (!(o.spheroradius >= 1e-10 && o.spheroradius <= 1))
+		cli_usage_error("--spheroradius: must be in [1e-10, 1] m, got %g", o.spheroradius);
 	if (!(o.kn > 0 && isfinite(o.kn)) || !(o.kt >= 0 && isfinite(o.kt)))
 		cli_usage_error("--kn must be positive and --kt non-negative");
 	if (!(o.restitution >= 0.21 && o.restitution <= 1))
@@ -215,6 +215,23 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--kappa: must be in [10, 1e9] (the paper's rigid limit is kappa >= 1e3)");
 	if (!isnan(o.kappa) && !isnan(o.sigma0))
 		cli_usage_error("--stress and --kappa: give one");
+	/* the stiffness number kn / (sigma0 r) the compaction runs at: in --kappa's range, and
+	 * sigma0 in [1e-3 Pa, 10 GPa] (the grains would be crushed long before); outside them
+	 * the compaction ran for 15-26 s or more and failed without naming an option, or wrote
+	 * a pack of no sense */
+	if (o.plates && o.spheroradius >= 1e-10 && o.spheroradius <= 1 && o.kn > 0 && isfinite(o.kn)) {
+		double s0 = !isnan(o.sigma0) ? o.sigma0 : o.kn / ((isnan(o.kappa) ? 1e4 : o.kappa) * o.spheroradius);
+		double k = o.kn / (s0 * o.spheroradius);
+
+		if (isnan(o.kappa) && !isnan(o.sigma0) && o.sigma0 > 0 && !(k >= 10 && k <= 1e9))
+			cli_usage_error("--kn %g N/m and --stress %g Pa: the stiffness number kn / (sigma0 r) = %g (r = --spheroradius %g m) "
+			    "must be in [10, 1e9], the range of --kappa", o.kn, o.sigma0, k, o.spheroradius);
+		else if (!isnan(o.sigma0) && o.sigma0 > 0 && !(o.sigma0 >= 1e-3 && o.sigma0 <= 1e10))
+			cli_usage_error("--stress: %g Pa is outside [1e-3 Pa, 10 GPa]", o.sigma0);
+		else if (isnan(o.sigma0) && !(s0 >= 1e-3 && s0 <= 1e10))
+			cli_usage_error("--kn %g N/m: the compaction stress kn / (kappa r) = %g Pa it gives is outside [1e-3 Pa, 10 GPa]",
+			    o.kn, s0);
+	}
 	if (!isnan(o.density) && !(o.density > 0 && isfinite(o.density)))
 		cli_usage_error("--density: must be positive");
 	parse_periodic();

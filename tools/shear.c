@@ -20,6 +20,7 @@
 #include <time.h>
 #include <errno.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #define MAX_SNAPSHOTS 64
 
@@ -37,7 +38,7 @@ static struct opts {
 	.bins = 20,
 	.kappa = NAN, .kn = NAN, .kt = NAN, .restitution = NAN, .mu = NAN, .wall_mu = NAN,
 	.prefix = "shear",
-	.checkpoint_every = 600,
+	.checkpoint_every = NAN,	/* 600 s, set once it is known whether it was given */
 };
 
 static struct cli_opt opt_table[] = {
@@ -62,7 +63,7 @@ static struct cli_opt opt_table[] = {
 	{"relax-tol", 0, CLI_DOUBLE, &o.sp.relax_tol, "TOL", "before the strain, relax at sigma_w until the unbalanced force is below TOL of the mean interaction force; 0: no relaxation", NULL},
 	{"start-strain", 0, CLI_DOUBLE, &o.sp.start_strain, "GAMMA", "damp the top wall's normal motion up to this strain; 0: never", NULL},
 	{"checkpoint", 0, CLI_STRING, &o.checkpoint, "FILE", "save the run's state to FILE as it goes; go on from FILE if it exists", NULL},
-	{"checkpoint-every", 0, CLI_DOUBLE, &o.checkpoint_every, "S", "with --checkpoint: save at the first row S seconds after the last save (0: at every row)", "s"},
+	{"checkpoint-every", 0, CLI_DOUBLE, &o.checkpoint_every, "S", "with --checkpoint: save at the first row S seconds after the last save, 0: at every row (default 600)", "s"},
 	{"time-limit", 0, CLI_DOUBLE, &o.time_limit, "S", "with --checkpoint: stop (exit 75) at the last row before S seconds; 0: none", "s"},
 	{NULL, 0, CLI_END, NULL, NULL, NULL, NULL},
 };
@@ -110,7 +111,7 @@ static void
 check_files(const struct cli_state *st)
 {
 	static char snap[MAX_SNAPSHOTS][4096];
-	struct file_role r[5 + MAX_SNAPSHOTS] = {{st->output, "-o", 1}, {o.profile, "--profile", 1}, {"-", "the table", 1},
+	struct file_role r[5 + MAX_SNAPSHOTS] = {{st->output, "-o", FILE_UPDATE}, {o.profile, "--profile", 1}, {"-", "the table", 1},
 	    {st->input, "the input", 0}, {o.checkpoint, "--checkpoint", 1}};
 	char g[40];
 	int k;
@@ -132,6 +133,8 @@ check_files(const struct cli_state *st)
 static void
 parse_args(int argc, char **argv, struct cli_state *st)
 {
+	int k;
+
 	shear_params_default(&o.sp);
 	o.sp.profile_from = NAN;
 	o.sp.inertial = NAN;
@@ -184,13 +187,25 @@ parse_args(int argc, char **argv, struct cli_state *st)
 		cli_usage_error("--start-strain: must be in [0, 100]");
 	if (!(o.time_limit >= 0 && isfinite(o.time_limit)))
 		cli_usage_error("--time-limit: must be a number of seconds, 0 or more");
-	if (!(o.checkpoint_every >= 0 && isfinite(o.checkpoint_every)))
+	if (!isnan(o.checkpoint_every) && !(o.checkpoint_every >= 0 && isfinite(o.checkpoint_every)))
 		cli_usage_error("--checkpoint-every: must be a number of seconds, 0 or more");
+	if (!isnan(o.checkpoint_every) && !o.checkpoint)
+		cli_usage_error("--checkpoint-every needs --checkpoint (where the state goes)");
+	if (!isnan(o.sp.profile_from) && o.sp.profile_from >= o.sp.strain && o.sp.strain > 0)
+		cli_usage_error("--profile-from: %g is not below --strain %g (the profile would have no sample)", o.sp.profile_from,
+		    o.sp.strain);
 	if (o.time_limit > 0 && !o.checkpoint)
 		cli_usage_error("--time-limit needs --checkpoint (where the state goes)");
 	parse_snapshots();
+	for (k = 0; k < o.nsnap; k++)
+		if (o.sp.strain > 0 && o.snap[k] > o.sp.strain) {
+			cli_usage_error("--snapshots: %g is beyond --strain %g (the run never reaches it)", o.snap[k], o.sp.strain);
+			break;
+		}
 	check_files(st);
 	cli_usage_done();
+	if (isnan(o.checkpoint_every))
+		o.checkpoint_every = 600;
 	o.sp.profile_bins = (int)o.bins;
 	if (isnan(o.sp.inertial))
 		o.sp.inertial = 1e-3;
@@ -240,8 +255,11 @@ struct run_ctx {
 	int replay;		/* going on from a checkpoint: its table is printed before the next row */
 };
 
-/* The checkpoint's first lines (then plateshear_state_write's). */
-#define CK_MAGIC "qusgm-shear-checkpoint 1"
+/* The checkpoint's first lines (then plateshear_state_write's, then the checksum line
+ * "checksum crc32 X", X zlib's CRC-32 of every byte before it).  Version 1 had no checksum:
+ * it is refused, with a word to start afresh. */
+#define CK_MAGIC "qusgm-shear-checkpoint 2"
+#define CK_MAGIC_1 "qusgm-shear-checkpoint 1"
 
 static const struct table_col cols[] = {
 	{"step", NULL}, {"time", "s"}, {"gamma", NULL}, {"tau_sigma", NULL}, {"sigma_ratio", NULL}, {"qp", NULL},
@@ -348,6 +366,66 @@ on_row(const struct shear_row *row, struct engine *d, void *vc)
 	return 0;
 }
 
+/* zlib's CRC-32 of n bytes, in pieces that fit its uInt */
+static unsigned long
+ck_crc_more(unsigned long crc, const char *b, size_t n)
+{
+	while (n > 0) {
+		uInt k = n > (1u << 30) ? (1u << 30) : (uInt)n;
+
+		crc = crc32(crc, (const Bytef *)b, k);
+		b += k, n -= k;
+	}
+	return crc;
+}
+
+static unsigned long
+ck_crc(const char *b, size_t n)
+{
+	return ck_crc_more(crc32(0, Z_NULL, 0), b, n);
+}
+
+/* The checkpoint's checksum, before anything of it is used: its last line "checksum crc32
+ * X", X the CRC-32 of every byte before it (read as lines: plain or gzip alike).  A
+ * checkpoint changed or damaged by a single byte, or cut short, is refused with its name;
+ * so is one of version 1, which had no checksum. */
+static void
+ck_verify(const char *path)
+{
+	struct lines *in = lines_open_path(path);
+	unsigned long crc = crc32(0, Z_NULL, 0), before = crc, want;
+	char first[64] = "", last[64] = "", *line;
+	size_t len;
+	long n = 0;
+	int r, k = 0;
+
+	if (!in)
+		msg_die_err(EXIT_DATA);
+	while ((r = lines_next(in, &line, &len)) == 1) {
+		before = crc;
+		crc = ck_crc_more(crc, line, len);
+		if (lines_newline(in))
+			crc = ck_crc_more(crc, "\n", 1);
+		snprintf(n++ ? last : first, sizeof last, "%.*s", (int)(len < 63 ? len : 63), line);
+		if (n == 1)
+			strcpy(last, first);
+	}
+	if (r < 0)
+		msg_die_err(EXIT_DATA);
+	lines_close(in);
+	if (strcmp(first, CK_MAGIC_1) == 0)
+		msg_die(EXIT_DATA, "%s: the checkpoint of an earlier qusgm (version 1, without a checksum): remove it to start the run afresh",
+		    path);
+	if (strcmp(first, CK_MAGIC) != 0)
+		msg_die(EXIT_DATA, "%s:1: not a shear checkpoint (no '%s')", path, CK_MAGIC);
+	if (sscanf(last, "checksum crc32 %8lx%n", &want, &k) != 1 || last[k] || k != 23)
+		msg_die(EXIT_DATA, "%s:%ld: the checkpoint ends without its checksum line (cut short?): remove it to start the run afresh",
+		    path, n);
+	if (want != before)
+		msg_die(EXIT_DATA, "%s:%ld: the checksum does not match (CRC-32 %08lx of the bytes before it): the checkpoint was "
+		    "changed or damaged; remove it to start the run afresh", path, n, before);
+}
+
 /* After a row: the state to the checkpoint (atomically) when --checkpoint-every seconds
  * have passed since the last save, or when the next row, taken as long as the longest so
  * far in any call and followed by a save as long as the longest, would end past
@@ -359,6 +437,9 @@ on_checkpoint(const struct shear_state *ss, void *vc)
 	struct run_ctx *c = vc;
 	double now = cli_elapsed(), wrote;
 	struct file_out out;
+	FILE *mem;
+	char *buf = NULL;
+	size_t len = 0;
 	int past;
 
 	c->longest = fmax(c->longest, now - c->last_row);
@@ -366,12 +447,24 @@ on_checkpoint(const struct shear_state *ss, void *vc)
 	past = o.time_limit > 0 && now + c->longest + c->longest_save > o.time_limit;
 	if (!past && now - c->last_save < o.checkpoint_every)
 		return 0;
-	if (fflush(c->table) || file_out_open(&out, o.checkpoint))
+	if (fflush(c->table) || !(mem = open_memstream(&buf, &len)))
 		return -1;
-	fprintf(out.fp, "%s\nrun %s\nclock %.3f %.3f %.3f %ld\nsnapshots %d\nrows %ld %a\ntable %zu\n", CK_MAGIC, c->run,
+	/* the whole in memory first, for its checksum */
+	fprintf(mem, "%s\nrun %s\nclock %.3f %.3f %.3f %ld\nsnapshots %d\nrows %ld %a\ntable %zu\n", CK_MAGIC, c->run,
 	    c->longest, c->longest_save, c->before + now, c->calls, c->next_snap, c->rows, c->gamma, c->tablelen);
-	fwrite(c->tablebuf, 1, c->tablelen, out.fp);
-	if (plateshear_state_write(ss, out.fp) || file_out_commit(&out)) {
+	fwrite(c->tablebuf, 1, c->tablelen, mem);
+	if (plateshear_state_write(ss, mem) || fclose(mem)) {
+		free(buf);
+		return -1;
+	}
+	if (file_out_open(&out, o.checkpoint)) {
+		free(buf);
+		return -1;
+	}
+	fwrite(buf, 1, len, out.fp);
+	fprintf(out.fp, "checksum crc32 %08lx\n", ck_crc(buf, len));
+	free(buf);
+	if (file_out_commit(&out)) {
 		file_out_abort(&out);
 		return -1;
 	}
@@ -396,6 +489,7 @@ resume_from(struct run_ctx *c)
 			msg_die(EXIT_DATA, "%s: %s", o.checkpoint, strerror(errno));
 		return NULL;
 	}
+	ck_verify(o.checkpoint);
 	if (!(in = lines_open_path(o.checkpoint)))
 		msg_die_err(EXIT_DATA);
 	if (lines_next(in, &line, NULL) != 1 || strcmp(line, CK_MAGIC) != 0)

@@ -151,20 +151,59 @@ dir_of(const char *path)
 	return b ? (b == path ? strdup("/") : strndup(path, (size_t)(b - path))) : strdup(".");
 }
 
-int
-file_same(const char *a, const char *b, int b_output)
+/* The file path names: stat when follow (an input, a log: read or written through a
+ * symbolic link, into the file it names), else lstat (an output replaced by a rename: a
+ * link there is replaced, not followed).  A link that names no file yet (a log through it
+ * would create its target): the target's name, in *target (malloc'ed), and -1. */
+static int
+stat_role(const char *path, int follow, struct stat *st, char **target)
+{
+	char buf[4096];
+	ssize_t n;
+
+	*target = NULL;
+	if (!follow)
+		return lstat(path, st);
+	if (stat(path, st) == 0)
+		return 0;
+	if (lstat(path, st) != 0 || !S_ISLNK(st->st_mode) || (n = readlink(path, buf, sizeof buf - 1)) <= 0)
+		return -1;
+	buf[n] = '\0';
+	if (buf[0] != '/' && strrchr(path, '/')) {	/* relative to the link's directory */
+		size_t d = (size_t)(strrchr(path, '/') - path) + 1;
+
+		if (!(*target = malloc(d + (size_t)n + 1)))
+			return -1;
+		memcpy(*target, path, d);
+		memcpy(*target + d, buf, (size_t)n + 1);
+	} else
+		*target = strdup(buf);
+	return -1;
+}
+
+/* Whether a (followed when follow_a) and b (when follow_b) are the same file: the same
+ * inode when both exist, else the same directory (by inode) and the same last component. */
+static int
+same_file(const char *a, int follow_a, const char *b, int follow_b)
 {
 	struct stat sa, sb;
 	const char *ba, *bb;
-	char *da, *db;
-	int same;
+	char *da, *db, *ta, *tb;
+	int same, ea, eb;
 
 	if (!a || !b || strcmp(a, "-") == 0 || strcmp(b, "-") == 0)
 		return 0;
 	if (strcmp(a, b) == 0)
 		return 1;
-	if (stat(a, &sa) == 0 && (b_output ? lstat(b, &sb) : stat(b, &sb)) == 0)
+	ea = stat_role(a, follow_a, &sa, &ta);
+	eb = stat_role(b, follow_b, &sb, &tb);
+	if (ea == 0 && eb == 0)
 		return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+	if (ta || tb) {	/* a dangling link: its target's name, once */
+		same = same_file(ta ? ta : a, 0, tb ? tb : b, 0);
+		free(ta), free(tb);
+		return same;
+	}
 	ba = strrchr(a, '/') ? strrchr(a, '/') + 1 : a;
 	bb = strrchr(b, '/') ? strrchr(b, '/') + 1 : b;
 	if (strcmp(ba, bb) != 0)
@@ -174,6 +213,28 @@ file_same(const char *a, const char *b, int b_output)
 	same = da && db && stat(da, &sa) == 0 && stat(db, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 	free(da), free(db);
 	return same;
+}
+
+int
+file_same(const char *a, const char *b, int b_output)
+{
+	return same_file(a, 1, b, !b_output);
+}
+
+int
+file_is_stdout(const char *path)
+{
+	struct stat sp, s1;
+
+	if (!path || strcmp(path, "-") == 0)
+		return 1;
+	if (strcmp(path, "/dev/stdout") == 0 || strcmp(path, "/dev/fd/1") == 0 || strcmp(path, "/proc/self/fd/1") == 0)
+		return 1;
+	/* standard output redirected to a file, named by its path: written through stdout (a
+	 * second stream opened on it would write over the first, or truncate a file opened for
+	 * appending) */
+	return stat(path, &sp) == 0 && fstat(1, &s1) == 0 && S_ISREG(sp.st_mode) && S_ISREG(s1.st_mode) &&
+	    sp.st_dev == s1.st_dev && sp.st_ino == s1.st_ino;
 }
 
 /* A path that exists and is neither a regular file nor a directory: a device or a FIFO,
@@ -220,30 +281,37 @@ file_roles_check(const struct file_role *r, int n)
 	int i, j;
 
 	for (i = 0; i < n; i++) {
-		if (!r[i].path || !r[i].output)
+		if (!r[i].path || r[i].output == FILE_IN)
 			continue;
+		if (!*r[i].path) {
+			msg_seterr("%s: the file name is empty", r[i].what);
+			return -1;
+		}
 		for (j = 0; j < n; j++) {
 			const struct file_role *o = &r[j];
+			int in = o->output == FILE_IN;
 
-			if (j == i || !o->path || (o->output && j < i))
+			if (j == i || !o->path || (!in && j < i))
 				continue;
-			if (o->output && strcmp(r[i].path, "-") == 0 && strcmp(o->path, "-") == 0) {
+			if (!in && file_is_stdout(r[i].path) && file_is_stdout(o->path)) {
 				msg_seterr("%s and %s both go to standard output; give one of them a file", o->what, r[i].what);
 				return -1;
 			}
 			if (is_special(r[i].path) || is_special(o->path))
 				continue;
-			if (file_same(o->path, r[i].path, 1)) {
-				if (o->output)
+			if (same_file(o->path, in || o->output == FILE_LOG, r[i].path, r[i].output == FILE_LOG)) {
+				if (in && r[i].output == FILE_UPDATE)
+					continue;	/* the pack updated in place: read whole, then renamed over */
+				if (!in)
 					msg_seterr("%s and %s name the same file '%s': one would replace the other; give each its own",
 					    r[i].what, o->what, r[i].path);
 				else
-					msg_seterr("%s '%s' is %s: write to another file (the input would be replaced)", r[i].what,
-					    r[i].path, o->what);
+					msg_seterr("%s '%s' is %s: write to another file (the input would be %s)", r[i].what,
+					    r[i].path, o->what, r[i].output == FILE_LOG ? "lost" : "replaced");
 				return -1;
 			}
 		}
-		if (strcmp(r[i].path, "-") != 0 && output_writable(r[i].path, r[i].what))
+		if (!file_is_stdout(r[i].path) && output_writable(r[i].path, r[i].what))
 			return -1;
 	}
 	return 0;
@@ -315,7 +383,7 @@ file_out_open(struct file_out *o, const char *path)
 	int fd, special;
 
 	memset(o, 0, sizeof *o);
-	if (!path || strcmp(path, "-") == 0) {
+	if (file_is_stdout(path)) {
 		o->fp = stdout;
 		return 0;
 	}
@@ -357,7 +425,7 @@ int
 file_log_open(struct file_out *o, const char *path)
 {
 	memset(o, 0, sizeof *o);
-	if (!path || strcmp(path, "-") == 0) {
+	if (file_is_stdout(path)) {	/* also /dev/stdout: written through stdout, never reopened */
 		o->fp = stdout;
 		return 0;
 	}

@@ -27,23 +27,40 @@ int file_is_gz(const char *path);
 /* Whether paths a and b (b may be NULL or "-": never) name the same file: the same inode
  * when both exist, else the same directory (by inode) and the same last component.
  * b_output: b is an output, which the rename of file_out_commit replaces, so a symbolic
- * link there is a file of its own (lstat). */
+ * link there is a file of its own (lstat); a is followed (stat). */
 int file_same(const char *a, const char *b, int b_output);
+
+/* Whether path is standard output: NULL, "-", /dev/stdout, /dev/fd/1, /proc/self/fd/1, or
+ * the regular file standard output is redirected to.  file_out_open and file_log_open
+ * write such a path through stdout (never a second stream over it, nor a rename over
+ * /dev/stdout). */
+int file_is_stdout(const char *path);
 
 /* The checks a tool makes before any work on the files it is given, so that a run of hours
  * does not find out at its end that it cannot write, or that it wrote one output over
  * another or over its input (densify --log X -o X kept the log as X and lost the pack;
  * packinfo -o X X replaced its input).  Each file is a role: its path (NULL: not given), how
- * the messages name it ("-o", "--log", "the input") and whether it is written.  0 when no
- * output is the same file as another role (file_same), no two outputs are standard output
- * ("-"), and every output named by a path can be written: it is not a directory, and its
+ * the messages name it ("-o", "--log", "the input") and what it is:
+ *   FILE_IN     an input, read through a symbolic link;
+ *   FILE_OUT    an output replaced by the rename of file_out_commit (a symbolic link there is
+ *               replaced, not followed);
+ *   FILE_UPDATE the same, and it may be the input: a tool that reads its input whole before
+ *               it writes (densify, frictionalize, dissociate, loadtest and shear's -o pack)
+ *               updates it in place, atomically;
+ *   FILE_LOG    an output written under its own name as the run goes (file_log_open), so
+ *               through a symbolic link into the file it names: never the input or another
+ *               output, by the file the link names.
+ * 0 when no output is the same file as another role (a FILE_UPDATE may be the input), no
+ * two outputs are standard output ("-", or /dev/stdout and the like: file_is_stdout), and
+ * every output named by a path has a name and can be written: it is not a directory, and its
  * directory exists and is writable (a device or a FIFO, written into, is not checked, nor
  * compared: /dev/null may take two outputs).  Otherwise -1 with the first problem in the
  * slot, for the tool to report as a usage error. */
+enum { FILE_IN = 0, FILE_OUT = 1, FILE_LOG = 2, FILE_UPDATE = 3 };
 struct file_role {
 	const char *path;
 	const char *what;
-	int output;
+	int output;	/* FILE_IN, FILE_OUT, FILE_LOG or FILE_UPDATE */
 };
 int file_roles_check(const struct file_role *r, int n);
 

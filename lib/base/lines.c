@@ -247,6 +247,24 @@ fill_gzip(struct lines *in)
 				in->eof = 1;
 				return out;
 			}
+			while (in->raw[0] == 0) {	/* zero padding (a tape block), as gzip -d accepts */
+				size_t j;
+
+				for (j = 0; j < in->raw_len; j++)
+					if (in->raw[j])
+						return gz_stop(in, out, "trailing data after the end of the gzip stream",
+						    "zero bytes, then others: neither padding nor a gzip member");
+				in->raw_len = 0;
+				if (read_raw(in) < 0)
+					return out;
+				if (in->raw_len == 0) {
+					in->eof = 1;
+					return out;
+				}
+				if (in->raw[0] != 0)
+					return gz_stop(in, out, "trailing data after the end of the gzip stream",
+					    "zero bytes, then others: neither padding nor a gzip member");
+			}
 			if (in->raw_len < 2 || in->raw[0] != 0x1f || in->raw[1] != 0x8b)
 				return gz_stop(in, out, "trailing data after the end of the gzip stream",
 				    "not a gzip member; gzip -t calls it trailing garbage: a file appended to a .gz one?");
@@ -356,6 +374,12 @@ foreign_start(const unsigned char *b, size_t n)
 	};
 	size_t k;
 
+	/* zlib's own format (RFC 1950: CM 8, the header a multiple of 31; "x\x9c" and the
+	 * like), which is no text: gzip's header is another */
+	if (n >= 2 && (b[0] & 0x0f) == 8 && (b[0] >> 4) <= 7 && ((unsigned)b[0] << 8 | b[1]) % 31 == 0 && !(b[1] & 0x20) &&
+	    (memchr(b, 0, n < 64 ? n : 64) || b[1] < 0x20 || b[1] >= 0x7f))
+		return "zlib-compressed data (no gzip header): only gzip is read; decompress it first (pigz -dz FILE, or "
+		    "python3 -c 'import sys, zlib; sys.stdout.buffer.write(zlib.decompress(sys.stdin.buffer.read()))' <FILE)";
 	for (k = 0; k < sizeof known / sizeof known[0]; k++)
 		if (n >= known[k].len && memcmp(b, known[k].magic, known[k].len) == 0) {
 			/* bzip2: "BZh", a block size 1-9, then the block magic (pi's digits) */
@@ -412,11 +436,17 @@ lines_next(struct lines *in, char **line, size_t *len)
 			if (r == 0)
 				break;
 			if (!in->sniffed) {
-				const char *why = foreign_start((const unsigned char *)in->chunk, in->chunk_len);
+				const unsigned char *b = (const unsigned char *)in->chunk;
+				const char *why = foreign_start(b, in->chunk_len);
 				in->sniffed = 1;
+				if (in->mode == MODE_GZIP && in->chunk_len >= 2 && b[0] == 0x1f && b[1] == 0x8b) {
+					in->failed = 1;
+					return lines_error_at(in, 1, "a gzip inside a gzip (compressed twice): decompress it once "
+					    "(gzip -d FILE), and the inner gzip is read");
+				}
 				if (why) {
 					in->failed = 1;
-					return lines_error_at(in, 1, "%s", why);
+					return lines_error_at(in, 1, "%s%s", in->mode == MODE_GZIP ? "inside the gzip stream, " : "", why);
 				}
 			}
 		}

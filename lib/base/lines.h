@@ -8,9 +8,10 @@
  * input (why)", at the line that was being read when the data stopped, never a silently
  * shortened input, and bytes after the last member that are not another member ("trailing
  * data after the end of the gzip stream": a plain file appended to a .gz one, which zlib's
- * gzread dropped without a word) are an error too.  Input that starts as no text does (xz,
- * bzip2, zstd, lz4, compress or zip data, UTF-16, a UTF-8 byte-order mark) is refused at
- * line 1 with what it is and how to convert it, and so is a file of CR-only (old Mac) line
+ * gzread dropped without a word) are an error too, but for zero bytes to the end (padding,
+ * which gzip -d accepts).  Input that starts as no text does (xz, bzip2, zstd, lz4, zlib,
+ * compress or zip data, UTF-16, a UTF-8 byte-order mark), before or inside the gzip stream,
+ * and a gzip inside a gzip, are refused at line 1 with what they are and how to convert them, and so is a file of CR-only (old Mac) line
  * endings, whose first line would run to the end of the input.  Lines may be of any
  * length.  A line ends at "\n"; the "\n" and one "\r" before it (or at the very end of the
  * input) are stripped, so CRLF files read as LF ones.  A line holding a NUL byte is an error

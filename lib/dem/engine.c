@@ -1239,6 +1239,46 @@ engine_state_write(const struct engine *d, FILE *fp)
 	return 0;
 }
 
+/* The pack reader's checks on grain i's state line v (X V Q W GLUE) in an engine whose box
+ * (lo, hi) is read: NULL, or what is wrong.  The centre within the box on a walled axis (a
+ * bounding radius of slack, for a grain pressed into a wall); on a periodic axis, where
+ * centres are wrapped only at the end of a run, within 1e4 box lengths (a shear to strain
+ * 100 of a box as tall as it is long carries a grain 100 lengths); a unit quaternion; the
+ * grain moves less than its bounding radius, and turns less than a radian, in a time step. */
+static const char *
+state_grain_check(const struct engine *d, size_t i, const double *v)
+{
+	static char why[200];
+	double qn = sqrt(v[6] * v[6] + v[7] * v[7] + v[8] * v[8] + v[9] * v[9]);
+	int a;
+
+	for (a = 0; a < 3; a++) {
+		double L = d->hi[a] - d->lo[a], slack = d->periodic[a] ? 1e4 * L : d->rb[i];
+
+		if (!(v[a] >= d->lo[a] - slack && v[a] <= d->hi[a] + slack)) {
+			snprintf(why, sizeof why, "centre %c = %g m is outside the box [%g, %g] m%s", "xyz"[a], v[a] * d->u_len,
+			    d->lo[a] * d->u_len, d->hi[a] * d->u_len, d->periodic[a] ? " by more than 1e4 box lengths" : "");
+			return why;
+		}
+	}
+	if (!(fabs(qn - 1) <= PACK_QUAT_TOL)) {
+		snprintf(why, sizeof why, "(qw, qx, qy, qz) = (%.9g, %.9g, %.9g, %.9g) is not a unit quaternion (norm %.9g, off 1 by more than %g)",
+		    v[6], v[7], v[8], v[9], qn, PACK_QUAT_TOL);
+		return why;
+	}
+	if (!(sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]) * d->dt <= d->rb[i])) {
+		snprintf(why, sizeof why, "velocity (%g, %g, %g) m/s: the grain would move more than its radius in a time step",
+		    v[3] * d->u_len / d->u_time, v[4] * d->u_len / d->u_time, v[5] * d->u_len / d->u_time);
+		return why;
+	}
+	if (!(sqrt(v[10] * v[10] + v[11] * v[11] + v[12] * v[12]) * d->dt <= 1)) {
+		snprintf(why, sizeof why, "angular velocity (%g, %g, %g) rad/s: the grain would turn more than a radian in a time step",
+		    v[10] / d->u_time, v[11] / d->u_time, v[12] / d->u_time);
+		return why;
+	}
+	return NULL;
+}
+
 int
 engine_state_read(struct engine *d, struct lines *in)
 {
@@ -1246,6 +1286,8 @@ engine_state_read(struct engine *d, struct lines *in)
 	long *ij = NULL, hdr[3];
 	size_t i, m = 0, hs = d->ce.hsize;
 	char *line, *tok[4], *end;
+	const char *why;
+	double rbmax = 0;
 	int a, w, status = -1;
 
 	if (lines_next(in, &line, NULL) != 1 || lines_split(line, " \t", tok, 4) != 3 || strcmp(tok[0], "pdem-state") ||
@@ -1253,19 +1295,33 @@ engine_state_read(struct engine *d, struct lines *in)
 		return lines_error(in, "expected 'pdem-state 1 %zu' (the engine's state of these grains)", d->n);
 	if (state_numbers(in, "box", v, 9))
 		return -1;
+	for (i = 0; i < d->n; i++)
+		rbmax = fmax(rbmax, d->rb[i]);
 	for (a = 0; a < 3; a++) {
 		if ((int)v[6 + a] != d->periodic[a])
 			return lines_error(in, "the boundary is not the run's (axis %c)", "xyz"[a]);
+		/* the pack reader's box, and no shorter than a grain (a periodic axis: than the
+		 * three interaction distances of its cell grid, engine_make_periodic) */
+		if (!(v[3 + a] - v[a] >= (d->periodic[a] ? 3 * (2 * rbmax + d->ce.skin) : rbmax)))
+			return lines_error(in, "box: [%g, %g] m along %c is %s", v[a] * d->u_len, v[3 + a] * d->u_len, "xyz"[a],
+			    v[3 + a] > v[a] ? "shorter than the grains allow" : "empty (upper bound not above lower bound)");
 		d->lo[a] = v[a], d->hi[a] = v[3 + a];
 	}
 	if (state_numbers(in, "wallv", v, NWALLS * 3))
 		return -1;
 	for (w = 0; w < NWALLS; w++)
-		for (a = 0; a < 3; a++)
+		for (a = 0; a < 3; a++) {
+			/* a wall moves less than the largest grain's radius in a step */
+			if (!(fabs(v[3 * w + a]) * d->dt <= rbmax))
+				return lines_error(in, "wallv: wall %d moves %g m/s along %c, more than a grain's radius a time step",
+				    w, v[3 * w + a] * d->u_len / d->u_time, "xyz"[a]);
 			d->wallv[w][a] = v[3 * w + a];
+		}
 	for (i = 0; i < d->n; i++) {
 		if (state_numbers(in, NULL, v, 14))
 			return -1;
+		if ((why = state_grain_check(d, i, v)))
+			return lines_error(in, "grain %zu: %s", i + 1, why);
 		memcpy(d->x + 3 * i, v, 3 * sizeof *v);
 		memcpy(d->v + 3 * i, v + 3, 3 * sizeof *v);
 		memcpy(d->q + 4 * i, v + 6, 4 * sizeof *v);

@@ -202,6 +202,9 @@ state_read(struct shear_state *s, struct lines *in)
 			return lines_error(in, "'%s': not a finite number", tok[2 + k]);
 	}
 	s->xw = v[0], s->next_row = v[1], s->vw = v[2], s->H0 = v[3];
+	if (!(s->xw >= 0 && s->next_row > 0 && s->vw > 0 && s->H0 > 0))
+		return lines_error(in, "loop: the wall's travel, the next row's strain, v_w and H0 must be positive (%g %g %g %g)",
+		    s->xw, s->next_row, s->vw, s->H0);
 	for (b = 0; b < s->nb; b++) {
 		if (lines_next(in, &line, NULL) != 1 || lines_split(line, " \t", tok, 8) != 2)
 			return lines_error(in, "expected a profile bin's sum and samples");
@@ -237,6 +240,39 @@ plateshear_run(struct pack *p, const struct shear_params *sp, shear_row_fn fn, v
 	return plateshear_run_resumable(p, sp, fn, ctx, NULL, NULL, res);
 }
 
+/* A run of no sense, refused before its first step (it ran for minutes with no row, or
+ * sent the grains flying): the time step not a positive number; the wall, at v_w, moving
+ * a grain's radius in a step; or so slow that the strain would take more than ten times
+ * --max-steps (days or years), the box as tall as now and the wall xw along.  0, or -1
+ * with the message. */
+static int
+steps_check(const struct engine *d, const struct shear_params *sp, double vw, double xw)
+{
+	double need = (sp->strain * (d->hi[1] - d->lo[1]) - xw) / (vw * d->dt), rbmax = 0;
+	size_t i;
+
+	for (i = 0; i < d->n; i++)
+		rbmax = fmax(rbmax, d->rb[i]);
+	if (!(d->dt > 0 && isfinite(d->dt))) {
+		msg_seterr("the time step %g s is not a positive number: the stiffness (kn, kt, the grains' E) or the "
+		    "density is out of any sensible range", d->dt * d->u_time);
+		return -1;
+	}
+	if (!(vw > 0 && vw * d->dt <= rbmax)) {
+		msg_seterr("the top wall at v_w %g m/s would move more than a grain's radius in a time step of %g s: "
+		    "--velocity is out of any sensible range", vw * d->u_len / d->u_time, d->dt * d->u_time);
+		return -1;
+	}
+	if (!(need <= 10.0 * (double)sp->max_steps)) {
+		msg_seterr("the shear would need %.3g steps of %.3g s at v_w %.3g m/s to reach gamma %g, more than ten times "
+		    "--max-steps (%ld): the stiffness (kn, the grains' E), the stress (--stress, meta sigma0), --inertial or "
+		    "--velocity is out of any sensible range", need, d->dt * d->u_time, vw * d->u_len / d->u_time, sp->strain,
+		    sp->max_steps);
+		return -1;
+	}
+	return 0;
+}
+
 /* The run's start, after engine_init: the state of a run of this input after a row (from),
  * or the pack's frictional history, the relaxation at sigma_w and the glued walls; then
  * the scales the run reports.  *mtop the top body's mass, sigma_s the scaled stress, *A the
@@ -251,8 +287,21 @@ shear_begin(struct engine *d, struct pack *p, const struct shear_params *sp, str
 	if (from) {	/* the state of a run of this input, after a row */
 		if (state_read(ss, from))
 			return -2;
+		/* the wall's velocity is the run's own, as shear_begin sets it below (bit for bit:
+		 * the same expression on the same numbers) */
+		if (ss->vw != (sp->velocity > 0 ? sp->velocity * d->u_time / d->u_len : sp->inertial * sqrt(sigma_s) * ss->H0)) {
+			msg_seterr("%s: v_w %g m/s is not the run's (--velocity, --inertial): the checkpoint was changed",
+			    lines_name(from), ss->vw * d->u_len / d->u_time);
+			return -2;
+		}
+		if (steps_check(d, sp, ss->vw, ss->xw))
+			return -1;
 		glue_count(d, res, mtop);
 	} else {
+		/* v_w as below, for the box as it is before the relaxation */
+		if (steps_check(d, sp, sp->velocity > 0 ? sp->velocity * d->u_time / d->u_len :
+		    sp->inertial * sqrt(sigma_s) * (d->hi[1] - d->lo[1]), 0))
+			return -1;
 		/* the pack's frictional history, for the pairs that were in it (those across a new
 		 * periodic boundary start from zero) */
 		if (engine_read_history(d, p))
@@ -439,8 +488,16 @@ plateshear_choose_law(struct pack *p, const struct shear_law_choice *c, struct s
 			msg_seterr("no meta kn (the normal stiffness packgen --shape spheroplate records): give --kn");
 			return -1;
 		}
+		if (!(kn > 0 && isfinite(kn))) {	/* --kn is checked where it is parsed: the pack's */
+			msg_seterr("meta kn %g N/m: must be positive; give --kn", kn);
+			return -1;
+		}
 		if (isnan(kt))
 			kt = pack_get_meta_double(p, "kt", &v) == 0 ? v : kn;
+		if (!(kt >= 0 && isfinite(kt))) {
+			msg_seterr("meta kt %g N/m: must be non-negative; give --kt", kt);
+			return -1;
+		}
 		dyn->kn = kn, dyn->kt = kt;
 		/* the pack records what the run used: packinfo measures with it (law_pack_kn) */
 		if ((!isnan(c->kn) && set_meta_g(p, "kn", kn)) || (!isnan(c->kt) && set_meta_g(p, "kt", kt)))

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 static const struct material presets[] = {
 	{"glass", 70e9, 0.2, 2420, 0.1},
@@ -40,16 +41,25 @@ preset_line(struct lines *in, char *s, struct material *m, int *seen)
 			return lines_error(in, "%s given twice (each key once)", tok[0]);
 	if (strcmp(tok[0], "E") == 0 && v > 0 && !(v >= PACK_E_MIN && v <= PACK_E_MAX))
 		return lines_error(in, "E %s Pa is outside [%g, %g] Pa", tok[1], PACK_E_MIN, PACK_E_MAX);
-	if (strcmp(tok[0], "E") == 0 && v > 0)
+	/* each key's range said with its refusal ("nu 0.5" never said it) */
+	if (strcmp(tok[0], "E") == 0) {
+		if (!(v > 0))
+			return lines_error(in, "E %s Pa: must be in [%g, %g] Pa", tok[1], PACK_E_MIN, PACK_E_MAX);
 		m->E = v, *seen |= 1;
-	else if (strcmp(tok[0], "nu") == 0 && v > -1 && v < 0.5)
+	} else if (strcmp(tok[0], "nu") == 0) {
+		if (!(v > -1 && v < 0.5))
+			return lines_error(in, "nu %s: the Poisson ratio must be in (-1, 0.5)", tok[1]);
 		m->nu = v, *seen |= 2;
-	else if (strcmp(tok[0], "rho") == 0 && v > 0)
+	} else if (strcmp(tok[0], "rho") == 0) {
+		if (!(v > 0))
+			return lines_error(in, "rho %s: the density must be positive (kg/m^3)", tok[1]);
 		m->rho = v, *seen |= 4;
-	else if (strcmp(tok[0], "spread") == 0 && v >= 0 && v < 1)
+	} else if (strcmp(tok[0], "spread") == 0) {
+		if (!(v >= 0 && v < 1))
+			return lines_error(in, "spread %s: must be in [0, 1)", tok[1]);
 		m->spread = v, *seen |= 8;
-	else
-		return lines_error(in, "unknown key or value out of range: %s %s", tok[0], tok[1]);
+	} else
+		return lines_error(in, "unknown key: %s (the keys: E, nu, rho, spread)", tok[0]);
 	return 0;
 }
 
@@ -101,7 +111,11 @@ material_lookup(const char *name, struct material *m)
 		}
 	if (material_is_file(name))
 		return read_preset_file(name, m);
-	msg_seterr("unknown material '%s' (presets: %s; or a file path)", name, material_preset_names);
+	if (access(name, F_OK) == 0)	/* a file named without a slash or .mat: say how to name it */
+		msg_seterr("unknown material '%s' (presets: %s): to read the file of that name, give its path as ./%s",
+		    name, material_preset_names, name);
+	else
+		msg_seterr("unknown material '%s' (presets: %s; or a file path)", name, material_preset_names);
 	return -1;
 }
 

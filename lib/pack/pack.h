@@ -185,6 +185,9 @@ void pack_set_grain_kind(struct pack *p, size_t i, enum shape_kind kind);
 enum shape_kind pack_grain_shape(const struct pack *p, size_t i);
 /* How far from 1 the norm of a stored quaternion may be (pack-format.md, "Grain lines"). */
 #define PACK_QUAT_TOL 1e-6
+/* The box lies within [-PACK_BOX_MAX, PACK_BOX_MAX] m on each axis (a pack of grains: a 1e300 m box
+ * was read) */
+#define PACK_BOX_MAX 1e3
 /* The index of the first grain that is not a sphere (pack_grain_shape), or (size_t)-1 when
  * every grain is a sphere: no shape columns, or every kind a sphere. */
 size_t pack_first_plate(const struct pack *p);

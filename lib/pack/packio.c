@@ -141,6 +141,10 @@ check_box(struct pack_reader *rd, const double b[6], const char *what)
 		if (!(b[a + 3] > b[a]))
 			return rd_error(rd, "%s: upper bound %g not above lower bound %g on axis %c",
 			    what, b[a + 3], b[a], 'x' + a);
+	for (a = 0; a < 6; a++)
+		if (!(fabs(b[a]) <= PACK_BOX_MAX))
+			return rd_error(rd, "%s: bound %g m is outside [-%g, %g] m (a pack of grains, in metres)", what, b[a],
+			    PACK_BOX_MAX, PACK_BOX_MAX);
 	return 0;
 }
 
@@ -198,6 +202,18 @@ check_grain_values(const struct pack *p, size_t i, char *why, size_t len)
 				    p->id[i], p->r[i], 'x' + a, p->box[a + 3] - p->box[a]);
 				return why;
 			}
+		/* a plate by its bounding radius (a side of 1 m in a box of a millimetre read as
+		 * a porosity of -1.8e12) */
+		if (pack_grain_shape(p, i) != SHAPE_SPHERE) {
+			double rb = shape_of(pack_grain_shape(p, i))->bounding_radius(p->r[i], p->side[i]);
+
+			for (a = 0; a < 3; a++)
+				if (!(rb <= p->box[a + 3] - p->box[a])) {
+					snprintf(why, len, "grain %ld: bounding radius %g m (side %g m) is larger than the box along %c (%g m): it must be at most the box length",
+					    p->id[i], rb, p->side[i], 'x' + a, p->box[a + 3] - p->box[a]);
+					return why;
+				}
+		}
 		return NULL;
 	}
 	return why;
@@ -837,6 +853,9 @@ read_grains(const struct header *h, size_t **sorted)
 		if (read_grain_line(h, s))
 			return -1;
 	}
+	if (!(pack_grain_volume(p) <= pack_box_volume(p->box)))
+		return rd_error_at(rd, first, "the grains' volume %g m^3 exceeds the box's %g m^3 (a grain far too large?)",
+		    pack_grain_volume(p), pack_box_volume(p->box));
 	*sorted = sort_by_id(p, &dup);
 	if (!*sorted)
 		return rd_error(rd, "out of memory");
@@ -1348,6 +1367,11 @@ pack_validate(const struct pack *p)
 			msg_seterr("box: upper bound not above lower bound on axis %c", (int)('x' + k));
 			return -1;
 		}
+	for (k = 0; k < 6; k++)
+		if (!(fabs(p->box[k]) <= PACK_BOX_MAX)) {
+			msg_seterr("box: bound %g m is outside [-%g, %g] m", p->box[k], PACK_BOX_MAX, PACK_BOX_MAX);
+			return -1;
+		}
 	if (!(p->wall_E >= PACK_E_MIN && p->wall_E <= PACK_WALL_E_MAX) || !(p->wall_nu > -1 && p->wall_nu < 0.5) ||
 	    !(p->wall_mu >= 0 && p->wall_mu <= PACK_MU_MAX) || !(p->mu >= 0 && p->mu <= PACK_MU_MAX)) {
 		msg_seterr("walls or friction out of range (walls E in [%g, %g] Pa, nu in (-1, 0.5), friction coefficients in [0, %g])",
@@ -1363,6 +1387,10 @@ pack_validate(const struct pack *p)
 			msg_seterr("%s", why);
 			return -1;
 		}
+	if (!(pack_grain_volume(p) <= pack_box_volume(p->box))) {
+		msg_seterr("the grains' volume %g m^3 exceeds the box's %g m^3", pack_grain_volume(p), pack_box_volume(p->box));
+		return -1;
+	}
 	s = sort_by_id(p, &dup);
 	free(s);
 	if (dup != (size_t)-1) {

@@ -164,6 +164,10 @@ psd_parse(const char *spec, struct psd *d)
 		return 0;
 	}
 	if (strncmp(spec, "table:", 6) == 0) {
+		if (!spec[6]) {
+			msg_seterr("--psd table: names no file (table:FILE, a size table)");
+			return -1;
+		}
 		d->kind = PSD_TABLE;
 		return read_table(spec + 6, d);
 	}

@@ -211,6 +211,8 @@ parse_seg(char *text, int k, const struct path_defaults *def, struct path_seg *s
 {
 	struct seg_extra x = {0, 0};
 	char *w, *save = NULL;
+	const char *seen[32];
+	size_t nseen = 0;
 
 	memset(sg, 0, sizeof *sg);
 	sg->axis = def->axis;
@@ -232,8 +234,19 @@ parse_seg(char *text, int k, const struct path_defaults *def, struct path_seg *s
 			msg_seterr("segment %d: a probe stops by steps=N (per axis), not '%s'", k, w);
 			return -1;
 		}
+		{	/* each key once: steps=1 steps=2 took the last without a word */
+			size_t len = strcspn(w, "="), j;
+
+			for (j = 0; j < nseen; j++)
+				if (strlen(seen[j]) == len && strncmp(seen[j], w, len) == 0) {
+					msg_seterr("segment %d: '%.*s' is given twice", k, (int)len, w);
+					return -1;
+				}
+		}
 		if (parse_setting(w, k, sg, &x))
 			return -1;
+		if (nseen < sizeof seen / sizeof seen[0])
+			seen[nseen++] = w;	/* the key alone now: parse_setting cut it at '=' */
 	}
 	if (isnan(sg->step) || sg->step == 0) {
 		msg_seterr("segment %d: no strain step (step=D or --strain-step)", k);

@@ -342,8 +342,31 @@ expect_fail "--log the output" 2 "^densify: -o and --log name the same file 'not
 expect_fail "--log the output by another path" 2 "^densify: -o and --log name the same file" --log ./nothing.pack loose.pack
 cp loose.pack in.pack
 expect_fail "--log the input" 2 "^densify: --log 'in.pack' is the input: write to another file" --log in.pack in.pack
-expect_error "-o the input" 2 "^densify: -o 'in.pack' is the input: write to another file" densify -o in.pack in.pack
-expect_same "-o the input: the input untouched" in.pack loose.pack
+# -o the input: the pack updated in place (read whole, then renamed over it)
+densify --stress 4e6 -o ref.pack in.pack 2>/dev/null
+expect_ok "-o the input: allowed" densify --stress 4e6 -o in.pack in.pack
+expect_same "-o the input: the pack updated in place, as -o another file" in.pack ref.pack
+cp loose.pack in.pack
+# a log through a symbolic link is written into the file the link names: refused when that
+# is the input or -o (it exited 0 with the input, or the log, lost); /dev/stdout is stdout
+ln -s in.pack in.link
+expect_fail "--log a link to the input" 2 "^densify: --log 'in.link' is the input: write to another file \\(the input would be lost\\)" --log in.link in.pack
+expect_same "--log a link to the input: the input untouched" in.pack loose.pack
+ln -s nothing.pack out.link
+expect_fail "--log a link to -o" 2 "^densify: -o and --log name the same file 'nothing.pack'" --log out.link loose.pack
+ln -s later.pack dangling.link
+expect_refused "no output file" later.pack "--log a link to -o not yet written" 2 "^densify: -o and --log name the same file 'later.pack'" \
+    densify --log dangling.link -o later.pack loose.pack
+rm -f in.link out.link dangling.link
+expect_error "--log /dev/stdout with the pack on stdout" 2 "^densify: --log and -o both go to standard output" densify --log /dev/stdout loose.pack
+if densify --stress 4e6 --log /dev/stdout -o ref2.pack loose.pack >stdout.log 2>/dev/null && [ "$(head -n 1 ref2.pack)" = "qusgm-pack 1" ] &&
+    [ "$(rows stdout.log | wc -l)" -ge 2 ] && ! grep -q '^qusgm-pack' stdout.log; then
+	pass "--log /dev/stdout with -o FILE: the log on stdout"
+else
+	fail "--log /dev/stdout with -o FILE: the log on stdout" "$(head -c 300 stdout.log)"
+fi
+expect_error "-o ''" 2 "^densify: -o: the file name is empty" densify -o '' loose.pack
+expect_error "--log ''" 2 "^densify: --log: the file name is empty" densify --log '' -o x.pack loose.pack
 expect_error "--log to standard output with the pack" 2 "^densify: --log and -o both go to standard output" densify --log - loose.pack
 expect_fail "--log in a missing directory" 2 "^densify: --log: cannot write in directory 'no-such-dir'" --log no-such-dir/l.tsv loose.pack
 expect_fail "--log /dev/full" 1 '^densify: /dev/full: write error: No space left on device$' --log /dev/full loose.pack

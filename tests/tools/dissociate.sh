@@ -81,8 +81,10 @@ expect_num "frictional: the written pack is an equilibrium of its history (packi
 expect_error "dS > 0 refused" 2 '^dissociate: --dS: must be <= 0' dissociate --dS 0.01 hyd.pack
 expect_error "p_ex < 0 refused" 2 '^dissociate: --pex: must be >= 0' dissociate --pex -1 hyd.pack
 cp hyd.pack in.pack
-expect_error "-o the input" 2 "^dissociate: -o 'in.pack' is the input" dissociate -o in.pack in.pack
-expect_same "-o the input: the input untouched" in.pack hyd.pack
+# -o the input: the pack updated in place (read whole, then renamed over it)
+dissociate --mu 0 -o ref.pack in.pack 2>/dev/null
+expect_ok "-o the input: allowed" dissociate --mu 0 -o in.pack in.pack
+expect_same "-o the input: the pack updated in place, as -o another file" in.pack ref.pack
 expect_error "dS <= -S refused, naming the file and S" 1 "^dissociate: hyd.pack: --dS -0.9: the pack's hydrate saturation is 0\\.[0-9]+; dS must be above -S" \
     dissociate --mu 0 --dS -0.9 hyd.pack
 packgen -n 200 --seed 5 --material quartz -o plain.loose 2>/dev/null

@@ -169,9 +169,15 @@ expect_run_fail "iteration limit" 1 '^frictionalize: .*iteration limit.*--allow-
 expect_refused "no output file" nothing.pack "--log the output" 2 "^frictionalize: -o and --log name the same file 'nothing.pack'" \
     frictionalize --log nothing.pack -o nothing.pack dense.pack
 cp dense.pack in.pack
-expect_error "-o the input" 2 "^frictionalize: -o 'in.pack' is the input" frictionalize -o in.pack in.pack
-expect_same "-o the input: the input untouched" in.pack dense.pack
 expect_error "--log the input" 2 "^frictionalize: --log 'in.pack' is the input" frictionalize --log in.pack in.pack
+ln -s in.pack in.link
+expect_error "--log a link to the input" 2 "^frictionalize: --log 'in.link' is the input" frictionalize --log in.link -o x.pack in.pack
+expect_same "--log a link to the input: the input untouched" in.pack dense.pack
+rm -f in.link
+# -o the input: the pack updated in place (read whole, then renamed over it)
+frictionalize -o ref.pack in.pack 2>/dev/null
+expect_ok "-o the input: allowed" frictionalize -o in.pack in.pack
+expect_same "-o the input: the pack updated in place, as -o another file" in.pack ref.pack
 expect_refused "no output file" nothing.pack "--log /dev/full" 1 '^frictionalize: /dev/full: write error: No space left on device$' \
     frictionalize --log /dev/full -o nothing.pack dense.pack
 expect_refused "no log" nothing.tsv "-o in a missing directory" 2 "^frictionalize: -o: cannot write in directory 'no-such-dir'" \

@@ -42,7 +42,7 @@ while [ ! -s c.ck ] && [ $k -lt 600 ]; do sleep 0.05; k=$((k + 1)); done
 kill -9 $pid 2>/dev/null
 wait $pid 2>/dev/null
 if [ -s c.ck ]; then
-	head -1 c.ck | grep -q '^qusgm-shear-checkpoint 1$' && pass "shear: the checkpoint a kill left" ||
+	head -1 c.ck | grep -q '^qusgm-shear-checkpoint 2$' && pass "shear: the checkpoint a kill left" ||
 		fail "shear: the checkpoint a kill left" "$(head -c 100 c.ck)"
 	cp c.ck c2.ck
 	expect_ok "shear: going on after SIGKILL" shear $args --profile c.prof --snapshot-prefix c -o c.pack --checkpoint c.ck \
@@ -59,6 +59,45 @@ if [ -s c.ck ]; then
 	expect_error "shear: a truncated checkpoint" 1 "^shear: c3.ck:[0-9]+: " shear $args --checkpoint c3.ck s.pack
 	sed '9s/^\([^ ]*\) /nonsense /' c2.ck >c4.ck
 	expect_error "shear: a damaged checkpoint" 1 "^shear: c4.ck:[0-9]+: " shear $args --checkpoint c4.ck s.pack
+	# the checksum (issue 59): one changed digit of a grain, a number cut short, no checksum
+	# line, a checkpoint of version 1 were accepted (exit 0, another run); each is refused,
+	# naming the checkpoint, and writes nothing
+	g=$(($(grep -n '^pdem-state' c2.ck | cut -d: -f1) + 3))
+	awk -v g=$g 'NR == g { sub(/^0x1/, "0x2") } { print }' c2.ck >d1.ck
+	expect_refused "no pack" d.pack "shear: a checkpoint with a digit changed" 1 \
+		"^shear: d1.ck:[0-9]+: the checksum does not match .*: the checkpoint was changed or damaged; remove it" \
+		shear $args --checkpoint d1.ck -o d.pack s.pack
+	head -c -3 c2.ck >d2.ck
+	expect_error "shear: a checkpoint cut inside its last number" 1 \
+		"^shear: d2.ck:[0-9]+: the checkpoint ends without its checksum line" shear $args --checkpoint d2.ck s.pack
+	head -n -1 c2.ck | sed '1s/ 2$/ 1/' >d3.ck
+	expect_error "shear: a checkpoint of version 1" 1 \
+		"^shear: d3.ck: the checkpoint of an earlier qusgm \\(version 1, without a checksum\\): remove it to start the run afresh" \
+		shear $args --checkpoint d3.ck s.pack
+	# the grains' checks, behind a checksum made anew: the state of no run
+	resum() {
+		head -n -1 "$1" >"$2"
+		echo "checksum crc32 $(gzip -c "$2" | tail -c 8 | od -An -tx1 -N4 | awk '{ print $4 $3 $2 $1 }')" >>"$2"
+	}
+	awk -v g=$g 'NR == g { $2 = "0x1p+40" } { print }' c2.ck >t.ck; resum t.ck e1.ck
+	expect_refused "no pack" d.pack "shear: a checkpoint grain far outside the box" 1 \
+		"^shear: e1.ck:$g: grain 1: centre y = .* m is outside the box" shear $args --checkpoint e1.ck -o d.pack s.pack
+	awk -v g=$g 'NR == g { $7 = $8 = $9 = $10 = "0x0p+0" } { print }' c2.ck >t.ck; resum t.ck e2.ck
+	expect_refused "no pack" d.pack "shear: a checkpoint's zero quaternion" 1 \
+		"^shear: e2.ck:$g: grain 1: \\(qw, qx, qy, qz\\) = \\(0, 0, 0, 0\\) is not a unit quaternion" \
+		shear $args --checkpoint e2.ck -o d.pack s.pack
+	awk -v g=$g 'NR == g { $4 = "0x1p+60" } { print }' c2.ck >t.ck; resum t.ck e3.ck
+	expect_refused "no pack" d.pack "shear: a checkpoint's huge velocity" 1 \
+		"^shear: e3.ck:$g: grain 1: velocity .* m/s: the grain would move more than its radius in a time step" \
+		shear $args --checkpoint e3.ck -o d.pack s.pack
+	awk '$1 == "loop" { $5 = "0x0p+0" } { print }' c2.ck >t.ck; resum t.ck e4.ck
+	expect_error "shear: a checkpoint's v_w 0 (it ran forever)" 1 "^shear: e4.ck:[0-9]+: loop: .* must be positive" \
+		timeout 60 shear $args --checkpoint e4.ck s.pack
+	awk '$1 == "loop" { $5 = "0x1p-9" } { print }' c2.ck >t.ck; resum t.ck e5.ck
+	expect_error "shear: a checkpoint's v_w not the run's" 1 "^shear: e5.ck: v_w .* m/s is not the run's" \
+		shear $args --checkpoint e5.ck s.pack
+	resum c2.ck e6.ck
+	expect_same "shear: the checksum as the test makes it" c2.ck e6.ck
 else
 	fail "shear: the checkpoint a kill left" "none after 30 s"
 fi

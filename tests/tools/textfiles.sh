@@ -36,7 +36,7 @@ expect_error "material file: a third field after 700 characters is refused at it
     packgen -n 20 --material ./extra.mat
 { echo "# $(long 700)"; echo "E 5e9"; echo "k$z600 1"; } >key.mat
 expect_error "material file: a 601-character key is refused whole, at its line" 2 \
-    "^packgen: --material: \./key\.mat:3: unknown key or value out of range: k0{600} 1 \\(try" \
+    "^packgen: --material: \./key\.mat:3: unknown key: k0{600} \\(the keys: E, nu, rho, spread\\) \\(try" \
     packgen -n 20 --material ./key.mat
 printf 'E 5e9\nnu 0.3\r\nrho 1000\r\n' >crlf.mat
 expect_ok "material file with CRLF lines" packgen -n 20 --seed 1 --material ./crlf.mat -o crlf.pack

@@ -37,7 +37,7 @@ build(struct pack *p)
 	p->box[2] = -0.0;
 	p->box[3] = 1e-3 / 3.0;
 	p->box[4] = 0.1 + 0.2;
-	p->box[5] = 123456789.123456789;
+	p->box[5] = 123.456789123456789;	/* within PACK_BOX_MAX (1 km), 18 digits all the same */
 	memcpy(p->refbox, p->box, sizeof p->box);
 	p->refbox[3] = 2.0 / 3.0 * 1e-3;
 	p->has_refbox = 1;
