@@ -70,6 +70,18 @@ gzip -n -c "$f12" >"$out/crc.pack.gz"
 size=$(wc -c <"$out/crc.pack.gz")
 printf '\377' | dd of="$out/crc.pack.gz" bs=1 seek=$((size - 8)) conv=notrunc 2>/dev/null
 { gzip -n -c "$f12"; cat "$f12"; } >"$out/trailing.pack.gz"
+# the rules of no sense (issue 59 H9): a box beyond 1 km, a plate larger than the box, grains
+# whose volumes exceed the box
+sed 's/^box 3.1153668307431874e-05 /box -2000 /' "$f12" >"$out/box-km.pack"
+sed '13s/ 1e-4 1 0 0 0$/ 1 1 0 0 0/' "$src/plates.pack" >"$out/plate-side.pack"
+subst grain-volume.pack 16 "1 0.00010584563995346208 0.00029273637370322 0.00010970892723918507 0.0005 65293086641.32453 0.1713623712368082 2420"
+# other streams inside a gzip (issue 59 H10): a gzip twice, zlib, xz within gzip; gzip's zero
+# padding (read, as gzip -d reads it), then something after it (refused)
+gzip -n -c "$f12" | gzip -n >"$out/gzip-twice.pack.gz"
+python3 -c 'import sys, zlib; sys.stdout.buffer.write(zlib.compress(sys.stdin.buffer.read()))' <"$f12" >"$out/zlib.pack.z"
+xz -c "$f12" | gzip -n >"$out/xz-in-gzip.pack.gz"
+{ gzip -n -c "$f12"; head -c 512 /dev/zero; } >"$out/ok-zero-padding.pack.gz"
+{ gzip -n -c "$f12"; head -c 512 /dev/zero; printf 'x'; } >"$out/zero-padding-then.pack.gz"
 # the end of the stream: a line without a newline, text after the last contact
 head -c -1 "$f12" >"$out/no-newline.pack"
 { cat "$f12"; echo "extra"; } >"$out/after-last.pack"

@@ -215,6 +215,11 @@ _FOREIGN = (
 
 
 def _foreign(b: bytes) -> Optional[str]:
+    # zlib's own format (RFC 1950: CM 8, the header a multiple of 31), which is no text
+    if (len(b) >= 2 and (b[0] & 0x0F) == 8 and (b[0] >> 4) <= 7 and ((b[0] << 8) | b[1]) % 31 == 0
+            and not b[1] & 0x20 and (b"\0" in b[:64] or b[1] < 0x20 or b[1] >= 0x7F)):
+        return ("zlib-compressed data (no gzip header): only gzip is read; decompress it first (pigz -dz FILE, or "
+                "python3 -c 'import sys, zlib; sys.stdout.buffer.write(zlib.decompress(sys.stdin.buffer.read()))' <FILE)")
     for magic, what in _FOREIGN:
         if b.startswith(magic):
             # bzip2: "BZh", a block size 1-9, then the block magic (pi's digits)
@@ -313,6 +318,18 @@ class _Source:
                 if not self.raw:
                     self.eof = True
                     break
+                if self.raw[0] == 0:  # zero padding (a tape block), as gzip -d accepts
+                    while True:
+                        if self.raw.count(0) != len(self.raw):
+                            return self._stop(parts, "trailing data after the end of the gzip stream",
+                                              "zero bytes, then others: neither padding nor a gzip member")
+                        self.raw = self._raw(_READ)
+                        if not self.raw:
+                            self.eof = True
+                            return b"".join(parts)
+                        if self.raw[0] != 0:
+                            return self._stop(parts, "trailing data after the end of the gzip stream",
+                                              "zero bytes, then others: neither padding nor a gzip member")
                 if self.raw[:2] != b"\x1f\x8b":
                     return self._stop(parts, "trailing data after the end of the gzip stream",
                                       "not a gzip member; gzip -t calls it trailing garbage: a file appended to a .gz one?")
@@ -407,9 +424,12 @@ class _Lines:
                     break
                 b += c
             self.sniffed = True
+            if self.src.gzip and b[:2] == b"\x1f\x8b":
+                raise self.error("a gzip inside a gzip (compressed twice): decompress it once "
+                                 "(gzip -d FILE), and the inner gzip is read", 1)
             why = _foreign(b)
             if why:
-                raise self.error(why, 1)
+                raise self.error(("inside the gzip stream, " if self.src.gzip else "") + why, 1)
         return b
 
     def _readline(self) -> Tuple[bytes, bool]:
@@ -540,6 +560,8 @@ def _g(v: float) -> str:
 _MU_MAX = 10.0
 _E_MIN, _E_MAX, _WALL_E_MAX = 1e3, 1e13, 1e15
 _QUAT_TOL = 1e-6
+_BOX_MAX = 1e3  # lib/pack/pack.h: PACK_BOX_MAX
+_SQRT2 = math.sqrt(2.0)  # M_SQRT2
 _MAX_COUNT = 1000000000
 _MAGIC = "qusgm-pack"
 _EXPECT = "'%s %d' or '%s %d'" % (_MAGIC, VERSIONS[0], _MAGIC, VERSIONS[-1])
@@ -594,6 +616,10 @@ def _kw_box(h: _Header, tok: List[str]) -> None:
         if not v[a + 3] > v[a]:
             raise h.error("%s: upper bound %s not above lower bound %s on axis %s"
                           % (tok[0], _g(v[a + 3]), _g(v[a]), "xyz"[a]))
+    for a in range(6):
+        if not abs(v[a]) <= _BOX_MAX:
+            raise h.error("%s: bound %s m is outside [-%s, %s] m (a pack of grains, in metres)"
+                          % (tok[0], _g(v[a]), _g(_BOX_MAX), _g(_BOX_MAX)))
     setattr(h.p, tok[0], np.array(v))
 
 
@@ -809,6 +835,38 @@ def _grain_why(p: Pack, gid: int, v: Dict[str, Any]) -> Optional[str]:
         if v["r"] > box[a + 3] - box[a]:
             return ("grain %d: radius %s m is larger than the box along %s (%s m): the radius must be at most the box length"
                     % (gid, _g(v["r"]), c, _g(box[a + 3] - box[a])))
+    if shapes and (v["shape"] != "sphere" if "shape" in v else v["side"] > 0):
+        rb = v["r"] + v["side"] / _SQRT2  # shape_bounding_radius
+        for a, c in enumerate("xyz"):
+            if not rb <= box[a + 3] - box[a]:
+                return ("grain %d: bounding radius %s m (side %s m) is larger than the box along %s (%s m): it must be at most the box length"
+                        % (gid, _g(rb), _g(v["side"]), c, _g(box[a + 3] - box[a])))
+    return None
+
+
+def _grain_volume(p: Pack, g: np.ndarray) -> float:
+    """lib/pack/pack.c's pack_grain_volume, in its order: the spheres as r^3 summed times
+    4 pi/3 at the end, each plate's 2 r L^2 + 2 pi r^2 L + 4/3 pi r^3 summed apart."""
+    v = vp = 0.0
+    rs = g["r"].tolist()
+    sides = g["side"].tolist() if "side" in p.columns else [0.0] * len(rs)
+    kinds = g["shape"].tolist() if "shape" in p.columns else None
+    for k, r in enumerate(rs):
+        L = sides[k]
+        if (kinds[k] != "sphere") if kinds is not None else L > 0:
+            vp += 2 * r * L * L + 2 * math.pi * r * r * L + 4.0 / 3.0 * math.pi * r * r * r
+        else:
+            v += r * r * r
+    return v * 4.0 / 3.0 * 3.14159265358979323846 + vp
+
+
+def _volume_why(p: Pack, g: np.ndarray) -> Optional[str]:
+    """The grains' volume against the box's (read_grains), or None."""
+    b = p.box
+    vb = (b[3] - b[0]) * (b[4] - b[1]) * (b[5] - b[2])
+    vg = _grain_volume(p, g)
+    if not vg <= vb:
+        return "the grains' volume %s m^3 exceeds the box's %s m^3 (a grain far too large?)" % (_g(vg), _g(vb))
     return None
 
 
@@ -860,6 +918,10 @@ def _grains_slow(lines: _Lines, p: Pack, ng: int) -> np.ndarray:
         if why:
             raise lines.error(why)
         rows.append(tuple(v[c] for c in p.columns))
+    g = np.array(rows, dtype=_grain_dtype(p.columns)) if rows else np.zeros(0, dtype=_grain_dtype(p.columns))
+    why = _volume_why(p, g)
+    if why:
+        raise lines.error(why, first)
     seen: Dict[int, int] = {}
     for n, r in enumerate(rows):
         if r[0] in seen:
@@ -871,7 +933,6 @@ def _grains_slow(lines: _Lines, p: Pack, ng: int) -> np.ndarray:
         if c in centres:
             raise lines.error("grains %d and %d have the same centre" % (rows[centres[c]][0], r[0]), first + n)
         centres[c] = n
-    g = np.array(rows, dtype=_grain_dtype(p.columns)) if rows else np.zeros(0, dtype=_grain_dtype(p.columns))
     return g
 
 
@@ -1128,7 +1189,12 @@ def _grains_ok(p: Pack, g: np.ndarray) -> bool:
         ok &= (g["side"] >= 0) & (np.abs(np.sqrt(q) - 1) <= _QUAT_TOL)
     if "phase" in p.columns:
         ok &= (g["phase"] == 0) | (g["phase"] == 1)
-    if not ok.all() or np.unique(g["id"]).size != len(g):
+    if "side" in p.columns:  # a plate by its bounding radius
+        plate = (g["shape"] != "sphere") if "shape" in p.columns else (g["side"] > 0)
+        rb = r + g["side"] / _SQRT2
+        for a in range(3):
+            ok &= ~plate | (rb <= b[a + 3] - b[a])
+    if not ok.all() or _volume_why(p, g) is not None or np.unique(g["id"]).size != len(g):
         return False
     # no two centres alike (-0 is 0, as C's == has it)
     x, y, z = g["x"] + 0.0, g["y"] + 0.0, g["z"] + 0.0
