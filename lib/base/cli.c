@@ -368,15 +368,49 @@ getopt_table_run(const struct getopt_table *g, int argc, char **argv)
 
 static void progress_start(void);
 
+/* The most threads: --threads and OMP_NUM_THREADS alike (a thread's stack and its share of the
+ * neighbour list's buffers are reserved up front; 5000 threads took 4 GB). */
+#define THREADS_MAX 4096
+
+/* OMP_NUM_THREADS, the count when --threads is 0, held to --threads' range: a number from 1 to
+ * THREADS_MAX, with blanks around it and, as OpenMP allows, a list of counts for nested
+ * levels after a comma (only the first is used).  Anything else is a usage error that names
+ * the variable (the runtime itself warned of a value it cannot read and went on with its
+ * default; 100000 was taken and failed later as "out of memory for the neighbour list"). */
+static void
+omp_num_threads_check(void)
+{
+	const char *env = getenv("OMP_NUM_THREADS"), *c;
+	char typed[48];
+	unsigned long n = 0;
+	size_t k;
+	int digits = 0;
+
+	if (!env)
+		return;
+	for (c = env; *c == ' ' || *c == '\t'; c++)
+		;
+	for (; *c >= '0' && *c <= '9'; c++, digits++)
+		n = n > THREADS_MAX ? n : 10 * n + (unsigned long)(*c - '0');
+	while (*c == ' ' || *c == '\t')
+		c++;
+	if (digits && (*c == 0 || *c == ',') && n >= 1 && n <= THREADS_MAX)
+		return;
+	/* the value as typed, on one line and not too long */
+	for (k = 0; env[k] && k + 4 < sizeof typed; k++)
+		typed[k] = env[k] >= ' ' && env[k] < 127 ? env[k] : '?';
+	strcpy(typed + k, env[k] ? "..." : "");
+	cli_usage_error("OMP_NUM_THREADS: expected 1 to %d (the threads when --threads is 0), got '%s'", THREADS_MAX, typed);
+}
+
 void
 cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 {
 	struct getopt_table g;
-	char **argv0 = malloc(((size_t)argc + 1) * sizeof *argv0);	/* before getopt permutes it */
 
-	if (!argv0)
-		msg_die(EXIT_DATA, "out of memory");
-	memcpy(argv0, argv, ((size_t)argc + 1) * sizeof *argv0);
+	/* an empty argv[0] (or none) named no one in the messages: the tool's own name instead */
+	if (argc < 1 || !argv[0] || !*(strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0]))
+		msg_progname = t->name;
 	progress_start();	/* the progress line's and the logs' elapsed time */
 	getopt_table_build(&g, t);
 	memset(st, 0, sizeof *st);
@@ -384,7 +418,6 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 	free(g.lo);	/* before the exits below: LeakSanitizer counts them otherwise */
 	free(g.map);
 	if (help_flag || version_flag) {
-		free(argv0);
 		if (help_flag)
 			print_help(t);
 		else
@@ -392,12 +425,13 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 		exit(0);
 	}
 	msg_verbosity = quiet_flag ? -1 : verbose_count;
-	if (threads_opt < 0 || threads_opt > 4096)
-		cli_usage_error("--threads: expected 0 (the default) to 4096, got %ld", threads_opt);
-	else if (!usage_errors)
-		par_wait_passive(argv0, threads_opt > 0 ? (int)threads_opt : par_default_threads());
-	free(argv0);
-	par_set_threads((int)threads_opt);
+	if (threads_opt < 0 || threads_opt > THREADS_MAX)
+		cli_usage_error("--threads: expected 0 (the default) to %d, got %ld", THREADS_MAX, threads_opt);
+	else if (threads_opt == 0)
+		omp_num_threads_check();
+	/* a usage error exits before any work: no threads for it (a bad OMP_NUM_THREADS is not
+	 * handed on) */
+	par_set_threads(usage_errors ? 1 : (int)threads_opt);
 	msg_info(1, "%d thread%s (--threads)", par_threads(), par_threads() == 1 ? "" : "s");
 	st->operands = argv + optind;
 	st->noperands = argc - optind;
