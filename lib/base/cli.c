@@ -3,6 +3,7 @@
 #include "base/cli.h"
 #include "base/par.h"
 #include "base/msg.h"
+#include "base/fileio.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -403,6 +404,27 @@ omp_num_threads_check(void)
 	cli_usage_error("OMP_NUM_THREADS: expected 1 to %d (the threads when --threads is 0), got '%s'", THREADS_MAX, typed);
 }
 
+/* What a tool reads from standard input (cli_input_help), named when that is a terminal. */
+static const char *input_help = "a pack";
+
+void
+cli_input_help(const char *what)
+{
+	input_help = what;
+}
+
+/* file_in_open's hook: a tool given no file on a terminal would wait without a word. */
+static void
+stdin_notice(void)
+{
+	static int said;
+
+	if (said || !isatty(0))
+		return;
+	said = 1;
+	msg_info(0, "reading %s from standard input (Ctrl-D ends it)", input_help);
+}
+
 void
 cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 {
@@ -432,6 +454,7 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 	/* a usage error exits before any work: no threads for it (a bad OMP_NUM_THREADS is not
 	 * handed on) */
 	par_set_threads(usage_errors ? 1 : (int)threads_opt);
+	file_stdin_hook = stdin_notice;
 	msg_info(1, "%d thread%s (--threads)", par_threads(), par_threads() == 1 ? "" : "s");
 	st->operands = argv + optind;
 	st->noperands = argc - optind;

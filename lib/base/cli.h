@@ -55,6 +55,10 @@ struct cli_state {
 /* -o's help line when it is not "write to FILE instead of stdout": for a tool whose standard
  * output is a table and whose -o writes the final pack.  Call before cli_parse. */
 void cli_output_help(const char *help);
+/* What the tool reads from standard input, for the line that says it reads a terminal ("a
+ * pack" unless set): "packinfo: reading a pack from standard input (Ctrl-D ends it)".  Call
+ * before cli_parse. */
+void cli_input_help(const char *what);
 
 /* Parse argv against the tool's table; exits 0 for --help/--version, 2 for usage errors
  * (after reporting every bad option).  Fills st. */

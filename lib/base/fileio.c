@@ -101,6 +101,8 @@ hook_cleanup(void)
 	hooked = 1;
 }
 
+void (*file_stdin_hook)(void);
+
 const char *
 file_display_name(const char *path)
 {
@@ -113,8 +115,11 @@ file_in_open(const char *path, const char **display)
 	FILE *fp;
 
 	*display = file_display_name(path);
-	if (*display != path)
+	if (*display != path) {
+		if (file_stdin_hook)
+			file_stdin_hook();
 		return stdin;
+	}
 	fp = fopen(path, "rb");
 	if (!fp) {
 		msg_seterr("%s: %s", path, strerror(errno));

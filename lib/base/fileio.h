@@ -17,6 +17,9 @@
 /* Open path for reading in binary mode; NULL or "-" gives stdin.  *display is set to the
  * name to use in messages (path, or "<stdin>").  NULL with "path: strerror" in the slot. */
 FILE *file_in_open(const char *path, const char **display);
+/* Called by file_in_open each time it gives stdin (NULL: nothing): the tools' cli_parse sets it
+ * to say that a terminal is read. */
+extern void (*file_stdin_hook)(void);
 /* The name by which messages call an input path: the path, or "<stdin>" for NULL or "-"
  * (what file_in_open sets *display to). */
 const char *file_display_name(const char *path);

@@ -50,3 +50,31 @@ else
 	pass "densify -v in a pipe: plain lines"
 fi
 expect_num "densify -v in a pipe: a line per stage of the log" "$(grep -cE '^densify: (relax|grow|retry|compact) [0-9]+: ' v.err)" == "$(rows v.tsv | wc -l)"
+
+# A tool given no file reads standard input; on a terminal it says so (it waited without a
+# word), once, before it reads: every tool that reads one.  The terminal's end of input comes
+# at once here (script's own input is /dev/null), so each then stops at the empty input.
+if command -v script >/dev/null 2>&1; then
+	for t in densify dissociate frictionalize loadtest moduli "packexport --xyzr" packimport packinfo packview shear; do
+		name=${t%% *}
+		on_tty s.tty "$t"
+		case $name in
+		moduli) what="a loadtest table" ;;
+		packimport) what="'x y z r' lines" ;;
+		*) what="a pack" ;;
+		esac
+		if [ "$(tr -d '\r' <s.tty | head -n 1)" = "$name: reading $what from standard input (Ctrl-D ends it)" ] &&
+		    [ "$(grep -c 'from standard input' s.tty)" -eq 1 ]; then
+			pass "$name on a terminal's standard input: says it reads $what"
+		else
+			fail "$name on a terminal's standard input: says it reads $what" "$(tr -d '\r' <s.tty | head -n 2 | tr '\n' '|')"
+		fi
+	done
+	on_tty sq.tty "packinfo -q"
+	if grep -q 'from standard input' sq.tty; then fail "packinfo -q: no word of standard input" "$(head -n 1 sq.tty)"; else pass "packinfo -q: no word of standard input"; fi
+	on_tty sf.tty "packinfo loose.pack"
+	if grep -q 'from standard input' sf.tty; then fail "packinfo FILE on a terminal: no word of standard input" "$(head -n 1 sf.tty)"; else pass "packinfo FILE on a terminal: no word of standard input"; fi
+fi
+# not a terminal: nothing said
+packinfo <loose.pack >/dev/null 2>sp.err
+expect_num "packinfo from a pipe: nothing on stderr" "$(wc -c <sp.err)" == 0
