@@ -455,6 +455,7 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 	 * handed on) */
 	par_set_threads(usage_errors ? 1 : (int)threads_opt);
 	file_stdin_hook = stdin_notice;
+	file_catch_signals();	/* on this, the main thread */
 	msg_info(1, "%d thread%s (--threads)", par_threads(), par_threads() == 1 ? "" : "s");
 	st->operands = argv + optind;
 	st->noperands = argc - optind;

@@ -59,8 +59,18 @@ struct file_out {
 	int ready;	/* file_out_ready has run: only the rename is left */
 };
 
-/* NULL or "-" gives stdout; 0 on success. */
+/* NULL or "-" gives stdout; 0 on success.  A temporary file is created and recorded with the
+ * termination signals held (a signal in between is handled once it is recorded, and removes
+ * it): file_catch_signals. */
 int file_out_open(struct file_out *o, const char *path);
+/* The termination signals (INT, TERM, HUP, PIPE) caught, unless ignored at the start (nohup's
+ * HUP stays ignored), and the temporaries removed at exit; file_out_open does it, once.  The
+ * handler runs on the thread that called this first (the main thread: another thread that
+ * gets a signal hands it on), calls file_signal_hook (NULL: none; async-signal-safe only:
+ * cli.c ends its status line there), removes the temporary files of the outputs not committed
+ * and dies of the signal. */
+void file_catch_signals(void);
+extern void (*file_signal_hook)(void);
 /* fflush, keeping the errno of a failure (or of an earlier failed write, which only leaves
  * the stream's error flag: its errno is the one at hand right after the write) for the
  * commit's message: the errno at the commit was another one (--log /dev/full said
