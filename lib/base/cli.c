@@ -731,7 +731,7 @@ fmt_target(char *b, size_t n, double now, int bar_len)
 static void
 fmt_status(char *b, size_t n, double now, int level)
 {
-	char el[32], tg[64] = "", res[32] = "", it[32] = "";
+	char el[32], tg[96] = "", res[32] = "", it[32] = "";
 	const char *stage = level < 5 ? pg.stage : "";
 
 	fmt_dur(el, sizeof el, now - ((double)pg.t0.tv_sec + 1e-9 * (double)pg.t0.tv_nsec));
