@@ -77,9 +77,19 @@ OMPFLAGS ?= -fopenmp
 # the installed API includes for their types (lanes.h's SIMD twins in law.h and layout.h); a
 # user's program, without it, does not (tests/tools/install.sh compiles it -pedantic)
 ALL_CFLAGS = $(STD) $(CPPFLAGS) $(WARN) $(CFLAGS) $(OMPFLAGS) $(EXTRA_CFLAGS) -DQUSGM_BUILD -Ilib $(PKG_CFLAGS)
+# GCC's libgomp, linked into each tool (libgomp.a; the shared one is then not needed): it
+# reads OMP_WAIT_POLICY in a constructor, which lib/base/par_start.c's runs before only when
+# both are in the tool (lib/base/par.h, "Waits").  Empty with clang (libomp reads its
+# environment later) or where GCC has no libgomp.a; OMP_STATIC= links the shared libgomp,
+# whose idle threads then spin unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set.
+OMP_STATIC ?= $(if $(OMPFLAGS),$(shell $(CC) -dM -E -x c /dev/null 2>/dev/null | grep -q __clang__ || \
+  { p=$$($(CC) -print-file-name=libgomp.a 2>/dev/null) && [ -f "$$p" ] && echo "$$p -ldl -Wl,--as-needed"; }))
 ALL_LIBS   = $(PKG_LIBS) -lm
 
-LIB_SRC   = $(wildcard lib/*/*.c)
+# lib/base/par_start.c sets the tools' wait policy for idle threads: linked into the tools
+# alone (TOOL_START), not into the library, which leaves its program's environment alone
+TOOL_START_SRC = lib/base/par_start.c
+LIB_SRC   = $(filter-out $(TOOL_START_SRC),$(wildcard lib/*/*.c))
 # packview's page template (lib/analysis/view_page.html), compiled in as a C string
 GEN_SRC   = analysis/view_page
 LIB_OBJ   = $(LIB_SRC:lib/%.c=$(B)/lib/%.o) $(GEN_SRC:%=$(B)/lib/%.o)
@@ -88,6 +98,7 @@ LIB_HDR   = $(wildcard lib/*/*.h)
 TOOL_SRC  = $(wildcard tools/*.c)
 TOOLS     = $(TOOL_SRC:tools/%.c=%)
 TOOL_BIN  = $(TOOLS:%=$(B)/bin/%)
+TOOL_START = $(TOOL_START_SRC:lib/%.c=$(B)/lib/%.o)
 UNIT_SRC  = $(wildcard tests/unit/*.c)
 UNIT_BIN  = $(UNIT_SRC:tests/unit/%.c=$(B)/tests/%)
 BENCH_SRC = $(wildcard tests/bench/*.c)
@@ -105,7 +116,7 @@ MAN7      = $(wildcard share/man/man7/*.7)
 all: deps
 	@$(MAKE) --no-print-directory tools unit libs
 
-tools: $(TOOL_BIN)
+tools: $(TOOL_START) $(TOOL_BIN)
 # The installable library, static and shared (the tools link the static one, as compiled).
 libs: $(B)/libqusgm.a $(B)/$(SOLIB) $(B)/api/libqusgm.a $(B)/api/rename.sed
 unit: $(UNIT_BIN) $(FUZZ_REPLAY)
@@ -196,9 +207,9 @@ $(B)/api/libqusgm.a: $(B)/api/static.o
 $(B)/$(SOLIB): $(B)/api/shared.o
 	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -shared -Wl,-soname,$(SONAME) -o $@ $^ $(ALL_LIBS)
 
-$(B)/bin/%: tools/%.c $(B)/libqusgm.a $(LIB_HDR)
+$(B)/bin/%: tools/%.c $(TOOL_START) $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -o $@ $< $(B)/libqusgm.a $(ALL_LIBS)
+	$(CC) $(ALL_CFLAGS) $(LDFLAGS) -o $@ $< $(TOOL_START) $(B)/libqusgm.a $(ALL_LIBS) $(OMP_STATIC)
 
 $(B)/tests/%: tests/unit/%.c tests/unit/*.h $(B)/libqusgm.a $(LIB_HDR)
 	@mkdir -p $(@D)

@@ -12,9 +12,8 @@ bin=${1:-build/bin}
 # the grains of the pack: the papers' 2740 unless a second argument says (tests/tools/makerun.sh
 # runs the chain small)
 n=${2:-2740}
-# Idle OpenMP threads sleep at once by default: a tool that runs more than one thread starts
-# itself again with OMP_WAIT_POLICY=passive unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set
-# (qusgm(7), ENVIRONMENT).  This script used to set GOMP_SPINCOUNT=1000, which switched that
+# Idle OpenMP threads sleep at once by default: a tool sets OMP_WAIT_POLICY=passive before
+# its threads start unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set (qusgm(7), ENVIRONMENT).  This script used to set GOMP_SPINCOUNT=1000, which switched that
 # off and cost 5 times the CPU of one thread beside other jobs (bench/threads.md).
 mkdir -p out
 printf '# stage\tseconds\n' >out/times.tsv

@@ -131,6 +131,7 @@ main(int argc, char **argv)
 	struct material mat;
 
 	msg_init(argv[0]);
+	cli_input_help("a loadtest table");
 	cli_parse(&tool, argc, argv, &st);
 	check_args(&st, &mat);
 	if (!emt_arg)

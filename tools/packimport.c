@@ -125,6 +125,7 @@ main(int argc, char **argv)
 	FILE *in;
 
 	msg_init(argv[0]);
+	cli_input_help("'x y z r' lines");
 	cli_parse(&tool, argc, argv, &st);
 	check_options(&st, box, &m, &wall_E, &wall_mu);
 

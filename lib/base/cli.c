@@ -3,10 +3,12 @@
 #include "base/cli.h"
 #include "base/par.h"
 #include "base/msg.h"
+#include "base/fileio.h"
 
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -368,15 +370,70 @@ getopt_table_run(const struct getopt_table *g, int argc, char **argv)
 
 static void progress_start(void);
 
+/* The most threads: --threads and OMP_NUM_THREADS alike (a thread's stack and its share of the
+ * neighbour list's buffers are reserved up front; 5000 threads took 4 GB). */
+#define THREADS_MAX 4096
+
+/* OMP_NUM_THREADS, the count when --threads is 0, held to --threads' range: a number from 1 to
+ * THREADS_MAX, with blanks around it and, as OpenMP allows, a list of counts for nested
+ * levels after a comma (only the first is used).  Anything else is a usage error that names
+ * the variable (the runtime itself warned of a value it cannot read and went on with its
+ * default; 100000 was taken and failed later as "out of memory for the neighbour list"). */
+static void
+omp_num_threads_check(void)
+{
+	const char *env = getenv("OMP_NUM_THREADS"), *c;
+	char typed[48];
+	unsigned long n = 0;
+	size_t k;
+	int digits = 0;
+
+	if (!env)
+		return;
+	for (c = env; *c == ' ' || *c == '\t'; c++)
+		;
+	for (; *c >= '0' && *c <= '9'; c++, digits++)
+		n = n > THREADS_MAX ? n : 10 * n + (unsigned long)(*c - '0');
+	while (*c == ' ' || *c == '\t')
+		c++;
+	if (digits && (*c == 0 || *c == ',') && n >= 1 && n <= THREADS_MAX)
+		return;
+	/* the value as typed, on one line and not too long */
+	for (k = 0; env[k] && k + 4 < sizeof typed; k++)
+		typed[k] = env[k] >= ' ' && env[k] < 127 ? env[k] : '?';
+	strcpy(typed + k, env[k] ? "..." : "");
+	cli_usage_error("OMP_NUM_THREADS: expected 1 to %d (the threads when --threads is 0), got '%s'", THREADS_MAX, typed);
+}
+
+/* What a tool reads from standard input (cli_input_help), named when that is a terminal. */
+static const char *input_help = "a pack";
+
+void
+cli_input_help(const char *what)
+{
+	input_help = what;
+}
+
+/* file_in_open's hook: a tool given no file on a terminal would wait without a word. */
+static void
+stdin_notice(void)
+{
+	static int said;
+
+	if (said || !isatty(0))
+		return;
+	said = 1;
+	msg_info(0, "reading %s from standard input (Ctrl-D ends it)", input_help);
+}
+
 void
 cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 {
 	struct getopt_table g;
-	char **argv0 = malloc(((size_t)argc + 1) * sizeof *argv0);	/* before getopt permutes it */
 
-	if (!argv0)
-		msg_die(EXIT_DATA, "out of memory");
-	memcpy(argv0, argv, ((size_t)argc + 1) * sizeof *argv0);
+	/* an empty argv[0] (or none) named no one in the messages: the tool's own name instead */
+	if (argc < 1 || !argv[0] || !*(strrchr(argv[0], '/') ? strrchr(argv[0], '/') + 1 : argv[0]))
+		msg_progname = t->name;
 	progress_start();	/* the progress line's and the logs' elapsed time */
 	getopt_table_build(&g, t);
 	memset(st, 0, sizeof *st);
@@ -384,7 +441,6 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 	free(g.lo);	/* before the exits below: LeakSanitizer counts them otherwise */
 	free(g.map);
 	if (help_flag || version_flag) {
-		free(argv0);
 		if (help_flag)
 			print_help(t);
 		else
@@ -392,12 +448,15 @@ cli_parse(const struct cli_tool *t, int argc, char **argv, struct cli_state *st)
 		exit(0);
 	}
 	msg_verbosity = quiet_flag ? -1 : verbose_count;
-	if (threads_opt < 0 || threads_opt > 4096)
-		cli_usage_error("--threads: expected 0 (the default) to 4096, got %ld", threads_opt);
-	else if (!usage_errors)
-		par_wait_passive(argv0, threads_opt > 0 ? (int)threads_opt : par_default_threads());
-	free(argv0);
-	par_set_threads((int)threads_opt);
+	if (threads_opt < 0 || threads_opt > THREADS_MAX)
+		cli_usage_error("--threads: expected 0 (the default) to %d, got %ld", THREADS_MAX, threads_opt);
+	else if (threads_opt == 0)
+		omp_num_threads_check();
+	/* a usage error exits before any work: no threads for it (a bad OMP_NUM_THREADS is not
+	 * handed on) */
+	par_set_threads(usage_errors ? 1 : (int)threads_opt);
+	file_stdin_hook = stdin_notice;
+	file_catch_signals();	/* on this, the main thread; a status line is ended there too */
 	msg_info(1, "%d thread%s (--threads)", par_threads(), par_threads() == 1 ? "" : "s");
 	st->operands = argv + optind;
 	st->noperands = argc - optind;
@@ -489,12 +548,20 @@ cli_history_line(const struct cli_tool *t, const struct cli_state *st)
 }
 
 /* Progress (cli.h).  The line on a terminal: "TOOL: STAGE  it N  res R  ELAPSED  [bar] P% ETA T
- * | SUMMARY", cut to the terminal's width so that "\r" redraws it in place. */
+ * | SUMMARY", fitted to the terminal's width so that "\r" redraws it in place: the summary is
+ * cut first, then the bar shortened and left out, then the residual, the iterations and the
+ * stage, so that the percentage and the ETA stay whole. */
 #define PROGRESS_EVERY 0.25	/* s between redraws on a terminal */
 #define PROGRESS_PLAIN 10.0	/* s between plain lines inside a stage (-v, not a terminal) */
 
+static void fmt_dur(char *b, size_t n, double s);
+
+/* The status line is on the terminal and not ended: read by the signal handler. */
+static volatile sig_atomic_t line_shown;
+
 static struct {
-	int init, tty, shown;
+	int init, tty;
+	int reported;			/* a line was drawn or printed */
 	struct timespec t0;		/* the start (cli_parse) */
 	double drawn, printed;		/* when the line was last drawn, or a plain line printed */
 	double stage_t0;
@@ -526,10 +593,48 @@ progress_start(void)
 static void
 progress_at_exit(void)
 {
-	if (pg.shown)
+	if (line_shown)
 		fputc('\n', stderr);
-	pg.shown = 0;
+	line_shown = 0;
 }
+
+/* The same on a signal that kills the tool (fileio.c's handler): write(2) alone. */
+static void
+progress_on_signal(void)
+{
+	if (line_shown) {
+		ssize_t r = write(2, "\n", 1);
+		(void)r;
+		line_shown = 0;
+	}
+}
+
+/* At an exit with status 0, after a run that showed its progress (on a terminal, or plain lines
+ * with -v): one line that says so, with the run's time and its last summary in full. */
+static void
+progress_done(int status)
+{
+	char el[32];
+
+	progress_at_exit();
+	if (status != 0 || !pg.reported || msg_verbosity < 0)
+		return;
+	fmt_dur(el, sizeof el, cli_elapsed());
+	if (pg.summary[0] || pg.stage[0])
+		fprintf(stderr, "%s: done in %s: %s\n", msg_progname, el, pg.summary[0] ? pg.summary : pg.stage);
+	else
+		fprintf(stderr, "%s: done in %s\n", msg_progname, el);
+	fflush(stderr);
+}
+
+#ifdef __GLIBC__
+static void
+progress_on_exit(int status, void *arg)
+{
+	(void)arg;
+	progress_done(status);
+}
+#endif
 
 static void
 progress_init(void)
@@ -539,9 +644,16 @@ progress_init(void)
 	pg.init = 1;
 	pg.tty = isatty(2);
 	if (pg.tty) {
-		atexit(progress_at_exit);
 		msg_before = progress_at_exit;	/* a message ends the line; the next update draws it anew */
+		file_signal_hook = progress_on_signal;
 	}
+	/* the exit status decides the closing line: on_exit gives it (glibc); elsewhere a line
+	 * left is ended and no closing line is printed */
+#ifdef __GLIBC__
+	on_exit(progress_on_exit, NULL);
+#else
+	atexit(progress_at_exit);
+#endif
 	if (pg.t0.tv_sec == 0 && pg.t0.tv_nsec == 0)
 		clock_gettime(CLOCK_MONOTONIC, &pg.t0);
 }
@@ -581,64 +693,91 @@ fmt_dur(char *b, size_t n, double s)
 		snprintf(b, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
 }
 
+/* The terminal's columns: its window size, else COLUMNS, else 80. */
 static int
 term_width(void)
 {
 	struct winsize ws;
+	const char *env = getenv("COLUMNS");
+	long c;
 
-	return ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col >= 20 ? ws.ws_col : 80;
+	if (ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0)
+		return ws.ws_col;
+	c = env ? strtol(env, NULL, 10) : 0;
+	return c > 0 && c < 10000 ? (int)c : 80;
 }
 
-/* The bar and the ETA, or nothing without a target. */
+/* The bar (bar_len characters, none for 0) and the ETA, or nothing without a target. */
 static void
-fmt_target(char *b, size_t n, double now)
+fmt_target(char *b, size_t n, double now, int bar_len)
 {
-	char eta[32] = "?", bar[24];
+	char eta[32] = "?", bar[24] = "";
 	int k, fill;
 
 	b[0] = 0;
 	if (!isfinite(pg.frac))
 		return;
-	fill = (int)(pg.frac * 20 + 1e-9);
-	for (k = 0; k < 20; k++)
+	fill = (int)(pg.frac * bar_len + 1e-9);
+	for (k = 0; k < bar_len; k++)
 		bar[k] = k < fill ? '#' : '.';
-	bar[20] = 0;
+	bar[bar_len] = 0;
 	if (pg.frac > pg.frac0 && now > pg.frac_t0)
 		fmt_dur(eta, sizeof eta, (now - pg.frac_t0) * (1 - pg.frac) / (pg.frac - pg.frac0));
-	snprintf(b, n, "  [%s] %3.0f%% ETA %s", bar, 100 * pg.frac, eta);
+	snprintf(b, n, "  %s%s%s%3.0f%% ETA %s", bar_len ? "[" : "", bar, bar_len ? "] " : "", 100 * pg.frac, eta);
 }
 
-/* The status: stage, iterations, residual, elapsed, target. */
+/* The status: stage, iterations, residual, elapsed, target; shorter for a higher level (1: a
+ * bar of 10, 2: no bar, 3: no residual, 4: no iterations, 5: no stage). */
 static void
-fmt_status(char *b, size_t n, double now, int with_target)
+fmt_status(char *b, size_t n, double now, int level)
 {
-	char el[32], tg[64] = "", res[32] = "", it[32] = "";
+	char el[32], tg[96] = "", res[32] = "", it[32] = "";
+	const char *stage = level < 5 ? pg.stage : "";
 
 	fmt_dur(el, sizeof el, now - ((double)pg.t0.tv_sec + 1e-9 * (double)pg.t0.tv_nsec));
-	if (isfinite(pg.residual))
+	if (isfinite(pg.residual) && level < 3)
 		snprintf(res, sizeof res, "  res %.2e", pg.residual);
-	if (with_target)
-		fmt_target(tg, sizeof tg, now);
-	if (pg.iters > 0)	/* a tool whose loops do not count (packgen's DEM) says its steps itself */
+	fmt_target(tg, sizeof tg, now, level == 0 ? 20 : level == 1 ? 10 : 0);
+	if (pg.iters > 0 && level < 4)	/* a tool whose loops do not count (packgen's DEM) says its steps itself */
 		snprintf(it, sizeof it, "it %ld  ", pg.iters);
-	snprintf(b, n, "%s%s%s%s%s", pg.stage, pg.stage[0] ? "  " : "", it, res[0] ? res + 2 : "", res[0] ? "  " : "");
+	snprintf(b, n, "%s%s%s%s%s", stage, stage[0] ? "  " : "", it, res[0] ? res + 2 : "", res[0] ? "  " : "");
 	snprintf(b + strlen(b), n - strlen(b), "%s%s", el, tg);
+}
+
+/* The status line for a terminal of width columns, in line (at most width - 1 characters, so
+ * that the cursor stays on the line): the longest form that fits, the summary after it as far
+ * as it goes (where a dozen characters of it fit); cut only where even "TOOL: ELAPSED  P% ETA
+ * T" does not fit. */
+static void
+fit_line(char *line, size_t n, double now, int width)
+{
+	char st[256];
+	int w = width - 1, level, len;
+
+	for (level = 0; level <= 5; level++) {
+		fmt_status(st, sizeof st, now, level);
+		snprintf(line, n, "%s: %s", msg_progname, st);
+		if ((int)strlen(line) <= w)
+			break;
+	}
+	len = (int)strlen(line);
+	if (len > w && w >= 0)
+		line[w] = 0;
+	else if (pg.summary[0] && len + 4 + 12 <= w)	/* "  | " and a dozen characters of it at least */
+		snprintf(line + len, n - (size_t)len, "  | %.*s", w - len - 4, pg.summary);
 }
 
 /* The terminal's line, redrawn in place. */
 static void
 draw(double now)
 {
-	char st[256], line[1024];
-	int w = term_width() - 1;
+	char line[1024];
 
-	fmt_status(st, sizeof st, now, 1);
-	snprintf(line, sizeof line, "%s: %s%s%s", msg_progname, st, pg.summary[0] ? "  | " : "", pg.summary);
-	if ((int)strlen(line) > w)
-		line[w] = 0;
+	fit_line(line, sizeof line, now, term_width());
 	fprintf(stderr, "\r%s\033[K", line);
 	fflush(stderr);
-	pg.shown = 1;
+	line_shown = 1;
+	pg.reported = 1;
 	pg.drawn = now;
 }
 
@@ -655,7 +794,7 @@ cli_progress(const char *fmt, ...)
 	va_end(ap);
 	now = now_s();
 	if (pg.tty) {
-		if (now - pg.drawn >= PROGRESS_EVERY || !pg.shown)
+		if (now - pg.drawn >= PROGRESS_EVERY || !line_shown)
 			draw(now);
 		return;
 	}
@@ -665,6 +804,7 @@ cli_progress(const char *fmt, ...)
 		fflush(stderr);
 		pg.printed = now;
 		pg.stage_new = 0;
+		pg.reported = 1;
 	}
 }
 
@@ -686,7 +826,7 @@ cli_progress_stage(const char *fmt, ...)
 	pg.iters = 0;
 	pg.residual = NAN;
 	pg.stage_t0 = now_s();
-	if (pg.tty && (pg.stage_t0 - pg.drawn >= PROGRESS_EVERY || !pg.shown))
+	if (pg.tty && (pg.stage_t0 - pg.drawn >= PROGRESS_EVERY || !line_shown))
 		draw(pg.stage_t0);
 }
 
@@ -729,21 +869,22 @@ cli_progress_iter(double residual)
 	} else if (now - pg.printed >= PROGRESS_PLAIN && now - pg.stage_t0 >= PROGRESS_PLAIN) {
 		char st[256];
 
-		fmt_status(st, sizeof st, now, 1);
+		fmt_status(st, sizeof st, now, 0);
 		fprintf(stderr, "%s: %s\n", msg_progname, st);
 		fflush(stderr);
 		pg.printed = now;
+		pg.reported = 1;
 	}
 }
 
 void
 cli_progress_end(void)
 {
-	if (pg.shown) {
+	if (line_shown) {
 		double now = now_s();
 
 		draw(now);	/* the last state, then the line is left as it stands */
 		fputc('\n', stderr);
-		pg.shown = 0;
+		line_shown = 0;
 	}
 }

@@ -55,6 +55,10 @@ struct cli_state {
 /* -o's help line when it is not "write to FILE instead of stdout": for a tool whose standard
  * output is a table and whose -o writes the final pack.  Call before cli_parse. */
 void cli_output_help(const char *help);
+/* What the tool reads from standard input, for the line that says it reads a terminal ("a
+ * pack" unless set): "packinfo: reading a pack from standard input (Ctrl-D ends it)".  Call
+ * before cli_parse. */
+void cli_input_help(const char *what);
 
 /* Parse argv against the tool's table; exits 0 for --help/--version, 2 for usage errors
  * (after reporting every bad option).  Fills st. */
@@ -82,9 +86,14 @@ char *cli_history_line(const struct cli_tool *t, const struct cli_state *st);
  *     densify: compact 12  it 3400  res 2.31e-03  1:05  [#########...........]  45% ETA 1:20  | SUMMARY
  * the stage now running, the iterations (or steps) in it and the last residual (or
  * unbalanced force), the elapsed time, a bar and an ETA where the run has a target, then what
- * the last stage reported; cut to the terminal's width.  Not a terminal: nothing unless -v,
- * then one plain line per stage (the summary), and inside a stage that runs longer one status
- * line every 10 s.
+ * the last stage reported; fitted to the terminal's width (TIOCGWINSZ, else COLUMNS, else 80):
+ * the summary is cut, then the bar shortened and dropped, then the residual, the iterations
+ * and the stage, never the percentage and the ETA.  The line is ended before any message, at
+ * exit, and on a termination signal (fileio.h, file_signal_hook).  Not a terminal: nothing
+ * unless -v, then one plain line per stage (the summary), and inside a stage that runs longer
+ * one status line every 10 s.  At an exit with status 0 after progress was shown (on a
+ * terminal, or with -v): one closing line "TOOL: done in ELAPSED: SUMMARY" (glibc's on_exit
+ * gives the status; without it, no closing line).
  *  - cli_progress: the summary, after a stage, an increment or a row (the tools' callbacks);
  *  - cli_progress_stage: the stage that begins (the same name again changes nothing): its
  *    iteration count and residual start afresh;

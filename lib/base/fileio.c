@@ -4,11 +4,13 @@
 #include "base/msg.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <zlib.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 /* The temporary files in flight (a tool may write a pack and a log at once), removed by
@@ -52,12 +54,38 @@ remember_tmp(const char *tmp)
 	return 0;
 }
 
+void (*file_signal_hook)(void);
+
+/* The thread that installed the handlers (the tools' main thread), which alone handles them. */
+static volatile pid_t main_tid;
+
+static pid_t
+this_tid(void)
+{
+	return (pid_t)syscall(SYS_gettid);
+}
+
+/* On the main thread: the temporaries removed, the hook, then death by sig.  A signal that came
+ * to another thread (one of OpenMP's workers: the kernel gives a process's signal to any thread
+ * that does not block it) is handed to the main thread, so that the removal never runs beside
+ * the main thread's creation of a temporary: while the main thread creates and records one it
+ * blocks these signals (file_out_open), and the one handed on waits till it is recorded. */
 static void
 remove_tmp_on_signal(int sig)
 {
+	int saved = errno;
+
+	if (main_tid && this_tid() != main_tid) {
+		syscall(SYS_tgkill, (pid_t)getpid(), main_tid, sig);
+		errno = saved;
+		return;
+	}
+	if (file_signal_hook)
+		file_signal_hook();
 	remove_all_tmp();
 	signal(sig, SIG_DFL);
 	raise(sig);
+	errno = saved;
 }
 
 static void
@@ -86,13 +114,28 @@ catch_unless_ignored(int sig)
 	sigaction(sig, &sa, NULL);
 }
 
+/* The termination signals blocked on this thread; *old gets the mask to put back. */
 static void
-hook_cleanup(void)
+block_term_signals(sigset_t *old)
+{
+	sigset_t set;
+
+	sigemptyset(&set);
+	sigaddset(&set, SIGINT);
+	sigaddset(&set, SIGTERM);
+	sigaddset(&set, SIGHUP);
+	sigaddset(&set, SIGPIPE);
+	pthread_sigmask(SIG_BLOCK, &set, old);
+}
+
+void
+file_catch_signals(void)
 {
 	static int hooked;
 
 	if (hooked)
 		return;
+	main_tid = this_tid();
 	atexit(remove_tmp_at_exit);
 	catch_unless_ignored(SIGINT);
 	catch_unless_ignored(SIGTERM);
@@ -100,6 +143,8 @@ hook_cleanup(void)
 	catch_unless_ignored(SIGPIPE);
 	hooked = 1;
 }
+
+void (*file_stdin_hook)(void);
 
 const char *
 file_display_name(const char *path)
@@ -113,8 +158,11 @@ file_in_open(const char *path, const char **display)
 	FILE *fp;
 
 	*display = file_display_name(path);
-	if (*display != path)
+	if (*display != path) {
+		if (file_stdin_hook)
+			file_stdin_hook();
 		return stdin;
+	}
 	fp = fopen(path, "rb");
 	if (!fp) {
 		msg_seterr("%s: %s", path, strerror(errno));
@@ -379,8 +427,9 @@ drop_names(struct file_out *o)
 int
 file_out_open(struct file_out *o, const char *path)
 {
-	mode_t mask;
-	int fd, special;
+	mode_t umask_was;
+	sigset_t mask;
+	int fd, special, e;
 
 	memset(o, 0, sizeof *o);
 	if (file_is_stdout(path)) {
@@ -393,24 +442,31 @@ file_out_open(struct file_out *o, const char *path)
 		drop_names(o);
 		return -1;
 	}
-	hook_cleanup();
+	file_catch_signals();
+	/* created and recorded with the signals held: one that comes in between is handled once
+	 * the file is recorded, and removes it */
+	block_term_signals(&mask);
 	fd = mkstemp(o->tmp);
 	if (fd < 0) {
-		msg_seterr("%s: cannot create temporary file: %s", path, strerror(errno));
+		e = errno;
+		pthread_sigmask(SIG_SETMASK, &mask, NULL);
+		msg_seterr("%s: cannot create temporary file: %s", path, strerror(e));
 		drop_names(o);
 		return -1;
 	}
 	if (remember_tmp(o->tmp)) {
 		close(fd);
 		unlink(o->tmp);
+		pthread_sigmask(SIG_SETMASK, &mask, NULL);
 		msg_seterr("%s: too many outputs at once", path);
 		drop_names(o);
 		return -1;
 	}
+	pthread_sigmask(SIG_SETMASK, &mask, NULL);
 	/* mkstemp makes the file 0600; an output gets the usual 0666 less the umask */
-	mask = umask(0);
-	umask(mask);
-	fchmod(fd, 0666 & ~mask);
+	umask_was = umask(0);
+	umask(umask_was);
+	fchmod(fd, 0666 & ~umask_was);
 	o->fp = fdopen(fd, "w");
 	if (!o->fp) {
 		msg_seterr("%s: %s", path, strerror(errno));

@@ -17,6 +17,9 @@
 /* Open path for reading in binary mode; NULL or "-" gives stdin.  *display is set to the
  * name to use in messages (path, or "<stdin>").  NULL with "path: strerror" in the slot. */
 FILE *file_in_open(const char *path, const char **display);
+/* Called by file_in_open each time it gives stdin (NULL: nothing): the tools' cli_parse sets it
+ * to say that a terminal is read. */
+extern void (*file_stdin_hook)(void);
 /* The name by which messages call an input path: the path, or "<stdin>" for NULL or "-"
  * (what file_in_open sets *display to). */
 const char *file_display_name(const char *path);
@@ -73,8 +76,18 @@ struct file_out {
 	int ready;	/* file_out_ready has run: only the rename is left */
 };
 
-/* NULL or "-" gives stdout; 0 on success. */
+/* NULL or "-" gives stdout; 0 on success.  A temporary file is created and recorded with the
+ * termination signals held (a signal in between is handled once it is recorded, and removes
+ * it): file_catch_signals. */
 int file_out_open(struct file_out *o, const char *path);
+/* The termination signals (INT, TERM, HUP, PIPE) caught, unless ignored at the start (nohup's
+ * HUP stays ignored), and the temporaries removed at exit; file_out_open does it, once.  The
+ * handler runs on the thread that called this first (the main thread: another thread that
+ * gets a signal hands it on), calls file_signal_hook (NULL: none; async-signal-safe only:
+ * cli.c ends its status line there), removes the temporary files of the outputs not committed
+ * and dies of the signal. */
+void file_catch_signals(void);
+extern void (*file_signal_hook)(void);
 /* fflush, keeping the errno of a failure (or of an earlier failed write, which only leaves
  * the stream's error flag: its errno is the one at hand right after the write) for the
  * commit's message: the errno at the commit was another one (--log /dev/full said

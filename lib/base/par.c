@@ -85,23 +85,6 @@ par_set_threads(int n)
 #endif
 }
 
-void
-par_wait_passive(char **argv, int threads)
-{
-#ifdef _OPENMP
-	/* libgomp reads its environment once, when it is loaded, before main: the policy can only
-	 * be given to this program's image by starting it again */
-	if (threads <= 1 || getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT") || access("/proc/self/exe", X_OK) != 0)
-		return;
-	if (setenv("OMP_WAIT_POLICY", "passive", 0) != 0)
-		return;
-	execv("/proc/self/exe", argv);
-	unsetenv("OMP_WAIT_POLICY");	/* not started again: go on as before, spinning */
-#else
-	(void)argv, (void)threads;
-#endif
-}
-
 int
 par_threads(void)
 {

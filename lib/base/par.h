@@ -40,16 +40,16 @@ extern "C" {
 void par_set_threads(int n);
 /* The count par_set_threads(0) sets (decided once, at the first call). */
 int par_default_threads(void);
-/* The waits at the end of a parallel region: with libgomp's default an idle thread spins for
+/* Waits: at the end of a parallel region, with libgomp's default an idle thread spins for
  * up to 300000 turns before it sleeps, and beside other busy processes the spinning threads
  * take the cores the working ones need (densify at 2740 grains on two threads beside other
- * jobs: 800 s of wall time, 47 s on one thread; passive waits: 19 s, bench/threads.md).  When
- * threads > 1 and neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT is set, the program is started
- * again (execv of /proc/self/exe with argv, before any input is read) with
- * OMP_WAIT_POLICY=passive: libgomp reads its environment only when it is loaded.  A user's
- * own setting of either is kept (OMP_WAIT_POLICY=active restores the spinning).  Returns
- * only when nothing was started again. */
-void par_wait_passive(char **argv, int threads);
+ * jobs: 800 s of wall time, 47 s on one thread; passive waits: 19 s, bench/threads.md).  So
+ * the tools wait passively: unless OMP_WAIT_POLICY or GOMP_SPINCOUNT is set (a user's own
+ * setting is kept; OMP_WAIT_POLICY=active restores the spinning), a constructor linked into
+ * each tool alone (par_start.c) sets OMP_WAIT_POLICY=passive before the OpenMP runtime reads
+ * its environment (libgomp, linked into the tool, reads it in a constructor of its own that
+ * runs after; the Makefile's OMP_STATIC).  A program that links the library keeps its
+ * runtime's own policy. */
 /* The tasks other than this one that keep a core busy now (the least of three looks at
  * /proc/stat's procs_running 1 ms apart), or -1 where that cannot be read. */
 int par_cpus_busy(void);

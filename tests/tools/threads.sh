@@ -73,3 +73,72 @@ grep -q '^packinfo: 2 threads' omp.err && pass "OMP_NUM_THREADS=2 honoured" || f
 OMP_NUM_THREADS=1 packinfo -v loose.pack >/dev/null 2>omp1.err
 grep -q '^packinfo: 1 thread ' omp1.err && pass "OMP_NUM_THREADS=1 honoured" || fail "OMP_NUM_THREADS=1 honoured" "$(head -1 omp1.err)"
 expect_error "--threads -1 refused" 2 '^densify: --threads: expected 0' densify --threads -1 loose.pack
+
+# OMP_NUM_THREADS is held to --threads' range (1 to 4096): 100000 failed later as "out of
+# memory for the neighbour list" (or a crash), 5000 started 5000 threads
+expect_error "OMP_NUM_THREADS=100000 refused, named" 2 "^packinfo: OMP_NUM_THREADS: expected 1 to 4096.*got '100000'" \
+	env OMP_NUM_THREADS=100000 packinfo loose.pack
+expect_error "OMP_NUM_THREADS=5000 refused" 2 "^densify: OMP_NUM_THREADS: expected 1 to 4096" \
+	env OMP_NUM_THREADS=5000 densify -o never.pack loose.pack
+# values the runtime cannot read: it warns (its own line), and the tool refuses them
+for v in 0 lots; do
+	env OMP_NUM_THREADS=$v packinfo loose.pack >bad.out 2>bad.err
+	rc=$?
+	if [ $rc -eq 2 ] && [ ! -s bad.out ] && grep -q "^packinfo: OMP_NUM_THREADS: expected 1 to 4096.*got '$v'" bad.err; then
+		pass "OMP_NUM_THREADS=$v refused"
+	else
+		fail "OMP_NUM_THREADS=$v refused" "exit $rc: $(head -c 300 bad.err)"
+	fi
+done
+OMP_NUM_THREADS=' 2,1' packinfo -v loose.pack >/dev/null 2>ompl.err
+grep -q '^packinfo: 2 threads' ompl.err && pass "OMP_NUM_THREADS=' 2,1' (a list for nested levels): 2 threads" ||
+	fail "OMP_NUM_THREADS=' 2,1': 2 threads" "$(head -c 300 ompl.err)"
+OMP_NUM_THREADS=100000 packinfo --threads 1 -v loose.pack >/dev/null 2>ompt.err &&
+	grep -q '^packinfo: 1 thread ' ompt.err && pass "--threads given: OMP_NUM_THREADS not used, not checked" ||
+	fail "--threads given: OMP_NUM_THREADS not used" "$(head -c 300 ompt.err)"
+
+# The wait policy (lib/base/par_start.c): unless the user set one, idle threads sleep at once
+# (libgomp's OMP_DISPLAY_ENV shows GOMP_SPINCOUNT '0'), set before libgomp reads it, without
+# starting the tool again: the tool keeps its name in ps, runs when started through the
+# dynamic loader, and the runtime's warnings come once.
+if packinfo --threads 2 -v loose.pack 2>&1 >/dev/null | grep -q '^packinfo: 2 threads'; then
+	env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose packinfo --threads 2 loose.pack >/dev/null 2>disp.err
+	grep -q "GOMP_SPINCOUNT = '0'" disp.err && pass "idle threads wait passively (GOMP_SPINCOUNT '0')" ||
+		fail "idle threads wait passively" "$(grep -E 'SPINCOUNT|WAIT_POLICY' disp.err | tr '\n' ' ')"
+	env -u GOMP_SPINCOUNT OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose packinfo --threads 2 loose.pack >/dev/null 2>disp.err
+	grep -q "GOMP_SPINCOUNT = '0'" disp.err && fail "OMP_WAIT_POLICY=active kept" "$(grep SPINCOUNT disp.err)" ||
+		pass "the user's OMP_WAIT_POLICY=active kept"
+	env -u OMP_WAIT_POLICY OMP_PROC_BIND=nonsense packinfo --threads 2 loose.pack >/dev/null 2>warn.err
+	expect_num "libgomp's warning printed once" "$(grep -c 'Invalid value for environment variable OMP_PROC_BIND' warn.err)" == 1
+fi
+# the name in ps: the tool's, while it waits for its input (a FIFO no one writes yet)
+rm -f in.fifo
+mkfifo in.fifo
+env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT packinfo --threads 2 in.fifo >fifo.out 2>fifo.err &
+pid=$!
+sleep 0.5
+name=$(ps -o comm= -p $pid 2>/dev/null || cat /proc/$pid/comm)
+cat loose.pack >in.fifo
+wait $pid
+rc=$?
+if [ "$name" = packinfo ] && [ $rc -eq 0 ] && grep -q '^grains' fifo.out; then
+	pass "the name in ps is the tool's (packinfo --threads 2)"
+else
+	fail "the name in ps is the tool's (packinfo --threads 2)" "ps says '$name', exit $rc"
+fi
+# started through the dynamic loader (it exited 127 or 1: the restart ran the loader with the
+# tool's arguments)
+loader=$(ldd "$(command -v packinfo)" 2>/dev/null | awk '$1 ~ /^\/.*ld[-.]/ { print $1; exit }')
+if [ -z "$loader" ] || [ ! -x "$loader" ]; then
+	fail "started through the dynamic loader" "no loader found by ldd"
+else
+	env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$loader" "$(command -v packinfo)" --threads 2 loose.pack >ld.out 2>ld.err
+	rc=$?
+	[ $rc -eq 0 ] && grep -q '^grains' ld.out && pass "started through the dynamic loader ($loader) with --threads 2" ||
+		fail "started through the dynamic loader with --threads 2" "exit $rc: $(head -c 200 ld.err)"
+fi
+# an empty argv[0]: the messages name the tool
+env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT perl -e 'exec { $ARGV[0] } "", @ARGV[1 .. $#ARGV] or exit 99' \
+	"$(command -v packinfo)" --threads 2 no-such.pack >/dev/null 2>argv0.err
+grep -q '^packinfo: no-such.pack: ' argv0.err && pass "an empty argv[0]: the messages name the tool" ||
+	fail "an empty argv[0]: the messages name the tool" "$(head -c 200 argv0.err)"
