@@ -43,7 +43,14 @@ static const struct table_col out_cols[] = {
 	{"sigma_c", "Pa"}, {"sig_lat", "Pa"}, {"K", "Pa"}, {"G", "Pa"}, {"lambda", "Pa"}, {"E", "Pa"}, {"nu", NULL},
 	{"fit_rel", NULL},
 	{"porosity", NULL}, {"coordination", NULL}, {"K_emt", "Pa"}, {"G_emt_rough", "Pa"}, {"G_emt_smooth", "Pa"},
+	{"K_se", "Pa"}, {"G_se", "Pa"},
 };
+/* The columns written: the first 12, the 5 of --emt, then the standard errors, last so that
+ * the columns before them keep their places (13-14 without --emt, 18-19 with it). */
+#define NBASE 12
+#define NEMT 5
+#define NSE 2
+_Static_assert(sizeof out_cols / sizeof out_cols[0] == NBASE + NEMT + NSE, "moduli: out_cols");
 
 /* Every usage error before any work. */
 static void
@@ -100,7 +107,7 @@ put_rows(FILE *fp, const struct table *t, const struct curve_interval *iv, size_
 
 	for (k = 0; k < n; k++) {
 		const struct curve_interval *I = &iv[k];
-		double v[17] = {I->seg, (double)I->inc_from, (double)I->inc_to, (double)I->n, I->sigma_c, I->sig_lat,
+		double v[NBASE + NEMT + NSE] = {I->seg, (double)I->inc_from, (double)I->inc_to, (double)I->n, I->sigma_c, I->sig_lat,
 		    I->hk.K, I->hk.G, I->hk.lambda, I->hk.E, I->hk.nu, I->hk.rel};
 		if (emt_arg) {
 			struct emt e;
@@ -113,6 +120,8 @@ put_rows(FILE *fp, const struct table *t, const struct curve_interval *iv, size_
 			v[15] = e.G_rough;
 			v[16] = e.G_smooth;
 		}
+		v[ncol - 2] = I->hk.K_se;
+		v[ncol - 1] = I->hk.G_se;
 		table_row(fp, v, ncol);
 	}
 }
@@ -127,15 +136,19 @@ main(int argc, char **argv)
 	struct curve_interval *iv;
 	size_t n;
 	const char *display;
-	int ncol = (int)(sizeof out_cols / sizeof out_cols[0]), cphi = -1, cz = -1;
+	int ncol = NBASE + NEMT + NSE, cphi = -1, cz = -1;
 	struct material mat;
+	struct table_col cols_out[NBASE + NEMT + NSE];
 
 	msg_init(argv[0]);
 	cli_input_help("a loadtest table");
 	cli_parse(&tool, argc, argv, &st);
 	check_args(&st, &mat);
-	if (!emt_arg)
-		ncol -= 5;
+	memcpy(cols_out, out_cols, sizeof cols_out);
+	if (!emt_arg) {
+		ncol -= NEMT;
+		memcpy(cols_out + NBASE, out_cols + NBASE + NEMT, NSE * sizeof *cols_out);
+	}
 
 	read_table(st.input, &t, &display);
 	/* a window longer than the whole table would fit each segment as one interval */
@@ -157,7 +170,7 @@ main(int argc, char **argv)
 		msg_die(EXIT_DATA, "%s: --emt needs the porosity and coordination columns", display);
 	if (file_out_open(&out, st.output))
 		msg_die_err(EXIT_DATA);
-	table_header(out.fp, out_cols, ncol);
+	table_header(out.fp, cols_out, ncol);
 	put_rows(out.fp, &t, iv, n, &mat, cphi, cz, ncol);
 	if (file_out_commit(&out))
 		msg_die_err(EXIT_DATA);

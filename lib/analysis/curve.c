@@ -147,11 +147,11 @@ fit_interval(const struct work *w, size_t first, size_t end, int seg, size_t m, 
 	I->K_negative = I->G_negative = NAN;
 	if (I->hk.has_K && I->hk.K < 0) {
 		I->K_negative = I->hk.K;
-		I->hk.K = NAN;
+		I->hk.K = I->hk.K_se = NAN;
 	}
 	if (I->hk.has_G && I->hk.G < 0) {
 		I->G_negative = I->hk.G;
-		I->hk.G = NAN;
+		I->hk.G = I->hk.G_se = NAN;
 	}
 	if (!isnan(I->K_negative) || !isnan(I->G_negative))
 		I->hk.lambda = I->hk.E = I->hk.nu = NAN;

@@ -28,8 +28,8 @@ struct curve_interval {
 	double sigma_c, sig_lat;	/* means of the interval's two end rows */
 	struct hooke hk;
 	/* a negative K or G is no modulus (a frictionless pack without shear rigidity on the
-	 * path, or noise in a fit of too few increments): it is kept here, and hk has NaN for it
-	 * and for what follows from it (lambda, E, nu) */
+	 * path, or noise in a fit of too few increments): it is kept here, and hk has NaN for it,
+	 * its standard error and what follows from it (lambda, E, nu) */
 	double K_negative, G_negative;	/* the fitted value when negative, else NaN */
 };
 

@@ -21,6 +21,7 @@ hooke_fit(const double (*de)[3], const double (*ds)[3], size_t m, struct hooke *
 	gsl_multifit_linear_workspace *w;
 
 	out->K = out->G = out->lambda = out->E = out->nu = NAN;
+	out->K_se = out->G_se = NAN;
 	out->has_K = out->has_G = 0;
 	out->rms = out->rel = NAN;
 	for (k = 0; k < m; k++) {
@@ -73,6 +74,14 @@ hooke_fit(const double (*de)[3], const double (*ds)[3], size_t m, struct hooke *
 		out->lambda = K - 2 * G / 3;
 		out->E = 9 * K * G / (3 * K + G);
 		out->nu = (3 * K - 2 * G) / (2 * (3 * K + G));
+	}
+	/* the columns are orthogonal (sum_l dev_ll = 0), so X^T X is diagonal, vol2 and dev2 */
+	if (rows > (size_t)ncol) {
+		double var = chisq / (double)(rows - (size_t)ncol);
+		if (out->has_K)
+			out->K_se = sqrt(var / vol2);
+		if (out->has_G)
+			out->G_se = sqrt(var / dev2);
 	}
 	out->rms = sqrt(chisq / rows);
 	out->rel = s2 > 0 ? out->rms / sqrt(s2 / rows) : 0;

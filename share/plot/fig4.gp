@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The frictional paper's Fig. 4: G and the sliding ratio against sigma_c during phase (b)
 # (frictionalize's log, one point per increment) and the uniaxial test that follows (moduli
-# per window, sliding ratio per increment), against the volume-averaged sigma_c (the stress
+# per window with its standard error as a bar, sliding ratio per increment), against the volume-averaged sigma_c (the stress
 # the moduli are fitted to); the dash-dot line marks the end of phase (b), the gray band the
 # paper's saturated sliding ratio (0.09-0.11).  The sliding ratio is the paper-comparable count
 # (contacts committed at their Coulomb limit); the trial slip ratio (DEM codes' slip fraction)
@@ -21,7 +21,7 @@ set multiplot layout 1,2
 set ylabel "G (GPa)"
 set title "shear modulus"
 plot src("fric.tsv", lw." G") using (($1+$2+$3)/3e6):($4/1e9) with linespoints pt 6 ps 0.6 title "(1) phase (b), per increment", \
-     src("moduli.tsv", "sigma_c G") using ($1/1e6):($2/1e9) with linespoints pt 7 ps 0.6 title "(2) uniaxial test, per 1e-3 strain"
+     src("moduli.tsv", "sigma_c G G_se") using ($1/1e6):($2/1e9):($3/1e9) with yerrorlines pt 7 ps 0.6 title "(2) uniaxial test, per 1e-3 strain"
 set ylabel "sliding ratio"
 set title "ratio of sliding contacts"
 set key center right

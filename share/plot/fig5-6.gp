@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The frictional paper's Figs. 5-6: deviatoric stress (axial - mean lateral) against the axial
 # strain of the uniaxial test (measured from the test's start), and K and G against sigma_c
-# with each pack's own effective-medium K and G (physics.md §13; dashed: rough, dotted: smooth).
+# (each with its standard error as a bar, moduli(1)) with each pack's own effective-medium K
+# and G (physics.md §13; dashed: rough, dotted: smooth).
 # gnuplot -e "out='f.png'; cols='pipelines/cols.sh'; runs='dir1 dir2'" share/plot/fig5-6.gp
 set terminal pngcairo size 1500,480 noenhanced font ",10"
 set output out
@@ -20,11 +21,11 @@ plot for [i=1:n] src(i, "curve.tsv", "eps_zz sig_zz sig_lat")." | awk -F '\t' -v
 set xlabel "confining stress sigma_c (MPa)"
 set ylabel "K (GPa)"
 set title "Fig. 6: bulk modulus"
-plot for [i=1:n] src(i, "moduli.tsv", "sigma_c K") using ($1/1e6):($2/1e9) with linespoints lc i pt 7 ps 0.5 title label(i), \
+plot for [i=1:n] src(i, "moduli.tsv", "sigma_c K K_se") using ($1/1e6):($2/1e9):($3/1e9) with yerrorlines lc i pt 7 ps 0.5 title label(i), \
      for [i=1:n] src(i, "moduli.tsv", "sigma_c K_emt") using ($1/1e6):($2/1e9) with lines lc i dt 2 notitle
 set ylabel "G (GPa)"
 set title "Fig. 6: shear modulus"
-plot for [i=1:n] src(i, "moduli.tsv", "sigma_c G") using ($1/1e6):($2/1e9) with linespoints lc i pt 7 ps 0.5 title label(i), \
+plot for [i=1:n] src(i, "moduli.tsv", "sigma_c G G_se") using ($1/1e6):($2/1e9):($3/1e9) with yerrorlines lc i pt 7 ps 0.5 title label(i), \
      for [i=1:n] src(i, "moduli.tsv", "sigma_c G_emt_rough") using ($1/1e6):($2/1e9) with lines lc i dt 2 notitle, \
      for [i=1:n] src(i, "moduli.tsv", "sigma_c G_emt_smooth") using ($1/1e6):($2/1e9) with lines lc i dt 3 notitle
 unset multiplot

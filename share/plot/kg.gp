@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # K and G against confining stress for several simulations (pipelines/Makefile): for each run
 # directory, phase (b) from fric.tsv when it exists (open points, one per increment) and the
-# uniaxial test from moduli.tsv (lines, one point per fitted window), both against the
+# uniaxial test from moduli.tsv (lines, one point per fitted window, with its standard error
+# as a bar: the scatter of the window's increments about Hooke's law), both against the
 # volume-averaged sigma_c, the stress their moduli are fitted to; emt=1 adds each run's
 # effective-medium K and G (rough and smooth contacts, physics.md §13) as dashed and dotted lines.
 # gnuplot -e "out='k.png'; cols='pipelines/cols.sh'; runs='dir1 dir2'" share/plot/kg.gp
@@ -22,16 +23,16 @@ do for [m in "K G"] {
 	set title m
 	if (emt) {
 		if (m eq "K") {
-			plot for [i=1:n] src(i, "moduli.tsv", "sigma_c K") using ($1/1e6):($2/1e9) with linespoints lc i pt 7 ps 0.6 title label(i), \
+			plot for [i=1:n] src(i, "moduli.tsv", "sigma_c K K_se") using ($1/1e6):($2/1e9):($3/1e9) with yerrorlines lc i pt 7 ps 0.6 title label(i), \
 			     for [i=1:n] src(i, "moduli.tsv", "sigma_c K_emt") using ($1/1e6):($2/1e9) with lines lc i dt 2 title "EMT ".label(i)
 		} else {
-			plot for [i=1:n] src(i, "moduli.tsv", "sigma_c G") using ($1/1e6):($2/1e9) with linespoints lc i pt 7 ps 0.6 title label(i), \
+			plot for [i=1:n] src(i, "moduli.tsv", "sigma_c G G_se") using ($1/1e6):($2/1e9):($3/1e9) with yerrorlines lc i pt 7 ps 0.6 title label(i), \
 			     for [i=1:n] src(i, "moduli.tsv", "sigma_c G_emt_rough") using ($1/1e6):($2/1e9) with lines lc i dt 2 title "EMT rough ".label(i), \
 			     for [i=1:n] src(i, "moduli.tsv", "sigma_c G_emt_smooth") using ($1/1e6):($2/1e9) with lines lc i dt 3 title "EMT smooth ".label(i)
 		}
 	} else {
 		plot for [i=1:n] fric(i, "sig_lw_xx sig_lw_yy sig_lw_zz ".m) using (($1+$2+$3)/3e6):($4/1e9) with points lc i pt 6 ps 0.5 notitle, \
-		     for [i=1:n] src(i, "moduli.tsv", "sigma_c ".m) using ($1/1e6):($2/1e9) with linespoints lc i pt 7 ps 0.6 title label(i)
+		     for [i=1:n] src(i, "moduli.tsv", "sigma_c ".m." ".m."_se") using ($1/1e6):($2/1e9):($3/1e9) with yerrorlines lc i pt 7 ps 0.6 title label(i)
 	}
 }
 unset multiplot

@@ -2,12 +2,13 @@
 # moduli as a user runs it: on loadtest curves of a small frictional pack (200 grains) and on
 # tables written by hand from a known linear isotropic material, whose K and G it must give
 # back; --window, segments, continued tests, isotropic paths (K only), --stress lw, --emt,
-# and the errors.  A few seconds in all.
+# the standard errors of K and G against least squares done here in awk, and the errors.  A
+# few seconds in all.
 . "$TOP/tests/tools/lib.sh"
 
 # moduli columns: 1 seg, 2 inc_from, 3 inc_to, 4 n, 5 sigma_c, 6 sig_lat, 7 K, 8 G, 9 lambda,
-# 10 E, 11 nu, 12 fit_rel (then, with --emt: 13 porosity, 14 coordination, 15 K_emt,
-# 16 G_emt_rough, 17 G_emt_smooth)
+# 10 E, 11 nu, 12 fit_rel, 13 K_se, 14 G_se (with --emt: 13 porosity, 14 coordination, 15 K_emt,
+# 16 G_emt_rough, 17 G_emt_smooth, 18 K_se, 19 G_se: the standard errors come last)
 
 small_pack frictional
 expect_ok "loadtest makes the curve" loadtest --steps 6 fr.pack
@@ -17,9 +18,9 @@ mv ok.out curve.tsv
 expect_ok "moduli reads a loadtest curve" moduli curve.tsv
 mv ok.out m1.tsv
 hdr=$(printf '# seg\tinc_from\tinc_to\tn\tsigma_c[Pa]\tsig_lat[Pa]\tK[Pa]\tG[Pa]\tlambda[Pa]\tE[Pa]\tnu\tfit_rel')
-if [ "$(head -n 1 m1.tsv)" = "$hdr" ]; then pass "header"; else fail "header" "$(head -n 1 m1.tsv)"; fi
+if [ "$(head -n 1 m1.tsv)" = "$hdr$(printf '\tK_se[Pa]\tG_se[Pa]')" ]; then pass "header"; else fail "header" "$(head -n 1 m1.tsv)"; fi
 expect_num "one row per increment (6)" "$(rows m1.tsv | wc -l)" "==" 6
-rows m1.tsv | awk -F '\t' '{ k = NR; if (NF != 12) bad = "row " NR ": " NF " columns"
+rows m1.tsv | awk -F '\t' '{ k = NR; if (NF != 14) bad = "row " NR ": " NF " columns"
 	if (!($1 == 1 && $2 == k - 1 && $3 == k && $4 == 1)) bad = "row " NR ": seg " $1 " inc " $2 "-" $3 " n " $4
 	if (!($7 > 1e8 && $7 < 1e11 && $8 > 1e7 && $8 < 1e11)) bad = "row " NR ": K " $7 " G " $8
 	if (!($12 >= 0 && $12 < 0.05)) bad = "row " NR ": fit_rel " $12
@@ -88,8 +89,8 @@ expect_same "--stress lw is the default" lw.tsv m1.tsv
 sed '/^# /{ s/\tsig_xx/\tTMPxx/; s/\tsig_yy/\tTMPyy/; s/\tsig_zz/\tTMPzz/
 	s/\tsig_lw_xx/\tsig_xx/; s/\tsig_lw_yy/\tsig_yy/; s/\tsig_lw_zz/\tsig_zz/
 	s/\tTMPxx/\tsig_lw_xx/; s/\tTMPyy/\tsig_lw_yy/; s/\tTMPzz/\tsig_lw_zz/ }' curve.tsv >swapped.tsv
-moduli --stress wall swapped.tsv | cut -f 7-12 >sw.cols 2>/dev/null
-cut -f 7-12 lw.tsv >lw.cols
+moduli --stress wall swapped.tsv | cut -f 7-14 >sw.cols 2>/dev/null
+cut -f 7-14 lw.tsv >lw.cols
 expect_same "--stress lw fits the sig_lw_ columns" lw.cols sw.cols
 if ! cmp -s lw.tsv mw.tsv; then pass "--stress lw differs from the wall stresses"; else fail "--stress lw differs from the wall stresses" "same table"; fi
 
@@ -117,14 +118,17 @@ expect_num "the grains' K does not depend on the walls' friction: volume-average
 # moduli of emt.h computed here from E 70 GPa, nu 0.2
 expect_ok "--emt glass" moduli --emt glass curve.tsv
 mv ok.out emt.tsv
-hdr17=$(printf '%s\tporosity\tcoordination\tK_emt[Pa]\tG_emt_rough[Pa]\tG_emt_smooth[Pa]' "$hdr")
+hdr17=$(printf '%s\tporosity\tcoordination\tK_emt[Pa]\tG_emt_rough[Pa]\tG_emt_smooth[Pa]\tK_se[Pa]\tG_se[Pa]' "$hdr")
 if [ "$(head -n 1 emt.tsv)" = "$hdr17" ]; then pass "--emt: header"; else fail "--emt: header" "$(head -n 1 emt.tsv)"; fi
 rows emt.tsv | cut -f 1-12 >emt12.rows
-rows m1.tsv >m1.rows
+rows m1.tsv | cut -f 1-12 >m1.rows
 expect_same "--emt: the first 12 columns unchanged" m1.rows emt12.rows
+rows emt.tsv | cut -f 18-19 >emtse.rows
+rows m1.tsv | cut -f 13-14 >m1se.rows
+expect_same "--emt: the standard errors last (18-19), the same as without it (13-14)" m1se.rows emtse.rows
 rows curve.tsv >curve.rows
 rows emt.tsv | awk -F '\t' 'NR == FNR { phi[$1] = $21; z[$1] = $22; next }
-	{ k = FNR; if (NF != 17) bad = "row " k ": " NF " columns"
+	{ k = FNR; if (NF != 19) bad = "row " k ": " NF " columns"
 	  if ($13 != phi[$3] || $14 != z[$3]) bad = "row " k ": porosity/coordination not those of inc " $3
 	  pi = atan2(0, -1); nu = 0.2; mu = 70e9 / (2 * (1 + nu))
 	  c = $14 * $14 * (1 - $13) ^ 2 * mu * mu * $5 / (pi * pi * (1 - nu) ^ 2)
@@ -217,8 +221,112 @@ moduli --window 9 negG.tsv >neg.tsv 2>neg.err
 v="$(col neg.tsv 1 8) $(col neg.tsv 1 9) $(col neg.tsv 1 10) $(col neg.tsv 1 11)"
 if [ "$v" = "nan nan nan nan" ]; then pass "negative G: G lambda E nu written as nan"; else fail "negative G: G lambda E nu written as nan" "$v"; fi
 expect_num "negative G: K kept (1 GPa)" "$(rel "$(col neg.tsv 1 7)" 1e9)" "<" 1e-9
+v="$(col neg.tsv 1 13) $(col neg.tsv 1 14)"
+if is_number "${v% *}" && [ "${v#* }" = nan ]; then pass "negative G: G_se nan with G, K_se kept ($v)"; else fail "negative G: G_se nan with G, K_se kept" "$v"; fi
 if grep -q '^moduli: negG\.tsv:11: increments 0-9: G = -1e+08 Pa is negative: no modulus, written as nan$' neg.err; then
 	pass "negative G: one line on stderr"; else fail "negative G: one line on stderr" "$(cat neg.err)"; fi
+
+# --- standard errors ----------------------------------------------------------------------------
+# ls_ref TABLE WINDOW PREFIX: per interval, "K G K_se G_se" of the least squares of
+# ds_ll = K tr(de) + 2 G (de_ll - tr(de)/3) done here from the table's eps_ and PREFIX_ columns,
+# by the 2x2 normal equations (no orthogonality assumed): s^2 = chisq / (3m - p) and
+# se_j = sqrt(s^2 [(X^T X)^-1]_jj); a column whose sum of squares is below 1e-18 of the other's
+# is left out (moduli's rule), its modulus and standard error nan.  Intervals: WINDOW
+# increments within a segment, the increment into a row in that row's segment (moduli(1)).
+ls_ref() {
+	awk -F '\t' -v W="$2" -v P="$3" '
+	/^# / { sub(/^# /, ""); for (i = 1; i <= NF; i++) { c = $i; sub(/\[.*\]$/, "", c); ix[c] = i }; next }
+	/^#/ { next }
+	{ r++; sg[r] = ("seg" in ix) ? $ix["seg"] : 0
+	  for (a = 1; a <= 3; a++) { e[r, a] = $ix["eps_" ax(a)]; s[r, a] = $ix[P "_" ax(a)] } }
+	function ax(a) { return a == 1 ? "xx" : a == 2 ? "yy" : "zz" }
+	END { m = 0
+	  for (q = 2; q <= r; q++) {
+		m++; for (a = 1; a <= 3; a++) { de[m, a] = e[q, a] - e[q - 1, a]; ds[m, a] = s[q, a] - s[q - 1, a] }
+		if (m == W || q == r || sg[q + 1] != sg[q]) { fit(m); m = 0 }
+	  } }
+	function fit(m,   k, a, tr, x1, x2, A11, A12, A22, b1, b2, det, K, G, chi, y, big, hk, hg, p, s2, Kse, Gse) {
+		for (k = 1; k <= m; k++) { tr = de[k, 1] + de[k, 2] + de[k, 3]
+			for (a = 1; a <= 3; a++) { x1 = tr; x2 = 2 * (de[k, a] - tr / 3); y = ds[k, a]
+				A11 += x1 * x1; A12 += x1 * x2; A22 += x2 * x2; b1 += x1 * y; b2 += x2 * y } }
+		big = A11 > A22 ? A11 : A22; hk = A11 > 1e-18 * big; hg = A22 > 1e-18 * big
+		K = G = Kse = Gse = "nan"
+		if (hk && hg) { det = A11 * A22 - A12 * A12; K = (A22 * b1 - A12 * b2) / det; G = (A11 * b2 - A12 * b1) / det; p = 2 }
+		else if (hk) { K = b1 / A11; p = 1 } else { G = b2 / A22; p = 1 }
+		for (k = 1; k <= m; k++) { tr = de[k, 1] + de[k, 2] + de[k, 3]
+			for (a = 1; a <= 3; a++) { y = ds[k, a] - (hk ? K * tr : 0) - (hg ? G * 2 * (de[k, a] - tr / 3) : 0); chi += y * y } }
+		s2 = chi / (3 * m - p)
+		if (hk && hg) { Kse = sqrt(s2 * A22 / det); Gse = sqrt(s2 * A11 / det) }
+		else if (hk) Kse = sqrt(s2 / A11); else Gse = sqrt(s2 / A22)
+		printf "%.17g\t%.17g\t%.17g\t%.17g\n", K, G, Kse, Gse }' "$1"
+}
+# se_cmp NAME MODULI_TABLE REF: columns K G K_se G_se (7 8 13 14) of every row against ls_ref's,
+# to 1e-9 relative (both are double least squares of the same numbers: their round-off differs
+# by far less, and a standard error off by a factor sqrt((3m - 1)/(3m - 2)) or more, a wrong
+# degree-of-freedom count, is 2 % at m = 9); nan must match nan
+se_cmp() {
+	rows "$2" | cut -f 7,8,13,14 | paste - "$3" | awk -F '\t' '
+	function off(a, b) { if (a == "nan" || b == "nan") return a != b; return ((a - b) / b) ^ 2 > 1e-18 }
+	{ for (j = 1; j <= 4; j++) if (off($j, $(j + 4))) bad = "row " NR ": " $0 }
+	END { if (NR == 0) bad = "no rows"; if (bad) { print bad; exit 1 } }' >why &&
+	    pass "$1" || fail "$1" "$(cat why)"
+}
+# (a) a hand-made table off Hooke's law by a known perturbation: K = 1.234567e9, G = 0.7654321e9,
+# each stress component moved by 2e3 sin(3k + l) Pa (the increments are about 1e5 Pa).  Segment 1:
+# 6 general strain increments (all components varying); segment 2: 4 isotropic ones (K only).
+awk -v K=$K -v G=$G 'BEGIN {
+	printf "# inc\tseg\teps_xx\teps_yy\teps_zz\tsig_xx[Pa]\tsig_yy[Pa]\tsig_zz[Pa]\tsigma_c[Pa]\tsig_lat[Pa]\n"
+	l = K - 2 * G / 3; e[1] = e[2] = 0.002; e[3] = 0.01; s[1] = s[2] = 5e6; s[3] = 8e6
+	out(0, 0)
+	for (k = 1; k <= 6; k++) step(k, 1, 1e-5 * k, -2e-5 + 1e-5 * (k % 3), 1e-4 - 5e-6 * k)
+	for (k = 7; k <= 10; k++) step(k, 2, 1e-4, 1e-4, 1e-4)
+}
+function step(k, sg, a, b, c,   tr) {
+	tr = a + b + c; d[1] = a; d[2] = b; d[3] = c
+	for (i = 1; i <= 3; i++) { e[i] += d[i]; s[i] += l * tr + 2 * G * d[i] + 2e3 * sin(3 * k + i) }
+	out(k, sg)
+}
+function out(k, sg) {
+	printf "%d\t%d\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\t%.17g\n", k, sg, e[1], e[2], e[3], s[1], s[2], s[3], (s[1] + s[2] + s[3]) / 3, (s[1] + s[2]) / 2
+}' >pert.tsv
+for w in 1 3 6; do
+	moduli --window $w pert.tsv >pert$w.tsv 2>/dev/null
+	ls_ref pert.tsv $w sig >pert$w.ref
+	se_cmp "perturbed hand-made, --window $w: K, G, K_se, G_se = least squares in awk (1e-9)" pert$w.tsv pert$w.ref
+done
+# the perturbation shows: standard errors well above round-off, K's below K
+expect_num "perturbed, --window 6: K_se of the general segment, above round-off (K 1.23e9)" "$(col pert6.tsv 1 13)" ">" 1e3
+expect_num "perturbed, --window 6: G_se of the general segment, above round-off" "$(col pert6.tsv 1 14)" ">" 1e3
+expect_num "perturbed, --window 6: K_se below 5 % of K" "$(col pert6.tsv 1 13)" "<" "$(awk -v K=$K 'BEGIN { print 0.05 * K }')"
+v=$(rows pert3.tsv | awk -F '\t' '$1 == 2 { printf "%s,", $14 }')
+if [ "$v" = "nan,nan," ]; then pass "perturbed, isotropic segment: G_se nan (no G)"; else fail "perturbed, isotropic segment: G_se nan (no G)" "$v"; fi
+# (b) increments exactly on Hooke's law (synth.tsv): standard errors at round-off, below 1e-9
+# of K (the stresses are differenced from values near 5e6 Pa: 1e-9 Pa of round-off in a 1e5 Pa
+# increment gives a standard error near 1e-14 of K)
+rows syn1.tsv | awk -F '\t' -v K=$K '
+	$13 == "nan" || !($13 >= 0 && $13 < 1e-9 * K) { bad = "row " NR ": K_se " $13 }
+	$1 < 3 && ($14 == "nan" || !($14 >= 0 && $14 < 1e-9 * K)) { bad = "row " NR ": G_se " $14 }
+	$1 == 3 && $14 != "nan" { bad = "row " NR " (isotropic): G_se " $14 }
+	END { if (NR != 12) bad = NR " rows"; if (bad) { print bad; exit 1 } }' >why &&
+    pass "exactly on Hooke's law: K_se, G_se below 1e-9 of K (G_se nan when isotropic)" ||
+    fail "exactly on Hooke's law: K_se, G_se below 1e-9 of K (G_se nan when isotropic)" "$(cat why)"
+v=$(rows syn6.tsv | awk -F '\t' '{ printf "%s:%.3g:%.3g ", $1, $13 / '"$K"', $14 / '"$K"' }')
+rows syn6.tsv | awk -F '\t' -v K=$K '!($13 < 1e-9 * K) || ($1 < 3 && !($14 < 1e-9 * K)) { bad = 1 } END { exit bad }' &&
+    pass "exactly on Hooke's law, --window 6: K_se, G_se below 1e-9 of K ($v)" ||
+    fail "exactly on Hooke's law, --window 6: K_se, G_se below 1e-9 of K" "$v"
+# (c) the loadtest curve of the frictional pack: K_se and G_se the same least squares of its
+# volume-averaged stresses, finite and positive (the pack is no isotropic Hooke's solid: its
+# lateral stresses differ, fit_rel about 1 %) and well below K and G (under 5 %: about 1 %
+# measured with one increment per interval, one degree of freedom)
+for w in 1 3; do
+	moduli --window $w curve.tsv >real$w.tsv 2>/dev/null
+	ls_ref curve.tsv $w sig_lw >real$w.ref
+	se_cmp "loadtest curve, --window $w: K, G, K_se, G_se = least squares in awk (1e-9)" real$w.tsv real$w.ref
+	rows real$w.tsv | awk -F '\t' '!($13 > 0 && $13 < 0.05 * $7 && $14 > 0 && $14 < 0.05 * $8) { bad = "row " NR ": K " $7 " K_se " $13 " G " $8 " G_se " $14 }
+	    END { if (NR == 0) bad = "no rows"; if (bad) { print bad; exit 1 } }' >why &&
+	    pass "loadtest curve, --window $w: 0 < K_se < 5 % of K, 0 < G_se < 5 % of G" ||
+	    fail "loadtest curve, --window $w: 0 < K_se < 5 % of K, 0 < G_se < 5 % of G" "$(cat why)"
+done
 
 # --- errors -----------------------------------------------------------------------------------
 # expect_fail NAME STATUS REGEX ARGS...: moduli ARGS -o nothing.tsv, as expect_error, and no

@@ -221,6 +221,8 @@ test_residual(void)
 	hooke_fit((const double(*)[3])de, (const double(*)[3])ds, M, &hk);
 	CHECK(unit_close(hk.K, K0, TOL, 0) && unit_close(hk.G, G0, TOL, 0) && hk.rel <= 1e-13,
 	    "hooke %d mixed increments, exact: K, G fitted back, fit_rel %.3g = 0 to rounding", M, hk.rel);
+	CHECK(hk.K_se >= 0 && hk.K_se <= 1e-12 * K0 && hk.G_se >= 0 && hk.G_se <= 1e-12 * K0,
+	    "hooke %d mixed increments, exact: K_se %.3g, G_se %.3g = 0 to rounding", M, hk.K_se, hk.G_se);
 
 	/* (a) a perturbation orthogonal to both columns: +delta on ds_yy, -delta on ds_zz of
 	 * an increment uniaxial along x (tr fixed; dev_yy = dev_zz).  The fit must not move,
@@ -236,6 +238,22 @@ test_residual(void)
 	CHECK_CLOSE(hk.rms, delta * sqrt(2.0 / (3 * M)), 1e-10, "hooke orthogonal perturbation: rms = delta sqrt(2/(3M))");
 	CHECK_CLOSE(hk.rel, relr, 1e-10, "hooke orthogonal perturbation: fit_rel = rms / rms(ds)");
 	CHECK(hk.rel > 1e-5, "hooke orthogonal perturbation: fit_rel %.3g > 0", hk.rel);
+	/* the residual's sum of squares is 2 delta^2 exactly, over 3M - 2 degrees of freedom:
+	 * K_se^2 = 2 delta^2 / (3M - 2) / sum tr^2 and G_se^2 the same over sum 4 dev^2 (the sums
+	 * over the 3M components; the two columns are orthogonal) */
+	{
+		double vol2 = 0, dev2 = 0, s2 = 2 * delta * delta / (3 * M - 2);
+		int a;
+		for (k = 0; k < M; k++) {
+			double tr = de[k][0] + de[k][1] + de[k][2];
+			for (a = 0; a < 3; a++) {
+				vol2 += tr * tr;
+				dev2 += 4 * (de[k][a] - tr / 3) * (de[k][a] - tr / 3);
+			}
+		}
+		CHECK_CLOSE(hk.K_se, sqrt(s2 / vol2), 1e-10, "hooke orthogonal perturbation: K_se = s / sqrt(sum tr^2)");
+		CHECK_CLOSE(hk.G_se, sqrt(s2 / dev2), 1e-10, "hooke orthogonal perturbation: G_se = s / sqrt(sum 4 dev^2)");
+	}
 
 	/* (b) a perturbation that moves the fit: +delta on ds_xx of the polyaxial increment.
 	 * K, G and the residual against the separable least-squares solution written above;
