@@ -284,13 +284,13 @@ put_row(FILE *mem, const struct row *row, int plates, int count, int *first_plat
 	if (tsv) {
 		/* one header, so one kind: plate rows have other columns */
 		if (count == 0) {
-			table_header(mem, row->col, row->n);
+			table_header_text(mem, row->col, row->n, "file");
 			*first_plates = plates;
 		} else if (plates != *first_plates) {
 			msg_die(EXIT_DATA, "%s: --tsv: pack %d has %s, the first %s: one table holds one kind of pack",
 			    name, count + 1, plates ? "spheroplates" : "spheres only", plates ? "spheres only" : "spheroplates");
 		}
-		table_row(mem, row->v, row->n);
+		table_row_text(mem, row->v, row->n, name);
 	} else {
 		if (count > 0)
 			fputc('\n', mem);

@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-void
-table_header(FILE *fp, const struct table_col *cols, int n)
+static void
+header_cells(FILE *fp, const struct table_col *cols, int n)
 {
 	int k;
 
@@ -20,11 +20,10 @@ table_header(FILE *fp, const struct table_col *cols, int n)
 		if (cols[k].unit)
 			fprintf(fp, "[%s]", cols[k].unit);
 	}
-	fputc('\n', fp);
 }
 
-void
-table_row(FILE *fp, const double *v, int n)
+static void
+row_cells(FILE *fp, const double *v, int n)
 {
 	char buf[40];
 	int k;
@@ -33,6 +32,39 @@ table_row(FILE *fp, const double *v, int n)
 		num_format(buf, v[k]);
 		fprintf(fp, "%s%s", k ? "\t" : "", buf);
 	}
+}
+
+void
+table_header(FILE *fp, const struct table_col *cols, int n)
+{
+	header_cells(fp, cols, n);
+	fputc('\n', fp);
+}
+
+void
+table_row(FILE *fp, const double *v, int n)
+{
+	row_cells(fp, v, n);
+	fputc('\n', fp);
+}
+
+void
+table_header_text(FILE *fp, const struct table_col *cols, int n, const char *text_name)
+{
+	header_cells(fp, cols, n);
+	fprintf(fp, "%s%s\n", n ? "\t" : "# ", text_name);
+}
+
+void
+table_row_text(FILE *fp, const double *v, int n, const char *text)
+{
+	const char *c;
+
+	row_cells(fp, v, n);
+	if (n)
+		fputc('\t', fp);
+	for (c = text; *c; c++)	/* one cell: a tab or a newline would make two, or two rows */
+		fputc(*c == '\t' || *c == '\n' || *c == '\r' ? ' ' : *c, fp);
 	fputc('\n', fp);
 }
 

@@ -19,6 +19,10 @@ struct table_col {
 
 void table_header(FILE *fp, const struct table_col *cols, int n);
 void table_row(FILE *fp, const double *v, int n);
+/* The same with a last text column named text_name (a word without tabs, e.g. packinfo's
+ * file), its cell text on each row (tabs and newlines in it written as spaces). */
+void table_header_text(FILE *fp, const struct table_col *cols, int n, const char *text_name);
+void table_row_text(FILE *fp, const double *v, int n, const char *text);
 
 /* A table read back: ncol named columns (units stripped), nrow rows of doubles.  Repeated
  * identical header lines (tables concatenated with cat) and "##" lines are skipped. */

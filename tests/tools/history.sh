@@ -23,8 +23,9 @@ packinfo fr.pack >a.info
 packinfo twin.pack >b.info
 expect_same "packinfo: a pack and its reversed twin agree" a.info b.info
 expect_num "packinfo: the pack balances its history (residual)" "$(info_value a.info residual)" "<" 1e-3
-packinfo --tsv fr.pack >a.tsv
-packinfo --tsv twin.pack >b.tsv
+# the last column, file, names each input: the rest agree
+packinfo --tsv fr.pack | awk -F '\t' 'BEGIN { OFS = "\t" } { NF--; print }' >a.tsv
+packinfo --tsv twin.pack | awk -F '\t' 'BEGIN { OFS = "\t" } { NF--; print }' >b.tsv
 expect_same "packinfo --tsv: a pack and its reversed twin agree" a.tsv b.tsv
 loadtest --path uniaxial --steps 2 fr.pack >a.curve 2>/dev/null
 loadtest --path uniaxial --steps 2 twin.pack >b.curve 2>/dev/null

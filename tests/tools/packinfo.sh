@@ -133,6 +133,15 @@ if grep -q '^hydrate_\|^porosity_hydrate' d.info; then fail "no phase column: no
 packinfo --tsv dense.pack hy.pack dense.pack >mix.tsv 2>/dev/null
 expect_num "--tsv over packs with and without the phase column: one field count" "$(awk -F '\t' '{ print NF }' mix.tsv | sort -u | wc -l)" == 1
 expect_num "--tsv: 3 rows" "$(rows mix.tsv | wc -l)" == 3
+# the last column names each row's input, standard input as <stdin> (issue 59: rows of many
+# files could not be told apart)
+if [ "$(head -n 1 mix.tsv | awk -F '\t' '{ print $NF }')" = file ] &&
+    [ "$(rows mix.tsv | awk -F '\t' '{ printf "%s ", $NF }')" = "dense.pack hy.pack dense.pack " ] &&
+    [ "$(packinfo --tsv <dense.pack | grep -v '^#' | awk -F '\t' '{ print $NF }')" = "<stdin>" ]; then
+	pass "--tsv: the last column, file, names each row's input (<stdin> for standard input)"
+else
+	fail "--tsv: the last column, file, names each row's input" "$(rows mix.tsv | awk -F '\t' '{ print $NF }' | tr '\n' ' ')"
+fi
 if [ "$(rows mix.tsv | sed -n 1p | cut -f 7-10)" = "$(printf 'nan\tnan\tnan\tnan')" ] &&
     [ "$(rows mix.tsv | sed -n 2p | cut -f 7)" = "$wn" ]; then
 	pass "--tsv: hydrate columns nan without the column, the count with it"
