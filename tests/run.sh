@@ -25,6 +25,7 @@ if [ "${1:-}" = --one ]; then
 	bdir="$top/$b"
 	w="$out/$b/$kind/$n.d"
 	log="$out/$b/$kind/$n.log"
+	rm -rf "$w"	# a test starts in an empty directory, on a rerun too
 	mkdir -p "$w"
 	cd "$w" || exit 1
 	t0=$(cut -d' ' -f1 /proc/uptime 2>/dev/null || echo 0)
