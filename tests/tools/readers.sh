@@ -58,6 +58,12 @@ if cmp -s c.txt "$TOP/tests/corpus/packs.expected"; then
 else
 	fail "packinfo: the $n files of tests/corpus/packs as tests/corpus/packs.expected" "$(diff "$TOP/tests/corpus/packs.expected" c.txt | head -n 6)"
 fi
+# The Python reader's side is the optimised build's: it does not depend on the build, and in
+# the sanitizer build's run it doubled this test's time (28 s of CPU) to check it again; that
+# build's packinfo has the corpus above.
+if [ "${BIN#*build-san}" != "$BIN" ]; then
+	exit 0
+fi
 (cd packs && "$py" ../outcomes.py *) >py.txt 2>py.err
 if grep -q '^DIFFER' py.txt; then
 	fail "tests/corpus/packs: the Python reader's fast path and line-by-line reader agree" "$(grep '^DIFFER' py.txt | head -n 3)"
