@@ -343,9 +343,13 @@ expect_fail "--log the output by another path" 2 "^densify: -o and --log name th
 cp loose.pack in.pack
 expect_fail "--log the input" 2 "^densify: --log 'in.pack' is the input: write to another file" --log in.pack in.pack
 # -o the input: the pack updated in place (read whole, then renamed over it)
-densify --stress 4e6 -o ref.pack in.pack 2>/dev/null
-expect_ok "-o the input: allowed" densify --stress 4e6 -o in.pack in.pack
-expect_same "-o the input: the pack updated in place, as -o another file" in.pack ref.pack
+# (the optimised build's: the in-place write is lib/base/fileio's, which the sanitizer
+# build checks through loadtest's and dissociate's, at a fraction of this run's CPU)
+if [ "${BIN#*build-san}" = "$BIN" ]; then
+	densify --stress 4e6 -o ref.pack in.pack 2>/dev/null
+	expect_ok "-o the input: allowed" densify --stress 4e6 -o in.pack in.pack
+	expect_same "-o the input: the pack updated in place, as -o another file" in.pack ref.pack
+fi
 cp loose.pack in.pack
 # a log through a symbolic link is written into the file the link names: refused when that
 # is the input or -o (it exited 0 with the input, or the log, lost); /dev/stdout is stdout

@@ -175,9 +175,13 @@ expect_error "--log a link to the input" 2 "^frictionalize: --log 'in.link' is t
 expect_same "--log a link to the input: the input untouched" in.pack dense.pack
 rm -f in.link
 # -o the input: the pack updated in place (read whole, then renamed over it)
-frictionalize -o ref.pack in.pack 2>/dev/null
-expect_ok "-o the input: allowed" frictionalize -o in.pack in.pack
-expect_same "-o the input: the pack updated in place, as -o another file" in.pack ref.pack
+# (the optimised build's: the in-place write is lib/base/fileio's, which the sanitizer
+# build checks through loadtest's and dissociate's, at a fraction of this run's CPU)
+if [ "${BIN#*build-san}" = "$BIN" ]; then
+	frictionalize -o ref.pack in.pack 2>/dev/null
+	expect_ok "-o the input: allowed" frictionalize -o in.pack in.pack
+	expect_same "-o the input: the pack updated in place, as -o another file" in.pack ref.pack
+fi
 expect_refused "no output file" nothing.pack "--log /dev/full" 1 '^frictionalize: /dev/full: write error: No space left on device$' \
     frictionalize --log /dev/full -o nothing.pack dense.pack
 expect_refused "no log" nothing.tsv "-o in a missing directory" 2 "^frictionalize: -o: cannot write in directory 'no-such-dir'" \

@@ -161,9 +161,13 @@ expect_error "shear: snapshots in a missing directory" 2 "^shear: a snapshot \\(
 expect_error "shear: --profile the output" 2 "^shear: -o and --profile name the same file 'x.out'" \
     shear --strain 0.1 --profile x.out -o x.out s.pack
 cp s.pack in.pack
-shear --strain 0.1 -o ref.pack in.pack >/dev/null 2>&1
-expect_ok "shear: -o the input: allowed" shear --strain 0.1 -o in.pack in.pack
-expect_same "shear: -o the input: the pack updated in place, as -o another file" in.pack ref.pack
+# (the optimised build's: the in-place write is lib/base/fileio's, which the sanitizer
+# build checks through loadtest's and dissociate's, at a fraction of this run's CPU)
+if [ "${BIN#*build-san}" = "$BIN" ]; then
+	shear --strain 0.1 -o ref.pack in.pack >/dev/null 2>&1
+	expect_ok "shear: -o the input: allowed" shear --strain 0.1 -o in.pack in.pack
+	expect_same "shear: -o the input: the pack updated in place, as -o another file" in.pack ref.pack
+fi
 expect_error "shear: a snapshot over -o" 2 "^shear: -o and a snapshot \\(--snapshot-prefix\\) name the same file 'snap-0.05.pack'" \
     shear --strain 0.1 --snapshots 0.05 --snapshot-prefix snap -o snap-0.05.pack s.pack
 expect_error "shear: --profile - with the table" 2 "^shear: the table and --profile both go to standard output" \
