@@ -167,6 +167,10 @@ for a in xx yy zz; do
 	expect_num "spheroplates: sig_lw_$a within 1 % of sig_$a" "$(rel "$(info_value pinfo.txt sig_lw_$a)" "$(info_value pinfo.txt sig_$a)")" "<" 0.01
 done
 expect_num "spheroplates: residual_mean at rest" "$(info_value pinfo.txt residual_mean)" "<" 2e-3
+# (the optimised build's: 216-grain compactions and a densify, 20 s of CPU in the sanitizer
+# build, whose code, the plate pass and the linear law's densify, that build runs on the
+# smaller packs here and in laws.sh)
+if [ $san = 0 ]; then
 # spheres by the plate engine (--platyness 0): on the grid's nodes they are a simple cubic
 # crystal that the isotropic compaction keeps, every grain at 6 interactions (grains or
 # walls); off the nodes (--jitter, default 1 for spheres) they are not
@@ -185,6 +189,7 @@ grep -q '^meta contact-law linear$' s1d.pack && pass "densify: keeps meta contac
 packinfo s1d.pack >s1d.info 2>/dev/null
 sc=$(awk '$1 ~ /^sig_lw_(xx|yy|zz)$/ { s += $2 } END { print s / 3 }' s1d.info)
 expect_num "densified: sigma_c of the linear law's forces at densify's 4 MPa ($sc Pa)" "$(rel "$sc" 4e6)" "<" 0.01
+fi
 expect_ok "spheroplates: corner reading" packgen --shape spheroplate --platyness 0.5 --plate-radius corner -n 8 --seed 2 -o pc.pack
 # corner: side = sqrt(2) (R - r) = sqrt(2) r
 expect_num "spheroplates: corner side sqrt(2) r" "$(rel "$(packinfo pc.pack | awk '$1 == "side_mean" { print $2 }')" 4.242640687119285e-8)" "<" 1e-12

@@ -39,8 +39,10 @@ else
 	else
 		fail "loadtest on a terminal: bar and ETA of the increments" "$(tr '\r' '\n' <l.tty | tail -n 2 | cut -c 1-200)"
 	fi
-	on_tty q.tty densify -q --stress 4e6 -o q.pack loose.pack
-	expect_num "densify -q on a terminal: nothing" "$(wc -c <q.tty)" == 0
+	if [ "${BIN#*build-san}" = "$BIN" ]; then	# a whole densify to see nothing: the optimised build's
+		on_tty q.tty densify -q --stress 4e6 -o q.pack loose.pack
+		expect_num "densify -q on a terminal: nothing" "$(wc -c <q.tty)" == 0
+	fi
 	# a run that succeeds ends with one line: its time and its last summary in full
 	if [ "$(tr '\r' '\n' <d.tty | grep -av '^$' | tail -n 1)" != "" ] &&
 	    tr '\r' '\n' <d.tty | grep -av '^$' | tail -n 1 | grep -aEq '^densify: done in [0-9:]+s?: compact [0-9]+: sigma_c .* residual [0-9.e+-]+$'; then

@@ -6,6 +6,8 @@
 # A failed run keeps the profile it has.
 # Then the refusals: another run's checkpoint, a damaged one, --time-limit alone.
 . "$TOP/tests/tools/lib.sh"
+san=0
+[ "${BIN#*build-san}" != "$BIN" ] && san=1
 
 packgen --shape spheroplate --platyness 0.5 -n 125 --seed 2 -o s.pack 2>/dev/null
 args="--strain 0.08 --inertial 1e-2 --every 0.01 --profile-from 0.03 --profile-bins 8 --snapshots 0.03,0.06"
@@ -70,22 +72,27 @@ if [ -s c.ck ]; then
 	head -c -3 c2.ck >d2.ck
 	expect_error "shear: a checkpoint cut inside its last number" 1 \
 		"^shear: d2.ck:[0-9]+: the checkpoint ends without its checksum line" shear $args --checkpoint d2.ck s.pack
-	head -n -1 c2.ck | sed '1s/ 2$/ 1/' >d3.ck
-	expect_error "shear: a checkpoint of version 1" 1 \
-		"^shear: d3.ck: the checkpoint of an earlier qusgm \\(version 1, without a checksum\\): remove it to start the run afresh" \
-		shear $args --checkpoint d3.ck s.pack
+	# (the sanitizer build reads the three kinds of damage: a digit, a cut, a grain's values;
+	# the other refusals are the optimised build's, each a shear started for nothing there)
 	# the grains' checks, behind a checksum made anew: the state of no run
 	resum() {
 		head -n -1 "$1" >"$2"
 		echo "checksum crc32 $(gzip -c "$2" | tail -c 8 | od -An -tx1 -N4 | awk '{ print $4 $3 $2 $1 }')" >>"$2"
 	}
+	if [ $san = 0 ]; then
+	head -n -1 c2.ck | sed '1s/ 2$/ 1/' >d3.ck
+	expect_error "shear: a checkpoint of version 1" 1 \
+		"^shear: d3.ck: the checkpoint of an earlier qusgm \\(version 1, without a checksum\\): remove it to start the run afresh" \
+		shear $args --checkpoint d3.ck s.pack
 	awk -v g=$g 'NR == g { $2 = "0x1p+40" } { print }' c2.ck >t.ck; resum t.ck e1.ck
 	expect_refused "no pack" d.pack "shear: a checkpoint grain far outside the box" 1 \
 		"^shear: e1.ck:$g: grain 1: centre y = .* m is outside the box" shear $args --checkpoint e1.ck -o d.pack s.pack
+	fi
 	awk -v g=$g 'NR == g { $7 = $8 = $9 = $10 = "0x0p+0" } { print }' c2.ck >t.ck; resum t.ck e2.ck
 	expect_refused "no pack" d.pack "shear: a checkpoint's zero quaternion" 1 \
 		"^shear: e2.ck:$g: grain 1: \\(qw, qx, qy, qz\\) = \\(0, 0, 0, 0\\) is not a unit quaternion" \
 		shear $args --checkpoint e2.ck -o d.pack s.pack
+	if [ $san = 0 ]; then
 	awk -v g=$g 'NR == g { $4 = "0x1p+60" } { print }' c2.ck >t.ck; resum t.ck e3.ck
 	expect_refused "no pack" d.pack "shear: a checkpoint's huge velocity" 1 \
 		"^shear: e3.ck:$g: grain 1: velocity .* m/s: the grain would move more than its radius in a time step" \
@@ -96,6 +103,7 @@ if [ -s c.ck ]; then
 	awk '$1 == "loop" { $5 = "0x1p-9" } { print }' c2.ck >t.ck; resum t.ck e5.ck
 	expect_error "shear: a checkpoint's v_w not the run's" 1 "^shear: e5.ck: v_w .* m/s is not the run's" \
 		shear $args --checkpoint e5.ck s.pack
+	fi
 	resum c2.ck e6.ck
 	expect_same "shear: the checksum as the test makes it" c2.ck e6.ck
 else
