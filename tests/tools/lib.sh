@@ -125,3 +125,16 @@ help_joined() {
 	"$@" --help | awk '/^                               [^ ]/ { sub(/^ +/, ""); line = line " " $0; next }
 	    { if (NR > 1) print line; line = $0 } END { print line }'
 }
+
+# python_with_numpy: $py, Debian's python3 (or $PYTHON), with numpy, and the package of this
+# tree on PYTHONPATH; else a FAIL line and status 1 (make check installs python3-numpy as root:
+# without it a test fails, never skips)
+python_with_numpy() {
+	py=${PYTHON:-$(command -v /usr/bin/python3 || command -v python3)}
+	if [ -z "$py" ] || ! "$py" -c 'import numpy' 2>/dev/null; then
+		fail "a python3 with numpy" "'$py' (make check installs it as root: apt-get install python3-numpy)"
+		return 1
+	fi
+	PYTHONPATH=$TOP/share/python
+	export PYTHONPATH
+}

@@ -18,13 +18,7 @@ if [ "${BIN#*build-san}" != "$BIN" ]; then
 	exit 0
 fi
 
-py=${PYTHON:-$(command -v /usr/bin/python3 || command -v python3)}
-if [ -z "$py" ] || ! "$py" -c 'import numpy' 2>/dev/null; then
-	fail "a python3 with numpy" "'$py' (make check installs it as root: apt-get install python3-numpy)"
-	exit 0
-fi
-PYTHONPATH=$TOP/share/python
-export PYTHONPATH
+python_with_numpy || exit 0
 
 # The packs: version 1 (densify's, with contact lines; frictionalize's, with Q0 and M0), its
 # gzip, version 2 with the phase column and with the shape columns; a stream of two.

@@ -12,13 +12,7 @@
 # characters, are read within a few megabytes (they took 63 GiB and 2.3 GB).
 . "$TOP/tests/tools/lib.sh"
 
-py=${PYTHON:-$(command -v /usr/bin/python3 || command -v python3)}
-if [ -z "$py" ] || ! "$py" -c 'import numpy' 2>/dev/null; then
-	fail "a python3 with numpy" "'$py' (make check installs it as root: apt-get install python3-numpy)"
-	exit 0
-fi
-PYTHONPATH=$TOP/share/python
-export PYTHONPATH
+python_with_numpy || exit 0
 
 # NAME<TAB>the C reader's message (packinfo's, its "packinfo: " dropped), or "ok N" for N packs
 c_outcomes() {

@@ -53,6 +53,25 @@ unit_random(gsl_rng *rng, double u[3])
 	u[0] = s * cos(ph), u[1] = s * sin(ph), u[2] = z;
 }
 
+/* Two spheres (frames the lab's): a of radius 0.5-1.5 at the origin, b of radius 0.5-1.5 at
+ * 1.2-2 from it in a random direction; e = x_a - x_b into e, |e| returned. */
+static double
+sphere_pair_random(gsl_rng *rng, struct plate_body *a, struct plate_body *b, double e[3])
+{
+	static const double id[4] = {1, 0, 0, 0}, xa[3] = {0, 0, 0};
+	double dir[3], xb[3];
+	int k;
+
+	unit_random(rng, dir);
+	for (k = 0; k < 3; k++)
+		xb[k] = (1.2 + 0.8 * gsl_rng_uniform(rng)) * dir[k];
+	body_make(a, xa, id, 0, 0.5 + gsl_rng_uniform(rng));
+	body_make(b, xb, id, 0, 0.5 + gsl_rng_uniform(rng));
+	for (k = 0; k < 3; k++)
+		e[k] = a->x[k] - b->x[k];
+	return sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+}
+
 static double
 dist3(const double a[3], const double b[3])
 {
@@ -603,23 +622,18 @@ static void
 test_sphere_limit(void)
 {
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-	double id[4] = {1, 0, 0, 0}, err_tiny = 0, n_tiny = 0, mixed = 0, core0 = 0;
+	double err_tiny = 0, n_tiny = 0, mixed = 0, core0 = 0;
 	int i, exact = 1, tiny_ok = 1;
 
 	gsl_rng_set(rng, 5);
 	for (i = 0; i < 200; i++) {
 		struct plate_body a, b, at, bt;
 		struct plate_interaction I, T;
-		double xa[3] = {0, 0, 0}, xb[3], dir[3], e[3], d, h, n[3];
+		double xa[3] = {0, 0, 0}, xb[3], e[3], d, h, n[3];
 		int k;
-		unit_random(rng, dir);
-		for (k = 0; k < 3; k++)
-			xb[k] = (1.2 + 0.8 * gsl_rng_uniform(rng)) * dir[k];
-		body_make(&a, xa, id, 0, 0.5 + gsl_rng_uniform(rng));
-		body_make(&b, xb, id, 0, 0.5 + gsl_rng_uniform(rng));
-		for (k = 0; k < 3; k++)
-			e[k] = a.x[k] - b.x[k];
-		d = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+
+		d = sphere_pair_random(rng, &a, &b, e);
+		memcpy(xb, b.x, sizeof xb);
 		h = a.r + b.r - d;
 		for (k = 0; k < 3; k++)
 			n[k] = e[k] / d;
@@ -755,7 +769,7 @@ static void
 test_narrow_table(void)
 {
 	gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-	double id[4] = {1, 0, 0, 0}, mixed = 0, wall_err = 0;
+	double mixed = 0, wall_err = 0;
 	int a, b, i, filled = 1, exact = 1, kinds_ok = 1, wall_same = 1;
 
 	for (a = 0; a < SHAPE_NKINDS; a++) {
@@ -777,18 +791,11 @@ test_narrow_table(void)
 		const struct narrow_pair *sp = narrow_pair_of(SHAPE_SPHERE, SHAPE_SPHEROPLATE);
 		struct plate_body s1, s2, pl;
 		struct plate_interaction I, J, W1, W2;
-		double x0[3] = {0, 0, 0}, x1[3], dir[3], e[3], d, w0[3] = {0, 0, -1}, wn[3] = {0, 0, 1};
+		double x0[3] = {0, 0, 0}, e[3], d, w0[3] = {0, 0, -1}, wn[3] = {0, 0, 1};
 		unsigned word = 7;
 		int k, m;
 
-		unit_random(rng, dir);
-		for (k = 0; k < 3; k++)
-			x1[k] = (1.2 + 0.8 * gsl_rng_uniform(rng)) * dir[k];
-		body_make(&s1, x0, id, 0, 0.5 + gsl_rng_uniform(rng));
-		body_make(&s2, x1, id, 0, 0.5 + gsl_rng_uniform(rng));
-		for (k = 0; k < 3; k++)
-			e[k] = s1.x[k] - s2.x[k];
-		d = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+		d = sphere_pair_random(rng, &s1, &s2, e);
 		/* two spheres: the closed form to the bit, cached or not, and no cache kept */
 		m = ss->interaction(&s1, &s2, 1, &I);
 		exact &= m == 1 && I.e[0].kind == PLATE_SPHERE && I.e[0].h == s1.r + s2.r - d && I.d == d;
