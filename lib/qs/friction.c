@@ -68,7 +68,8 @@ fr_rule_name(enum fr_rule rule)
 
 /* The frozen quantities of one contact at the reference configuration (physics.md §3-5). */
 static void
-setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_contact *c, struct qs_friction *f)
+setup_contact(const struct qs_system *s, const struct law_pack *lk, const struct geo_contact *g, struct fr_contact *c,
+    struct qs_friction *f)
 {
 	const struct pack *p = s->p;
 	const struct contact_law *law = s->law;
@@ -77,7 +78,6 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	int wall = PACK_IS_WALL(g->j), k;
 	struct law_pair lp;
 	struct law_tangent t;
-	struct law_pack lk;
 
 	/* every field is set below (no memset: 224 bytes of stores a contact and pass) */
 	c->qp[0] = c->qp[1] = c->qp[2] = 0;
@@ -85,8 +85,7 @@ setup_contact(const struct qs_system *s, const struct geo_contact *g, struct fr_
 	c->i = i;
 	c->j = g->j;
 	memcpy(c->n, g->n, sizeof c->n);
-	law_pack_bind(law, p, &lk);	/* the frictional chain's laws read no meta line */
-	law->pair(law, &lk, i, g->j, &lp);
+	law->pair(law, lk, i, g->j, &lp);
 	f->lp[c - f->c] = lp;	/* for its limit at the commit (fr_commit_evaluated) */
 	contact_lever_lengths(wall, p->r[i], wall ? 0 : p->r[g->j], g->d, g->h, &li, &lj);
 	c->li = li;
@@ -176,7 +175,7 @@ history_mmax_floor(const struct contact_law *law, const struct law_pack *lk, dou
 /* Whether history line c lies beyond what a commit of an equilibrium can leave: |Q0| above
  * the sliding limit at P0 + Pmean (mu (P0 + Pmean)), or |M0| above M_max(P0) + M_max(Pmean)
  * (the slip the normal force's fall in one increment calls for is far below the limit of an
- * average contact), the limits the law's (line_limits).  1 for Q0, 2 for M0, 0 within.
+ * average contact), the limits the law's (law_contact_limits).  1 for Q0, 2 for M0, 0 within.
  * mfloor: history_mmax_floor's, under which a couple needs no check. */
 static int
 line_beyond_commit(const struct contact_law *law, const struct law_pair *lp, const struct pack_contact *c,
@@ -284,6 +283,7 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 {
 	struct pack *p = s->p;
 	struct geo_contacts gc;
+	struct law_pack lk;
 	size_t k, matched = 0;
 
 	/* the last commit's contacts when it kept them (fr_keep_found), else found here */
@@ -325,8 +325,9 @@ fr_begin(struct qs_friction *f, struct qs_system *s)
 	f->n = gc.n;
 	f->clamped = 0;
 	f->clamp_excess = 0;
+	law_pack_bind(s->law, p, &lk);	/* once for every contact's pair setup */
 	for (k = 0; k < gc.n; k++) {
-		setup_contact(s, &gc.c[k], &f->c[k], f);
+		setup_contact(s, &lk, &gc.c[k], &f->c[k], f);
 		matched += gc.c[k].hist >= 0;
 	}
 	f->stale = p->nc - matched;
